@@ -1,0 +1,37 @@
+#pragma once
+// Volume import: NIfTI-1 (.nii, .nii.gz), NRRD (.nrrd attached, .nhdr detached; raw and gzip; both endians)
+// and raw files whose layout is given on the command line. Every reader keeps the index-to-world affine and
+// throws InputError naming the file, the header field and the expected form on bad input.
+
+#include "render/volume.h"
+
+#include <filesystem>
+#include <optional>
+
+namespace curette::io {
+
+// Layout of a headerless raw file (`--raw-dims` etc. on the command line, or the scene's volume.raw).
+struct RawLayout {
+    glm::ivec3 dims{0};
+    ScalarType type = ScalarType::UInt8;
+    bool bigEndian = false;
+    glm::dvec3 spacing{1.0};
+    glm::dvec3 origin{0.0};
+    std::uint64_t headerBytes = 0;  // bytes to skip before the samples
+    bool gzip = false;              // the whole file is gzip-compressed
+};
+
+enum class VolumeFormat { Auto, Nifti, Nrrd, Raw };
+
+struct VolumeReadOptions {
+    VolumeFormat format = VolumeFormat::Auto;  // Auto: by extension, then by magic bytes
+    std::optional<RawLayout> raw;              // required for Raw
+};
+
+VolumeData readVolume(const std::filesystem::path& path, const VolumeReadOptions& options = {});
+
+VolumeData readNifti(const std::filesystem::path& path);
+VolumeData readNrrd(const std::filesystem::path& path);
+VolumeData readRaw(const std::filesystem::path& path, const RawLayout& layout);
+
+}  // namespace curette::io
