@@ -4,10 +4,11 @@ namespace curette {
 
 static std::string describe(const std::string& file, const std::string& field, const std::string& expected,
                             const std::string& got) {
+    // Appended piece by piece: g++ 12 warns falsely (-Wrestrict, GCC bug 105329) on `"literal" + string`.
     std::string text = file;
-    if (!field.empty()) text += ": " + field;
-    text += ": expected " + expected;
-    if (!got.empty()) text += ", got " + got;
+    if (!field.empty()) text.append(": ").append(field);
+    text.append(": expected ").append(expected);
+    if (!got.empty()) text.append(", got ").append(got);
     return text;
 }
 

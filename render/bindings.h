@@ -1,0 +1,20 @@
+#pragma once
+// Texture/image units shared with the shaders (shaders/bindings.glsl is the GLSL side; the test
+// BindingsMatchGlsl parses it and checks every value here).
+
+namespace curette::binding {
+
+inline constexpr unsigned volume = 0;
+inline constexpr unsigned transferFunction = 1;
+inline constexpr unsigned gradientOpacity = 2;
+inline constexpr unsigned occupancy = 3;
+inline constexpr unsigned ambient = 4;
+inline constexpr unsigned opacity = 5;
+inline constexpr unsigned precomputedAo = 6;
+inline constexpr unsigned mask = 7;
+inline constexpr unsigned clipDepth = 8;
+inline constexpr unsigned clipDilated = 9;
+
+inline constexpr unsigned imageOutput = 0;
+
+}  // namespace curette::binding

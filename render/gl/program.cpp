@@ -1,0 +1,192 @@
+#include "render/gl/program.h"
+
+#include "base/error.h"
+#include "base/log.h"
+#include "render/gl/embedded_shaders.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace curette::gl {
+
+namespace {
+
+std::string readShaderFile(const std::string& name) {
+    if (const char* dir = std::getenv("CURETTE_SHADER_DIR"); dir && *dir) {
+        std::ifstream in(std::string(dir) + "/" + name);
+        if (!in) throw SystemError("shader " + name + " not found in CURETTE_SHADER_DIR=" + dir);
+        std::stringstream text;
+        text << in.rdbuf();
+        return text.str();
+    }
+    for (const EmbeddedShader& shader : embeddedShaders())
+        if (shader.name == name) return std::string(shader.source);
+    throw SystemError("shader " + name + " is not embedded (add it to render/CMakeLists.txt)");
+}
+
+struct Expander {
+    std::vector<std::string> files;
+    std::set<std::string> included;
+
+    void expand(const std::string& name, std::string& out, int depth) {
+        if (depth > 16) throw SystemError("shader include depth exceeds 16 at " + name);
+        if (!included.insert(name).second) return;  // each file once: includes are their own guards
+        int fileIndex = static_cast<int>(files.size());
+        files.push_back(name);
+        std::istringstream in(readShaderFile(name));
+        std::string line;
+        int number = 0;
+        out += "#line 1 " + std::to_string(fileIndex) + "\n";
+        while (std::getline(in, line)) {
+            ++number;
+            auto first = line.find_first_not_of(" \t");
+            if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
+                auto open = line.find('"', first), close = line.rfind('"');
+                if (open == std::string::npos || close <= open)
+                    throw SystemError(name + ":" + std::to_string(number) + ": malformed #include");
+                expand(line.substr(open + 1, close - open - 1), out, depth + 1);
+                out += "#line " + std::to_string(number + 1) + " " + std::to_string(fileIndex) + "\n";
+                continue;
+            }
+            out += line;
+            out += '\n';
+        }
+    }
+};
+
+// Replaces "0(12)" style locations in a driver log with "file.glsl:12".
+std::string annotateLog(const std::string& log, const std::vector<std::string>& files) {
+    std::string result;
+    std::istringstream in(log);
+    std::string line;
+    while (std::getline(in, line)) {
+        std::size_t paren = line.find('(');
+        std::size_t close = line.find(')');
+        if (paren != std::string::npos && close != std::string::npos && paren > 0 && close > paren) {
+            try {
+                int index = std::stoi(line.substr(0, paren));
+                if (index >= 0 && index < static_cast<int>(files.size()))
+                    line = files[static_cast<std::size_t>(index)] + ":" + line.substr(paren + 1, close - paren - 1) +
+                           line.substr(close + 1);
+            } catch (...) {
+            }
+        }
+        result += "  " + line + "\n";
+    }
+    return result;
+}
+
+ShaderName compileStage(GLenum stage, const std::string& name, const Defines& defines) {
+    ExpandedSource source = expandShaderSource(name, defines);
+    ShaderName shader(glCreateShader(stage));
+    const char* text = source.text.c_str();
+    glShaderSource(shader.name(), 1, &text, nullptr);
+    glCompileShader(shader.name());
+    GLint ok = 0;
+    glGetShaderiv(shader.name(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetShaderiv(shader.name(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+        glGetShaderInfoLog(shader.name(), length, nullptr, log.data());
+        throw SystemError("shader " + name + " failed to compile:\n" + annotateLog(log, source.files));
+    }
+    return shader;
+}
+
+ProgramName link(const std::vector<GLuint>& shaders, const std::string& label) {
+    ProgramName program(glCreateProgram());
+    for (GLuint s : shaders) glAttachShader(program.name(), s);
+    glLinkProgram(program.name());
+    GLint ok = 0;
+    glGetProgramiv(program.name(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program.name(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(program.name(), length, nullptr, log.data());
+        throw SystemError("shader program " + label + " failed to link:\n" + log);
+    }
+    for (GLuint s : shaders) glDetachShader(program.name(), s);
+    glObjectLabel(GL_PROGRAM, program.name(), static_cast<GLsizei>(label.size()), label.c_str());
+    return program;
+}
+
+}  // namespace
+
+ExpandedSource expandShaderSource(const std::string& name, const Defines& defines) {
+    Expander expander;
+    std::string body;
+    expander.expand(name, body, 0);
+    // Every shader starts with "#version 450"; defines go right after it.
+    auto versionEnd = body.find("#version");
+    if (versionEnd == std::string::npos) throw SystemError("shader " + name + " has no #version line");
+    versionEnd = body.find('\n', versionEnd) + 1;
+    std::string prelude;
+    for (const auto& [key, value] : defines) prelude += "#define " + key + " " + value + "\n";
+    prelude += "#line 2 0\n";
+    body.insert(versionEnd, prelude);
+    // The expander's first #line precedes #version, which GLSL forbids; drop it.
+    if (body.rfind("#line 1 0\n", 0) == 0) body.erase(0, 10);
+    return {std::move(body), std::move(expander.files)};
+}
+
+Program Program::compute(const std::string& name, const Defines& defines) {
+    Program p;
+    ShaderName shader = compileStage(GL_COMPUTE_SHADER, name, defines);
+    p.program_ = link({shader.name()}, name);
+    p.label_ = name;
+    return p;
+}
+
+Program Program::graphics(const std::string& vertex, const std::string& fragment, const Defines& defines) {
+    Program p;
+    ShaderName vs = compileStage(GL_VERTEX_SHADER, vertex, defines);
+    ShaderName fs = compileStage(GL_FRAGMENT_SHADER, fragment, defines);
+    p.label_ = vertex + "+" + fragment;
+    p.program_ = link({vs.name(), fs.name()}, p.label_);
+    return p;
+}
+
+GLint Program::location(const char* uniform) {
+    auto found = locations_.find(uniform);
+    if (found != locations_.end()) return found->second;
+    GLint location = glGetUniformLocation(program_.name(), uniform);
+    locations_.emplace(uniform, location);
+    return location;
+}
+
+void Program::set(const char* u, int v) { glProgramUniform1i(program_.name(), location(u), v); }
+void Program::set(const char* u, unsigned v) { glProgramUniform1ui(program_.name(), location(u), v); }
+void Program::set(const char* u, float v) { glProgramUniform1f(program_.name(), location(u), v); }
+void Program::set(const char* u, glm::vec2 v) { glProgramUniform2fv(program_.name(), location(u), 1, glm::value_ptr(v)); }
+void Program::set(const char* u, glm::vec3 v) { glProgramUniform3fv(program_.name(), location(u), 1, glm::value_ptr(v)); }
+void Program::set(const char* u, glm::vec4 v) { glProgramUniform4fv(program_.name(), location(u), 1, glm::value_ptr(v)); }
+void Program::set(const char* u, glm::ivec2 v) { glProgramUniform2iv(program_.name(), location(u), 1, glm::value_ptr(v)); }
+void Program::set(const char* u, glm::ivec3 v) { glProgramUniform3iv(program_.name(), location(u), 1, glm::value_ptr(v)); }
+void Program::set(const char* u, glm::uvec3 v) { glProgramUniform3uiv(program_.name(), location(u), 1, glm::value_ptr(v)); }
+void Program::set(const char* u, const glm::mat3& v) {
+    glProgramUniformMatrix3fv(program_.name(), location(u), 1, GL_FALSE, glm::value_ptr(v));
+}
+void Program::set(const char* u, const glm::mat4& v) {
+    glProgramUniformMatrix4fv(program_.name(), location(u), 1, GL_FALSE, glm::value_ptr(v));
+}
+
+glm::uvec3 Program::workGroupSize() const {
+    GLint size[3] = {1, 1, 1};
+    glGetProgramiv(program_.name(), GL_COMPUTE_WORK_GROUP_SIZE, size);
+    return {static_cast<unsigned>(size[0]), static_cast<unsigned>(size[1]), static_cast<unsigned>(size[2])};
+}
+
+void Program::dispatchCovering(glm::uvec3 items) const {
+    glm::uvec3 group = workGroupSize();
+    glm::uvec3 groups = (items + group - 1u) / group;
+    glUseProgram(program_.name());
+    glDispatchCompute(groups.x, groups.y, groups.z);
+}
+
+}  // namespace curette::gl

@@ -1,0 +1,62 @@
+#pragma once
+// Shader programs built from shaders/ with a small preprocessor: `#include "file.glsl"` is resolved from the
+// embedded table (or from $CURETTE_SHADER_DIR for live editing), each file once, with #line directives so
+// compiler errors name the real file and line. Defines are injected after #version.
+
+#include "render/gl/objects.h"
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace curette::gl {
+
+using Defines = std::vector<std::pair<std::string, std::string>>;
+
+// Expanded source of one shader (includes resolved) and the file names in #line order, for messages.
+struct ExpandedSource {
+    std::string text;
+    std::vector<std::string> files;
+};
+ExpandedSource expandShaderSource(const std::string& name, const Defines& defines);
+
+class Program {
+public:
+    Program() = default;
+    static Program compute(const std::string& name, const Defines& defines = {});
+    static Program graphics(const std::string& vertex, const std::string& fragment, const Defines& defines = {});
+
+    GLuint name() const { return program_.name(); }
+    explicit operator bool() const { return static_cast<bool>(program_); }
+    void use() const { glUseProgram(program_.name()); }
+
+    // Uniform setters by name (glProgramUniform*). A name the linker removed is ignored, so passes can set
+    // uniforms a define compiled out.
+    void set(const char* uniform, int v);
+    void set(const char* uniform, unsigned v);
+    void set(const char* uniform, float v);
+    void set(const char* uniform, glm::vec2 v);
+    void set(const char* uniform, glm::vec3 v);
+    void set(const char* uniform, glm::vec4 v);
+    void set(const char* uniform, glm::ivec2 v);
+    void set(const char* uniform, glm::ivec3 v);
+    void set(const char* uniform, glm::uvec3 v);
+    void set(const char* uniform, const glm::mat3& v);
+    void set(const char* uniform, const glm::mat4& v);
+    GLint location(const char* uniform);
+
+    // The compute work-group size declared by the shader.
+    glm::uvec3 workGroupSize() const;
+    // Dispatches enough groups to cover `items` invocations.
+    void dispatchCovering(glm::uvec3 items) const;
+
+private:
+    ProgramName program_;
+    std::string label_;
+    std::unordered_map<std::string, GLint> locations_;
+};
+
+}  // namespace curette::gl

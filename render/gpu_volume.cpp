@@ -1,0 +1,83 @@
+#include "render/gpu_volume.h"
+
+#include "base/error.h"
+
+#include <algorithm>
+#include <string>
+
+namespace curette {
+
+namespace {
+
+struct TextureFormat {
+    GLenum internal, format, type;
+};
+
+TextureFormat textureFormat(StorageFormat f) {
+    switch (f) {
+        case StorageFormat::UNorm8: return {GL_R8, GL_RED, GL_UNSIGNED_BYTE};
+        case StorageFormat::UNorm16: return {GL_R16, GL_RED, GL_UNSIGNED_SHORT};
+        case StorageFormat::Float32: return {GL_R32F, GL_RED, GL_FLOAT};
+    }
+    return {GL_R8, GL_RED, GL_UNSIGNED_BYTE};
+}
+
+}  // namespace
+
+GpuVolume::GpuVolume(const gl::ContextInfo& info, const VolumeData& data)
+    : format_(data.format), valueScale_(data.valueScale), valueOffset_(data.valueOffset) {
+    for (int axis = 0; axis < 3; ++axis)
+        if (data.dims[axis] < 1 || data.dims[axis] > info.max3DTextureSize)
+            throw InputError(data.source, "dim[" + std::to_string(axis + 1) + "]",
+                             "between 1 and " + std::to_string(info.max3DTextureSize) +
+                                 " voxels (GL_MAX_3D_TEXTURE_SIZE of " + info.renderer + ")",
+                             std::to_string(data.dims[axis]));
+    geometry_.dims = data.dims;
+    geometry_.indexToWorld = data.indexToWorld;
+
+    TextureFormat tf = textureFormat(format_);
+    texture_ = gl::createTexture(GL_TEXTURE_3D);
+    glTextureStorage3D(texture_.name(), 1, tf.internal, data.dims.x, data.dims.y, data.dims.z);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage3D(texture_.name(), 0, 0, 0, 0, data.dims.x, data.dims.y, data.dims.z, tf.format, tf.type,
+                        data.voxels.data());
+    glTextureParameteri(texture_.name(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_.name(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTextureParameteri(texture_.name(), wrap, GL_CLAMP_TO_EDGE);
+    glObjectLabel(GL_TEXTURE, texture_.name(), -1, "V (data volume)");
+    if (glGetError() == GL_OUT_OF_MEMORY)
+        throw SystemError(data.source + ": not enough GPU memory for a " + std::to_string(data.voxels.size()) +
+                          "-byte volume texture");
+    gpuBytes_ = data.voxels.size();
+
+    // Brick ranges with a one-voxel apron: a sample in brick b interpolates voxels b*B-1 .. (b+1)*B.
+    brickGrid_ = (data.dims + brickSize - 1) / brickSize;
+    brickRanges_.assign(static_cast<std::size_t>(brickGrid_.x) * static_cast<std::size_t>(brickGrid_.y) *
+                            static_cast<std::size_t>(brickGrid_.z),
+                        glm::vec2(1e30f, -1e30f));
+    // One pass over the voxels: each voxel updates the (up to 8) bricks whose apron holds it.
+    for (int k = 0; k < data.dims.z; ++k) {
+        int bz0 = std::max(0, (k - 1) / brickSize), bz1 = std::min(brickGrid_.z - 1, (k + 1) / brickSize);
+        for (int j = 0; j < data.dims.y; ++j) {
+            int by0 = std::max(0, (j - 1) / brickSize), by1 = std::min(brickGrid_.y - 1, (j + 1) / brickSize);
+            std::size_t row = data.linearIndex(0, j, k);
+            for (int i = 0; i < data.dims.x; ++i) {
+                int bx0 = std::max(0, (i - 1) / brickSize), bx1 = std::min(brickGrid_.x - 1, (i + 1) / brickSize);
+                float v = static_cast<float>(data.normalized(row + static_cast<std::size_t>(i)));
+                for (int bz = bz0; bz <= bz1; ++bz)
+                    for (int by = by0; by <= by1; ++by)
+                        for (int bx = bx0; bx <= bx1; ++bx) {
+                            glm::vec2& r = brickRanges_[(static_cast<std::size_t>(bz) * static_cast<std::size_t>(brickGrid_.y) +
+                                                         static_cast<std::size_t>(by)) *
+                                                            static_cast<std::size_t>(brickGrid_.x) +
+                                                        static_cast<std::size_t>(bx)];
+                            r.x = std::min(r.x, v);
+                            r.y = std::max(r.y, v);
+                        }
+            }
+        }
+    }
+}
+
+}  // namespace curette

@@ -1,0 +1,44 @@
+#pragma once
+// The data volume V on the GPU: a 3D texture in the volume's own storage format (R8, R16 or R32F; no
+// conversion, so 8-bit CT/MRI costs one byte a voxel), its geometry, and per-brick value ranges used to
+// skip empty space.
+
+#include "render/gl/context.h"
+#include "render/gl/objects.h"
+#include "render/volume.h"
+#include "render/volume_geometry.h"
+
+#include <vector>
+
+namespace curette {
+
+class GpuVolume {
+public:
+    static constexpr int brickSize = 8;
+
+    // Throws InputError(source, "dim", "at most N voxels per axis (GL_MAX_3D_TEXTURE_SIZE)") when too large.
+    GpuVolume(const gl::ContextInfo& info, const VolumeData& data);
+
+    const VolumeGeometry& geometry() const { return geometry_; }
+    GLuint texture() const { return texture_.name(); }
+    StorageFormat format() const { return format_; }
+    double valueScale() const { return valueScale_; }
+    double valueOffset() const { return valueOffset_; }
+    std::size_t gpuBytes() const { return gpuBytes_; }
+
+    // Bricks of brickSize^3 voxels; for each, the lowest and highest stored texel value that trilinear
+    // sampling anywhere inside the brick can see (the brick plus a one-voxel apron).
+    glm::ivec3 brickGrid() const { return brickGrid_; }
+    const std::vector<glm::vec2>& brickRanges() const { return brickRanges_; }
+
+private:
+    VolumeGeometry geometry_;
+    gl::Texture texture_;
+    StorageFormat format_;
+    double valueScale_, valueOffset_;
+    std::size_t gpuBytes_ = 0;
+    glm::ivec3 brickGrid_{0};
+    std::vector<glm::vec2> brickRanges_;
+};
+
+}  // namespace curette

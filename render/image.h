@@ -1,0 +1,31 @@
+#pragma once
+// Rendered images on the CPU: RGBA float with premultiplied alpha, as the GPU produced them, and their
+// conversion to 8-bit PNG (composited over a background, written atomically). Colours are display values,
+// as transfer functions specify them (no gamma curve), the convention of VTK and 3D Slicer.
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace curette {
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<glm::vec4> pixels;  // row 0 is the top row; premultiplied RGBA
+    glm::vec4& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]; }
+    const glm::vec4& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]; }
+};
+
+// 8-bit RGBA (straight alpha) of `image` composited over `background` (straight RGBA).
+std::vector<std::uint8_t> toRgba8(const Image& image, glm::vec4 background);
+
+// Writes a PNG atomically; throws SystemError naming the path when it cannot.
+void writePng(const std::filesystem::path& path, const Image& image, glm::vec4 background);
+
+// FNV-1a 64-bit hash of the 8-bit pixels, printed as 16 hex digits (replays compare these).
+std::string imageHash(const std::vector<std::uint8_t>& rgba8);
+
+}  // namespace curette

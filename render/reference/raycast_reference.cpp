@@ -1,0 +1,108 @@
+#include "render/reference/raycast_reference.h"
+
+#include "render/reference/random.h"
+#include "render/reference/volume_sampler.h"
+#include "render/volume_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace curette::reference {
+
+namespace {
+
+bool intersectBox(glm::dvec3 origin, glm::dvec3 direction, glm::dvec3 lo, glm::dvec3 hi, double& tNear, double& tFar) {
+    tNear = -std::numeric_limits<double>::infinity();
+    tFar = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (direction[a] == 0.0) {
+            if (origin[a] < lo[a] || origin[a] > hi[a]) return false;
+            continue;
+        }
+        double t0 = (lo[a] - origin[a]) / direction[a], t1 = (hi[a] - origin[a]) / direction[a];
+        tNear = std::max(tNear, std::min(t0, t1));
+        tFar = std::min(tFar, std::max(t0, t1));
+    }
+    return tFar >= std::max(tNear, 0.0);
+}
+
+glm::dvec3 shadePhong(const TransferFunction::Material& m, const std::vector<std::pair<glm::dvec3, glm::dvec3>>& lights,
+                      glm::dvec3 albedo, glm::dvec3 gradient, glm::dvec3 view, double ambient) {
+    double magnitude = glm::length(gradient);
+    glm::dvec3 color = m.ambient * ambient * albedo;
+    if (magnitude < 1e-6) return color + m.diffuse * albedo;
+    glm::dvec3 normal = -gradient / magnitude;
+    if (glm::dot(normal, view) < 0) normal = -normal;
+    for (const auto& [l, c] : lights) {
+        double diffuse = std::max(glm::dot(normal, l), 0.0);
+        glm::dvec3 halfway = glm::normalize(l + view);
+        double specular = diffuse > 0 ? std::pow(std::max(glm::dot(normal, halfway), 0.0), m.specularPower) : 0.0;
+        color += c * (m.diffuse * diffuse * albedo + m.specular * specular);
+    }
+    return color;
+}
+
+}  // namespace
+
+RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf, const FrameDescription& frame,
+                           double stepMm, glm::ivec2 pixel) {
+    VolumeGeometry g{volume.dims, volume.indexToWorld};
+    glm::dmat4 worldToTexture = g.worldToTexture();
+    double aspect = double(frame.size.x) / frame.size.y;
+    glm::dmat4 inverseViewProjection = glm::inverse(frame.camera.projection(aspect) * frame.camera.view());
+    glm::dvec2 ndc = (glm::dvec2(pixel) + 0.5) / glm::dvec2(frame.size) * 2.0 - 1.0;
+    ndc.y = -ndc.y;
+    glm::dvec4 farPoint = inverseViewProjection * glm::dvec4(ndc, 1.0, 1.0);
+    glm::dvec3 eye = frame.camera.position();
+    glm::dvec3 direction = glm::normalize(glm::dvec3(farPoint) / farPoint.w - eye);
+    glm::dvec3 originTex = glm::dvec3(worldToTexture * glm::dvec4(eye, 1.0));
+    glm::dvec3 directionTex = glm::dmat3(worldToTexture) * direction;
+
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> lights;
+    for (const Light& l : frame.lights) {
+        if (lights.size() == 4) break;
+        glm::dvec3 d = l.cameraSpace ? l.direction.x * frame.camera.right() + l.direction.y * frame.camera.up() -
+                                           l.direction.z * frame.camera.forward()
+                                     : l.direction;
+        lights.emplace_back(glm::normalize(d), l.color);
+    }
+    auto texel = [&](int i, int j, int k) { return volume.normalized(volume.linearIndex(i, j, k)); };
+    auto sample = [&](glm::dvec3 tex) { return sampleTrilinear(texel, volume.dims, tex, Wrap::ClampToEdge); };
+    glm::dvec3 texelSize = 1.0 / glm::dvec3(volume.dims);
+    glm::dmat3 gradientToWorld = g.gradientIndexToWorld() * volume.valueScale;
+    bool useGradient = frame.shading == ShadingMode::Phong || tf.hasGradientOpacity();
+
+    RaycastResult result;
+    double tNear, tFar;
+    if (!intersectBox(originTex, directionTex, glm::dvec3(0), glm::dvec3(1), tNear, tFar)) return result;
+    double jitter = frame.raycast.jitterSeed ? pixelRandom(glm::uvec2(pixel), frame.raycast.jitterSeed) : 0.0;
+    long k = static_cast<long>(std::ceil(std::max(tNear, 0.0) / stepMm - jitter));
+    long kLast = static_cast<long>(std::floor(tFar / stepMm - jitter));
+    glm::dvec4& acc = result.rgba;
+    for (; k <= kLast; ++k) {
+        double t = (static_cast<double>(k) + jitter) * stepMm;
+        glm::dvec3 tex = originTex + t * directionTex;
+        double value = volume.valueScale * sample(tex) + volume.valueOffset;
+        glm::dvec3 gradient(0);
+        if (useGradient) {
+            glm::dvec3 d(sample(tex + glm::dvec3(texelSize.x, 0, 0)) - sample(tex - glm::dvec3(texelSize.x, 0, 0)),
+                         sample(tex + glm::dvec3(0, texelSize.y, 0)) - sample(tex - glm::dvec3(0, texelSize.y, 0)),
+                         sample(tex + glm::dvec3(0, 0, texelSize.z)) - sample(tex - glm::dvec3(0, 0, texelSize.z)));
+            gradient = gradientToWorld * (0.5 * d);
+        }
+        double alphaUnit = tf.evaluateOpacity(value) * tf.evaluateGradientOpacity(glm::length(gradient));
+        double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), stepMm / tf.unitLengthMm);
+        if (alpha <= 0) continue;
+        glm::dvec3 albedo = tf.evaluateColor(value);
+        glm::dvec3 color = frame.shading == ShadingMode::Phong
+                               ? shadePhong(tf.material, lights, albedo, gradient, -direction, 1.0)
+                               : albedo;
+        acc += glm::dvec4((1.0 - acc.a) * alpha * color, (1.0 - acc.a) * alpha);
+        ++result.samples;
+        if (acc.a >= frame.raycast.earlyTerminationAlpha) break;
+    }
+    return result;
+}
+
+}  // namespace curette::reference

@@ -1,0 +1,162 @@
+#include "render/renderer.h"
+
+#include "base/error.h"
+#include "render/bindings.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+namespace curette {
+
+Renderer::Renderer(gl::Context& context, const VolumeData& volume, const TransferFunction& tf)
+    : context_(context), volume_(context.info(), volume) {
+    setTransferFunction(tf);
+}
+
+Renderer::~Renderer() = default;
+
+void Renderer::setTransferFunction(const TransferFunction& tf) {
+    tf_ = std::make_unique<TransferFunctionTexture>(tf, volume_.valueScale(), volume_.valueOffset());
+    updateOccupancy();
+}
+
+double Renderer::resolveStepMm(const RaycastSettings& settings) const {
+    return settings.stepMm > 0 ? settings.stepMm : 0.5 * volume_.geometry().minSpacing();
+}
+
+void Renderer::updateOccupancy() {
+    // A brick may be skipped only if no texel value its samples can see has any opacity.
+    glm::ivec3 grid = volume_.brickGrid();
+    const std::vector<glm::vec2>& ranges = volume_.brickRanges();
+    std::vector<std::uint8_t> flags(ranges.size());
+    for (std::size_t i = 0; i < ranges.size(); ++i) flags[i] = tf_->maxOpacity(ranges[i].x, ranges[i].y) > 0.0f ? 255 : 0;
+    if (!occupancy_) {
+        occupancy_ = gl::createTexture(GL_TEXTURE_3D);
+        glTextureStorage3D(occupancy_.name(), 1, GL_R8, grid.x, grid.y, grid.z);
+        glObjectLabel(GL_TEXTURE, occupancy_.name(), -1, "occupancy (empty-space skipping)");
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage3D(occupancy_.name(), 0, 0, 0, 0, grid.x, grid.y, grid.z, GL_RED, GL_UNSIGNED_BYTE, flags.data());
+}
+
+void Renderer::ensureOutput(glm::ivec2 size) {
+    if (size == outputSize_ && output_) return;
+    output_ = gl::createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(output_.name(), 1, GL_RGBA32F, size.x, size.y);
+    glObjectLabel(GL_TEXTURE, output_.name(), -1, "output image");
+    outputSize_ = size;
+}
+
+gl::Program& Renderer::raycastProgram(ShadingMode mode) {
+    auto key = std::make_pair(mode, countSamples_);
+    auto found = raycastPrograms_.find(key);
+    if (found != raycastPrograms_.end()) return found->second;
+    gl::Defines defines{{"SHADING", std::to_string(static_cast<int>(mode))}};
+    if (countSamples_) defines.emplace_back("COUNT_SAMPLES", "1");
+    return raycastPrograms_.emplace(key, gl::Program::compute("raycast.comp", defines)).first->second;
+}
+
+void Renderer::render(const FrameDescription& frame) {
+    if (frame.shading != ShadingMode::Solid && frame.shading != ShadingMode::Phong)
+        throw InputError("<frame>", "shading", "solid or phong (the AO and DOS modes come with their passes)",
+                         shadingModeName(frame.shading));
+    if (frame.size.x < 1 || frame.size.y < 1 || frame.size.x > context_.info().maxTextureSize ||
+        frame.size.y > context_.info().maxTextureSize)
+        throw InputError("<frame>", "size", "between 1x1 and the GL maximum texture size",
+                         std::to_string(frame.size.x) + "x" + std::to_string(frame.size.y));
+    ensureOutput(frame.size);
+    const VolumeGeometry& g = volume_.geometry();
+    gl::Program& p = raycastProgram(frame.shading);
+
+    double aspect = double(frame.size.x) / frame.size.y;
+    glm::dmat4 viewProjection = frame.camera.projection(aspect) * frame.camera.view();
+    p.set("inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
+    p.set("eyeWorld", glm::vec3(frame.camera.position()));
+    p.set("outputSize", frame.size);
+    p.set("stepMm", static_cast<float>(resolveStepMm(frame.raycast)));
+    p.set("earlyTerminationAlpha", static_cast<float>(frame.raycast.earlyTerminationAlpha));
+    p.set("jitterSeed", static_cast<unsigned>(frame.raycast.jitterSeed));
+    p.set("skipEmptySpace", frame.raycast.skipEmptySpace ? 1 : 0);
+    p.set("volumeSize", g.dims);
+    p.set("brickSize", GpuVolume::brickSize);
+    p.set("worldToTexture", glm::mat4(g.worldToTexture()));
+    p.set("texelSize", glm::vec3(1.0 / glm::dvec3(g.dims)));
+    p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
+    p.set("texelToTf", tf_->texelToTf());
+    p.set("gradientToTf", tf_->gradientToTf());
+    p.set("tfUnitLengthMm", tf_->unitLengthMm());
+    p.set("useGradientOpacity", tf_->useGradientOpacity() ? 1 : 0);
+    const auto& m = tf_->material();
+    p.set("material", glm::vec4(glm::dvec4(m.ambient, m.diffuse, m.specular, m.specularPower)));
+
+    // Lights in world space.
+    int count = std::min<int>(static_cast<int>(frame.lights.size()), 4);
+    glm::vec3 directions[4], colors[4];
+    for (int i = 0; i < count; ++i) {
+        const Light& l = frame.lights[static_cast<std::size_t>(i)];
+        glm::dvec3 d = l.cameraSpace ? l.direction.x * frame.camera.right() + l.direction.y * frame.camera.up() -
+                                           l.direction.z * frame.camera.forward()
+                                     : l.direction;
+        directions[i] = glm::vec3(glm::normalize(d));
+        colors[i] = glm::vec3(l.color);
+    }
+    p.set("lightCount", count);
+    if (count > 0) {
+        glProgramUniform3fv(p.name(), p.location("lightDirection"), count, &directions[0].x);
+        glProgramUniform3fv(p.name(), p.location("lightColor"), count, &colors[0].x);
+    }
+
+    glBindTextureUnit(binding::volume, volume_.texture());
+    glBindTextureUnit(binding::transferFunction, tf_->texture());
+    glBindTextureUnit(binding::gradientOpacity, tf_->gradientTexture());
+    glBindTextureUnit(binding::occupancy, occupancy_.name());
+    glBindImageTexture(binding::imageOutput, output_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    if (countSamples_) {
+        if (!sampleCounter_) {
+            sampleCounter_ = gl::createBuffer();
+            glNamedBufferStorage(sampleCounter_.name(), 8, nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+        }
+        const std::uint32_t zero[2] = {0, 0};
+        glNamedBufferSubData(sampleCounter_.name(), 0, 8, zero);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sampleCounter_.name());
+    }
+
+    timers_.begin("raycast");
+    p.dispatchCovering(glm::uvec3(frame.size.x, frame.size.y, 1));
+    timers_.end();
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+std::uint64_t Renderer::samplesLastFrame() const {
+    if (!sampleCounter_) return 0;
+    std::uint32_t count = 0;  // one 32-bit counter: ample for a frame (4e9 samples)
+    glGetNamedBufferSubData(sampleCounter_.name(), 0, 4, &count);
+    return count;
+}
+
+Image Renderer::readImage() const {
+    Image image;
+    image.width = outputSize_.x;
+    image.height = outputSize_.y;
+    image.pixels.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+    // The shader writes row 0 as the top of the picture, which is also Image's convention.
+    glGetTextureImage(output_.name(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.pixels.size() * sizeof(glm::vec4)),
+                      image.pixels.data());
+    return image;
+}
+
+std::vector<GpuAllocation> Renderer::gpuAllocations() const {
+    const char* volumeFormat = volume_.format() == StorageFormat::UNorm8    ? "R8"
+                               : volume_.format() == StorageFormat::UNorm16 ? "R16"
+                                                                            : "R32F";
+    glm::ivec3 grid = volume_.brickGrid();
+    std::vector<GpuAllocation> list{
+        {"V (data volume)", volumeFormat, volume_.gpuBytes()},
+        {"transfer function", "RGBA32F 1D", TransferFunctionTexture::tableSize * 16u},
+        {"gradient opacity", "R32F 1D", TransferFunctionTexture::gradientTableSize * 4u},
+        {"occupancy bricks", "R8", static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y) * static_cast<std::size_t>(grid.z)},
+        {"output image", "RGBA32F", static_cast<std::size_t>(outputSize_.x) * static_cast<std::size_t>(outputSize_.y) * 16u},
+    };
+    return list;
+}
+
+}  // namespace curette

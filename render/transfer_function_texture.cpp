@@ -1,0 +1,75 @@
+#include "render/transfer_function_texture.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace curette {
+
+TransferFunctionTexture::TransferFunctionTexture(const TransferFunction& tf, double valueScale, double valueOffset)
+    : unitLengthMm_(static_cast<float>(tf.unitLengthMm)), material_(tf.material) {
+    // Table texel i holds the TF at value d0 + i/(N-1) * (d1-d0), so the first and last texel centres sit
+    // exactly on the TF's end points and clamp-to-edge continues the end values, as the TF does.
+    double d0 = tf.domainMin(), d1 = tf.domainMax();
+    if (d1 <= d0) d1 = d0 + 1.0;
+    table_.resize(tableSize);
+    for (int i = 0; i < tableSize; ++i) {
+        double v = d0 + (d1 - d0) * i / (tableSize - 1);
+        table_[static_cast<std::size_t>(i)] = glm::vec4(glm::vec3(tf.evaluateColor(v)), static_cast<float>(tf.evaluateOpacity(v)));
+    }
+    // coordinate = (0.5 + (value - d0) / (d1 - d0) * (N - 1)) / N, value = scale * texel + offset.
+    double perValue = (tableSize - 1) / ((d1 - d0) * tableSize);
+    texelToTf_ = glm::vec2(static_cast<float>(valueScale * perValue),
+                           static_cast<float>(0.5 / tableSize + (valueOffset - d0) * perValue));
+
+    texture_ = gl::createTexture(GL_TEXTURE_1D);
+    glTextureStorage1D(texture_.name(), 1, GL_RGBA32F, tableSize);
+    glTextureSubImage1D(texture_.name(), 0, 0, tableSize, GL_RGBA, GL_FLOAT, table_.data());
+    glTextureParameteri(texture_.name(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_.name(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_.name(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glObjectLabel(GL_TEXTURE, texture_.name(), -1, "transfer function");
+
+    // Gradient opacity over [0, last point]; beyond it the last value holds.
+    useGradientOpacity_ = tf.hasGradientOpacity();
+    std::vector<float> gradientTable(gradientTableSize, 1.0f);
+    double g1 = tf.gradientOpacity.empty() ? 1.0 : std::max(tf.gradientOpacity.back().value, 1e-9);
+    for (int i = 0; i < gradientTableSize; ++i)
+        gradientTable[static_cast<std::size_t>(i)] =
+            static_cast<float>(tf.evaluateGradientOpacity(g1 * i / (gradientTableSize - 1)));
+    double perGradient = (gradientTableSize - 1) / (g1 * gradientTableSize);
+    gradientToTf_ = glm::vec2(static_cast<float>(perGradient), 0.5f / gradientTableSize);
+    gradientTexture_ = gl::createTexture(GL_TEXTURE_1D);
+    glTextureStorage1D(gradientTexture_.name(), 1, GL_R32F, gradientTableSize);
+    glTextureSubImage1D(gradientTexture_.name(), 0, 0, gradientTableSize, GL_RED, GL_FLOAT, gradientTable.data());
+    glTextureParameteri(gradientTexture_.name(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(gradientTexture_.name(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(gradientTexture_.name(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+
+    // Sparse table for range-maximum queries of opacity in O(1).
+    std::vector<float> level(tableSize);
+    for (int i = 0; i < tableSize; ++i) level[static_cast<std::size_t>(i)] = table_[static_cast<std::size_t>(i)].a;
+    sparseMax_.push_back(level);
+    for (int span = 1; 2 * span <= tableSize; span *= 2) {
+        const std::vector<float>& previous = sparseMax_.back();
+        std::vector<float> next(tableSize - 2 * span + 1);
+        for (std::size_t i = 0; i < next.size(); ++i) next[i] = std::max(previous[i], previous[i + static_cast<std::size_t>(span)]);
+        sparseMax_.push_back(std::move(next));
+    }
+}
+
+float TransferFunctionTexture::maxOpacity(float texelLo, float texelHi) const {
+    // Texel coordinate of a value: u * N - 0.5; linear filtering reads floor and floor + 1.
+    auto texelIndex = [&](float texel) {
+        return (texel * texelToTf_.x + texelToTf_.y) * tableSize - 0.5f;
+    };
+    float a = texelIndex(texelLo), b = texelIndex(texelHi);
+    if (a > b) std::swap(a, b);  // a negative scale reverses the order
+    int lo = std::clamp(static_cast<int>(std::floor(a)) - 1, 0, tableSize - 1);
+    int hi = std::clamp(static_cast<int>(std::floor(b)) + 2, 0, tableSize - 1);
+    int level = std::bit_width(static_cast<unsigned>(hi - lo + 1)) - 1;
+    const std::vector<float>& row = sparseMax_[static_cast<std::size_t>(level)];
+    return std::max(row[static_cast<std::size_t>(lo)], row[static_cast<std::size_t>(hi - (1 << level) + 1)]);
+}
+
+}  // namespace curette

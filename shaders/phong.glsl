@@ -1,0 +1,28 @@
+// Blinn-Phong shading of a volume sample with a gradient normal, for `phong` shading (and, with the ambient
+// term scaled by occlusion, for `cao`/`lao`). Up to MAX_LIGHTS directional lights in world space.
+#define MAX_LIGHTS 4
+
+uniform int lightCount;
+uniform vec3 lightDirection[MAX_LIGHTS];   // world, unit, from the surface towards the light
+uniform vec3 lightColor[MAX_LIGHTS];       // colour times intensity
+uniform vec4 material;                     // ambient, diffuse, specular, specular power
+
+// albedo: TF colour; gradient: world gradient of the value; viewDirection: unit, from the sample to the eye;
+// ambient: the ambient light reaching the sample (1 without occlusion).
+vec3 shadePhong(vec3 albedo, vec3 gradient, vec3 viewDirection, float ambient) {
+    float magnitude = length(gradient);
+    vec3 color = material.x * ambient * albedo;
+    // Homogeneous regions have no surface to light: they keep the ambient term and a flat diffuse term, so
+    // the interior of a structure does not go black.
+    if (magnitude < 1e-6) return color + material.y * albedo;
+    vec3 normal = -gradient / magnitude;                       // points from dense to less dense
+    if (dot(normal, viewDirection) < 0.0) normal = -normal;    // two-sided: light the side we see
+    for (int i = 0; i < lightCount; ++i) {
+        vec3 l = lightDirection[i];
+        float diffuse = max(dot(normal, l), 0.0);
+        vec3 halfway = normalize(l + viewDirection);
+        float specular = diffuse > 0.0 ? pow(max(dot(normal, halfway), 0.0), material.w) : 0.0;
+        color += lightColor[i] * (material.y * diffuse * albedo + material.z * specular);
+    }
+    return color;
+}

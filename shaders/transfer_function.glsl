@@ -1,0 +1,23 @@
+// Classification: the transfer function maps a data value to colour and to opacity per unit length; the
+// opacity of a segment is then corrected for its length (render/transfer_function.h).
+#include "bindings.glsl"
+
+layout(binding = BINDING_TRANSFER_FUNCTION) uniform sampler1D transferFunction;
+layout(binding = BINDING_GRADIENT_OPACITY) uniform sampler1D gradientOpacity;
+uniform vec2 texelToTf;             // tf coordinate = texel * texelToTf.x + texelToTf.y
+uniform vec2 gradientToTf;          // gradient-opacity coordinate = |gradient| * x + y
+uniform float tfUnitLengthMm;       // opacity in the TF is that of a slab this thick
+uniform bool useGradientOpacity;
+
+// rgb and opacity per unit length at a stored texel value.
+vec4 classify(float texel) { return texture(transferFunction, texel * texelToTf.x + texelToTf.y); }
+
+float gradientOpacityFactor(float gradientMagnitude) {
+    return texture(gradientOpacity, gradientMagnitude * gradientToTf.x + gradientToTf.y).r;
+}
+
+// Opacity of a segment `lengthMm` long through a medium of opacity `alphaUnit` per tfUnitLengthMm:
+// 1 - (1 - a)^(d / d0), the exact product of transmittances of d/d0 unit slabs.
+float correctOpacity(float alphaUnit, float lengthMm) {
+    return 1.0 - pow(max(1.0 - alphaUnit, 0.0), lengthMm / tfUnitLengthMm);
+}

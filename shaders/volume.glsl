@@ -1,0 +1,24 @@
+// Sampling the data volume. Texture coordinates come from world millimetres through one matrix,
+// worldToTexture, derived from the volume's inverse affine in render/volume_geometry.cpp (DESIGN.md
+// "Coordinates and units": the only place). Texture (0,0,0)..(1,1,1) spans voxel cells, so voxel (i,j,k)'s
+// centre is at ((i,j,k) + 0.5) / dims.
+#include "bindings.glsl"
+
+layout(binding = BINDING_VOLUME) uniform sampler3D volumeData;
+uniform mat4 worldToTexture;
+uniform vec3 texelSize;            // 1 / dims
+uniform mat3 gradientToWorld;      // transpose(inverse(linear part of indexToWorld)) * valueScale
+
+vec3 toTexture(vec3 world) { return (worldToTexture * vec4(world, 1.0)).xyz; }
+
+// The stored value as the GPU filters it (normalized for UNorm formats).
+float sampleTexel(vec3 tex) { return texture(volumeData, tex).r; }
+
+// Gradient of the physical value in world units (value per mm), by central differences one voxel apart
+// along each index axis.
+vec3 gradientWorld(vec3 tex) {
+    vec3 d = vec3(sampleTexel(tex + vec3(texelSize.x, 0, 0)) - sampleTexel(tex - vec3(texelSize.x, 0, 0)),
+                  sampleTexel(tex + vec3(0, texelSize.y, 0)) - sampleTexel(tex - vec3(0, texelSize.y, 0)),
+                  sampleTexel(tex + vec3(0, 0, texelSize.z)) - sampleTexel(tex - vec3(0, 0, texelSize.z)));
+    return gradientToWorld * (0.5 * d);
+}

@@ -1,0 +1,27 @@
+#pragma once
+// Shared pieces of the GL tests: one headless context per test process, and small synthetic volumes
+// written from analytic functions (so tests know the answer).
+
+#include "render/gl/context.h"
+#include "render/transfer_function.h"
+#include "render/volume.h"
+
+#include <functional>
+
+namespace curette::test {
+
+// The process-wide headless EGL context (created on first use, current on return).
+gl::Context& glContext();
+
+// A volume whose voxel (i,j,k) holds f(world position of its centre). Stored as `type` (UInt8 values are
+// rounded and clamped to 0..255; Float32 exact).
+VolumeData makeVolume(glm::ivec3 dims, const glm::dmat4& indexToWorld, ScalarType type,
+                      const std::function<double(glm::dvec3)>& f);
+
+// An axis-aligned volume of `dims` 1 mm voxels centred on the world origin.
+glm::dmat4 centredAffine(glm::ivec3 dims, glm::dvec3 spacing = glm::dvec3(1.0));
+
+// A simple TF over [0, 255]: grey ramp colour, opacity ramp from `lo` (0) to `hi` (alpha).
+TransferFunction rampTransferFunction(double lo, double hi, double alpha);
+
+}  // namespace curette::test

@@ -1,0 +1,302 @@
+// Ray casting (shaders/raycast.comp) against its CPU double twin and against analytic answers.
+#include "render/bindings.h"
+#include "render/reference/raycast_reference.h"
+#include "render/renderer.h"
+#include "tests/render/gl_test_support.h"
+
+#include "base/error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <regex>
+#include <sstream>
+
+namespace curette {
+namespace {
+
+using test::glContext;
+
+FrameDescription frameLookingAt(glm::dvec3 target, double distance, double azimuth, double elevation, glm::ivec2 size,
+                                ShadingMode shading) {
+    FrameDescription f;
+    f.camera.target = target;
+    f.camera.distanceMm = distance;
+    f.camera.azimuthDeg = azimuth;
+    f.camera.elevationDeg = elevation;
+    f.camera.fovYDeg = 30;
+    f.camera.nearMm = 1;
+    f.camera.farMm = 1000;
+    f.size = size;
+    f.shading = shading;
+    return f;
+}
+
+// A smooth blobby field: a few Gaussian blobs in a 40 mm box, values 0..255.
+double blobs(glm::dvec3 p) {
+    const glm::dvec4 centres[] = {{-6, -4, 2, 9}, {7, 5, -3, 7}, {2, -8, -6, 5}, {-3, 9, 8, 6}};
+    double v = 0;
+    for (const glm::dvec4& c : centres) v += 230.0 * std::exp(-glm::dot(p - glm::dvec3(c), p - glm::dvec3(c)) / (2 * c.w * c.w));
+    return std::min(v, 255.0);
+}
+
+TransferFunction blobTransferFunction() {
+    TransferFunction tf;
+    tf.color = {{0, {0.1, 0.2, 0.6}}, {80, {0.9, 0.4, 0.2}}, {160, {1.0, 0.9, 0.7}}, {255, {1, 1, 1}}};
+    tf.opacity = {{0, 0}, {40, 0}, {120, 0.15}, {200, 0.5}, {255, 0.6}};
+    tf.material = {0.25, 0.7, 0.4, 24.0};
+    return tf;
+}
+
+struct Comparison {
+    double maxError = 0, rmsError = 0;
+    int pixels = 0, nonEmpty = 0;
+};
+
+Comparison compareWithReference(const VolumeData& volume, const TransferFunction& tf, const FrameDescription& frame,
+                                int pixelCount, unsigned seed) {
+    Renderer renderer(glContext(), volume, tf);
+    renderer.render(frame);
+    Image image = renderer.readImage();
+    double step = renderer.resolveStepMm(frame.raycast);
+    std::mt19937 random(seed);
+    std::uniform_int_distribution<int> x(0, frame.size.x - 1), y(0, frame.size.y - 1);
+    Comparison c;
+    double sum = 0;
+    for (int n = 0; n < pixelCount; ++n) {
+        glm::ivec2 p(x(random), y(random));
+        glm::dvec4 expected = reference::raycastPixel(volume, tf, frame, step, p).rgba;
+        glm::dvec4 got(image.at(p.x, p.y));
+        for (int ch = 0; ch < 4; ++ch) {
+            double e = std::abs(got[ch] - expected[ch]);
+            c.maxError = std::max(c.maxError, e);
+            sum += e * e;
+        }
+        c.nonEmpty += expected.a > 0.01;
+        ++c.pixels;
+    }
+    c.rmsError = std::sqrt(sum / (4.0 * c.pixels));
+    std::printf("[ reference ] %s: max %.2e rms %.2e over %d pixels (%d non-empty)\n", shadingModeName(frame.shading),
+                c.maxError, c.rmsError, c.pixels, c.nonEmpty);
+    return c;
+}
+
+// Float32 storage isolates the ray caster's arithmetic from texture quantisation. What remains: float vs
+// double arithmetic along ~300 samples, and the 4096-texel baked TF (linear between texels, so a kink of
+// the piecewise-linear TF is rounded over one texel: |error| <= slope change * 255/4095 / 4 ~ 1e-4 in
+// opacity per unit length). Measured: max 6e-5. Bound: 5e-4 per channel.
+TEST(Raycast, MatchesCpuReferenceFloatVolumeSolidAndPhong) {
+    glContext();
+    glm::ivec3 dims(40);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::Float32, blobs);
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong}) {
+        FrameDescription frame = frameLookingAt(glm::dvec3(0), 90, 30, 20, {96, 96}, mode);
+        Comparison c = compareWithReference(volume, blobTransferFunction(), frame, 300, 7);
+        EXPECT_GT(c.nonEmpty, 100) << "the test must look at the object";
+        EXPECT_LT(c.maxError, 5e-4) << shadingModeName(mode) << " rms " << c.rmsError;
+        RecordProperty(std::string("max_error_") + shadingModeName(mode), std::to_string(c.maxError));
+    }
+}
+
+// UInt8 storage: llvmpipe filters R8 textures in 8-bit fixed point (weights and results quantised to
+// 1/256 of a texel step, and the result to 1/255), so an interpolated value may differ from the exact one by
+// up to ~1 value unit of 255. Through a TF slope of at most 0.35/80 per unit and Phong gradients built from
+// such differences, the bound on a composited channel is 2e-2; the RMS must stay well below it (5e-3).
+// Measured: solid max 3.3e-3 / rms 4.9e-4, phong max 1.5e-2 / rms 1.5e-3.
+TEST(Raycast, MatchesCpuReferenceUInt8Volume) {
+    glContext();
+    glm::ivec3 dims(40);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, blobs);
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong}) {
+        FrameDescription frame = frameLookingAt(glm::dvec3(0), 90, -40, -15, {96, 96}, mode);
+        Comparison c = compareWithReference(volume, blobTransferFunction(), frame, 300, 11);
+        EXPECT_GT(c.nonEmpty, 100);
+        EXPECT_LT(c.maxError, 2e-2) << shadingModeName(mode);
+        EXPECT_LT(c.rmsError, 5e-3) << shadingModeName(mode);
+    }
+}
+
+TEST(Raycast, JitterIsDeterministicAndMatchesReference) {
+    glContext();
+    glm::ivec3 dims(40);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::Float32, blobs);
+    FrameDescription frame = frameLookingAt(glm::dvec3(0), 120, 10, 5, {64, 64}, ShadingMode::Solid);
+    frame.raycast.jitterSeed = 1234;
+    Renderer renderer(glContext(), volume, blobTransferFunction());
+    renderer.render(frame);
+    Image a = renderer.readImage();
+    renderer.render(frame);
+    Image b = renderer.readImage();
+    EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)));
+    Comparison c = compareWithReference(volume, blobTransferFunction(), frame, 200, 3);
+    EXPECT_LT(c.maxError, 5e-4);
+    // A different seed moves the samples, so the image changes.
+    frame.raycast.jitterSeed = 99;
+    renderer.render(frame);
+    Image d = renderer.readImage();
+    EXPECT_NE(0, std::memcmp(a.pixels.data(), d.pixels.data(), a.pixels.size() * sizeof(glm::vec4)));
+}
+
+// Empty-space skipping must not change a single bit: it skips only samples the TF makes transparent and
+// keeps the sample lattice.
+TEST(Raycast, EmptySpaceSkippingChangesNothing) {
+    glContext();
+    glm::ivec3 dims(48, 40, 36);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims, {0.9, 1.1, 1.3}), ScalarType::UInt8, blobs);
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong}) {
+        FrameDescription frame = frameLookingAt(glm::dvec3(1, -2, 0), 110, 65, 35, {80, 72}, mode);
+        frame.raycast.jitterSeed = 5;
+        Renderer renderer(glContext(), volume, blobTransferFunction());
+        frame.raycast.skipEmptySpace = false;
+        renderer.render(frame);
+        Image full = renderer.readImage();
+        frame.raycast.skipEmptySpace = true;
+        renderer.setCountSamples(true);
+        renderer.render(frame);
+        Image skipped = renderer.readImage();
+        std::uint64_t samplesWithSkipping = renderer.samplesLastFrame();
+        frame.raycast.skipEmptySpace = false;
+        renderer.render(frame);
+        std::uint64_t samplesWithout = renderer.samplesLastFrame();
+        EXPECT_EQ(0, std::memcmp(full.pixels.data(), skipped.pixels.data(), full.pixels.size() * sizeof(glm::vec4)));
+        EXPECT_LT(samplesWithSkipping, samplesWithout) << "skipping must skip something here";
+    }
+}
+
+// An opaque sphere of radius R covers exactly the pixels whose ray passes within R of its centre.
+TEST(Raycast, OpaqueSphereCoversAnalyticPixelCount) {
+    glContext();
+    const double radius = 14.0;
+    glm::ivec3 dims(48);
+    // The value crosses 127.5 exactly at |p| = radius and changes 255/3 per mm around it.
+    auto sphere = [&](glm::dvec3 p) { return 127.5 - (glm::length(p) - radius) * 85.0; };
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::Float32, sphere);
+    TransferFunction tf;
+    tf.color = {{0, glm::dvec3(1)}};
+    tf.opacity = {{127.4, 0.0}, {127.6, 1.0}};
+    FrameDescription frame = frameLookingAt(glm::dvec3(0.3, -0.2, 0.1), 150, 20, 10, {160, 160}, ShadingMode::Solid);
+    frame.raycast.stepMm = 0.05;
+    Renderer renderer(glContext(), volume, tf);
+    renderer.render(frame);
+    Image image = renderer.readImage();
+
+    double aspect = 1.0;
+    glm::dmat4 inverseViewProjection = glm::inverse(frame.camera.projection(aspect) * frame.camera.view());
+    glm::dvec3 eye = frame.camera.position();
+    int expected = 0, rendered = 0;
+    for (int y = 0; y < frame.size.y; ++y)
+        for (int x = 0; x < frame.size.x; ++x) {
+            glm::dvec2 ndc = (glm::dvec2(x, y) + 0.5) / glm::dvec2(frame.size) * 2.0 - 1.0;
+            ndc.y = -ndc.y;
+            glm::dvec4 far = inverseViewProjection * glm::dvec4(ndc, 1, 1);
+            glm::dvec3 d = glm::normalize(glm::dvec3(far) / far.w - eye);
+            glm::dvec3 toCentre = -eye;
+            double distance = glm::length(toCentre - glm::dot(toCentre, d) * d);
+            expected += distance < radius;
+            rendered += image.at(x, y).a > 0.5f;
+        }
+    // The silhouette's radius in pixels, and the tolerance: trilinear interpolation of this linear ramp moves
+    // the threshold surface by far less than 0.25 mm, i.e. a ring of width 0.25 mm at the silhouette.
+    double pixelsPerMm = frame.size.y / (2.0 * 150 * std::tan(glm::radians(15.0)));
+    double rho = radius * pixelsPerMm;
+    double tolerance = 2 * std::numbers::pi * rho * 0.25 * pixelsPerMm;
+    EXPECT_NEAR(rendered, expected, tolerance) << "expected " << expected << " (pi rho^2 = " << std::numbers::pi * rho * rho << ")";
+    EXPECT_GT(expected, 1000);
+}
+
+// The same object stored in an oblique, anisotropic volume renders like the axis-aligned volume it was
+// resampled from.
+TEST(Raycast, ObliqueVolumeRendersSameObjectAsAxisAligned) {
+    glContext();
+    auto object = [](glm::dvec3 p) {
+        // An ellipsoid (semi-axes 14, 9, 7 mm) rotated about z, blended with a 6 mm ball off to the side.
+        glm::dvec3 q(0.8 * p.x + 0.6 * p.y, -0.6 * p.x + 0.8 * p.y, p.z);
+        double e = glm::length(q / glm::dvec3(14, 9, 7));
+        double b = glm::length(p - glm::dvec3(-9, 10, 6)) / 6.0;
+        return 255.0 * std::clamp(1.5 - std::min(e, b), 0.0, 1.0);
+    };
+    glm::ivec3 dims(48);
+    VolumeData aligned = test::makeVolume(dims, test::centredAffine(dims), ScalarType::Float32, object);
+    // Oblique: rotated 30 degrees about x then 20 about z, spacings 0.8 x 1.0 x 1.25 mm, centred.
+    glm::dmat3 rx(1, 0, 0, 0, std::cos(0.5236), std::sin(0.5236), 0, -std::sin(0.5236), std::cos(0.5236));
+    glm::dmat3 rz(std::cos(0.349), std::sin(0.349), 0, -std::sin(0.349), std::cos(0.349), 0, 0, 0, 1);
+    glm::dvec3 spacing(0.8, 1.0, 1.25);
+    glm::ivec3 obliqueDims(60, 48, 40);
+    glm::dmat3 linear = rz * rx * glm::dmat3(glm::dvec3(spacing.x, 0, 0), glm::dvec3(0, spacing.y, 0), glm::dvec3(0, 0, spacing.z));
+    glm::dmat4 affine(linear);
+    affine[3] = glm::dvec4(-linear * (0.5 * glm::dvec3(obliqueDims - 1)), 1.0);
+    VolumeData oblique = test::makeVolume(obliqueDims, affine, ScalarType::Float32, object);
+
+    TransferFunction tf = test::rampTransferFunction(60, 200, 0.6);
+    for (auto [azimuth, elevation] : {std::pair{0.0, 0.0}, {70.0, 30.0}, {200.0, -45.0}}) {
+        FrameDescription frame = frameLookingAt(glm::dvec3(0), 140, azimuth, elevation, {96, 96}, ShadingMode::Solid);
+        Renderer a(glContext(), aligned, tf), b(glContext(), oblique, tf);
+        frame.raycast.stepMm = 0.4;
+        a.render(frame);
+        b.render(frame);
+        Image ia = a.readImage(), ib = b.readImage();
+        int silhouetteA = 0, silhouetteB = 0, both = 0;
+        double sum = 0;
+        for (std::size_t i = 0; i < ia.pixels.size(); ++i) {
+            bool inA = ia.pixels[i].a > 0.05f, inB = ib.pixels[i].a > 0.05f;
+            silhouetteA += inA, silhouetteB += inB, both += inA && inB;
+            double d = ia.pixels[i].a - ib.pixels[i].a;
+            sum += d * d;
+        }
+        double iou = double(both) / (silhouetteA + silhouetteB - both);
+        double rms = std::sqrt(sum / static_cast<double>(ia.pixels.size()));
+        // Both volumes sample the same smooth function at <= 1.25 mm; the reconstructions differ by the
+        // interpolation error of a field whose value changes 255/7 per mm over at most 0.6 mm of
+        // misalignment: a few percent of opacity at most, hence RMS alpha < 0.02 and IoU > 0.97.
+        EXPECT_GT(iou, 0.97) << "azimuth " << azimuth;
+        EXPECT_LT(rms, 0.02) << "azimuth " << azimuth;
+        EXPECT_GT(silhouetteA, 500);
+    }
+}
+
+TEST(Raycast, VolumeLargerThanTextureLimitIsAnInputError) {
+    glContext();
+    VolumeData huge;
+    huge.dims = glm::ivec3(glContext().info().max3DTextureSize + 1, 2, 2);
+    huge.source = "huge.nii";
+    try {
+        GpuVolume gpu(glContext().info(), huge);
+        FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.file(), "huge.nii");
+        EXPECT_EQ(e.field(), "dim[1]");
+        EXPECT_NE(std::string(e.what()).find("GL_MAX_3D_TEXTURE_SIZE"), std::string::npos);
+    }
+}
+
+TEST(Raycast, BindingsMatchGlsl) {
+    std::ifstream in(std::string(CURETTE_SOURCE_DIR) + "/shaders/bindings.glsl");
+    ASSERT_TRUE(in);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::map<std::string, unsigned> glsl;
+    std::regex define(R"(#define\s+(\w+)\s+(\d+))");
+    std::string s = text.str();
+    for (std::sregex_iterator it(s.begin(), s.end(), define), end; it != end; ++it)
+        glsl[(*it)[1]] = static_cast<unsigned>(std::stoul((*it)[2]));
+    EXPECT_EQ(glsl.at("BINDING_VOLUME"), binding::volume);
+    EXPECT_EQ(glsl.at("BINDING_TRANSFER_FUNCTION"), binding::transferFunction);
+    EXPECT_EQ(glsl.at("BINDING_GRADIENT_OPACITY"), binding::gradientOpacity);
+    EXPECT_EQ(glsl.at("BINDING_OCCUPANCY"), binding::occupancy);
+    EXPECT_EQ(glsl.at("BINDING_AMBIENT"), binding::ambient);
+    EXPECT_EQ(glsl.at("BINDING_OPACITY"), binding::opacity);
+    EXPECT_EQ(glsl.at("BINDING_PRECOMPUTED_AO"), binding::precomputedAo);
+    EXPECT_EQ(glsl.at("BINDING_MASK"), binding::mask);
+    EXPECT_EQ(glsl.at("BINDING_CLIP_DEPTH"), binding::clipDepth);
+    EXPECT_EQ(glsl.at("BINDING_CLIP_DILATED"), binding::clipDilated);
+    EXPECT_EQ(glsl.at("IMAGE_OUTPUT"), binding::imageOutput);
+}
+
+}  // namespace
+}  // namespace curette
