@@ -16,5 +16,21 @@ inline constexpr unsigned clipDepth = 8;
 inline constexpr unsigned clipDilated = 9;
 
 inline constexpr unsigned imageOutput = 0;
+inline constexpr unsigned imageOpacity = 1;
+inline constexpr unsigned imageMask = 2;
+inline constexpr unsigned imageAmbient = 3;
+inline constexpr unsigned imageDilation = 4;
+
+inline constexpr unsigned ssboSampleCounter = 0;
+inline constexpr unsigned ssboLaoDirections = 1;
+inline constexpr unsigned ssboClipMeshes = 2;
+inline constexpr unsigned ssboRecomputeList = 3;
+inline constexpr unsigned ssboDispatch = 4;
+inline constexpr unsigned ssboAntiAliasing = 5;
+
+// V_m categories (CAO Fig. 5).
+inline constexpr unsigned categoryClipped = 0;
+inline constexpr unsigned categoryAffected = 1;
+inline constexpr unsigned categoryUnaffected = 2;
 
 }  // namespace curette::binding

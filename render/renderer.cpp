@@ -8,14 +8,46 @@
 namespace curette {
 
 Renderer::Renderer(gl::Context& context, const VolumeData& volume, const TransferFunction& tf)
-    : context_(context), volume_(context.info(), volume) {
+    : context_(context), volume_(context.info(), volume),
+      clip_(clip::ClipMapSettings{0.5 * volume_.geometry().minSpacing(), 64, 1024}) {
     setTransferFunction(tf);
+}
+
+void Renderer::setLaoSettings(const LaoSettings& settings) {
+    if (settings == laoSettings_) return;
+    laoSettings_ = settings;
+    ao_.reset();  // buffers depend on the settings (directions, list); reallocated at the next AO frame
+    aoValid_ = aoPrecomputedValid_ = false;
+}
+
+void Renderer::updateAmbientOcclusion(ShadingMode mode) {
+    lastFrameUpdatedAmbient_ = false;
+    if (!ao_) {
+        ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_);
+        aoValid_ = aoPrecomputedValid_ = false;
+    }
+    // Only cao needs the dilated maps; lao recomputes every visible voxel.
+    clip_.setDilationRadiusMm(mode == ShadingMode::Cao ? ao_->dilationRadiusMm() : 0.0);
+    clip_.update();
+    if (!aoPrecomputedValid_ || aoTfVersion_ != tfVersion_) {
+        ao_->precompute(*tf_, &timers_);
+        aoPrecomputedValid_ = true;
+        aoValid_ = false;
+    }
+    if (aoValid_ && aoClipVersion_ == clip_.version() && aoTfVersion_ == tfVersion_ && aoMode_ == mode) return;
+    ao_->update(*tf_, clip_, mode, &timers_);
+    aoValid_ = true;
+    aoClipVersion_ = clip_.version();
+    aoTfVersion_ = tfVersion_;
+    aoMode_ = mode;
+    lastFrameUpdatedAmbient_ = true;
 }
 
 Renderer::~Renderer() = default;
 
 void Renderer::setTransferFunction(const TransferFunction& tf) {
     tf_ = std::make_unique<TransferFunctionTexture>(tf, volume_.valueScale(), volume_.valueOffset());
+    ++tfVersion_;  // V_PAO and V_AO depend on the TF (the reference implementation forgot this: its bug 4)
     updateOccupancy();
 }
 
@@ -56,14 +88,21 @@ gl::Program& Renderer::raycastProgram(ShadingMode mode) {
 }
 
 void Renderer::render(const FrameDescription& frame) {
-    if (frame.shading != ShadingMode::Solid && frame.shading != ShadingMode::Phong)
-        throw InputError("<frame>", "shading", "solid or phong (the AO and DOS modes come with their passes)",
+    if (frame.shading == ShadingMode::Dos)
+        throw InputError("<frame>", "shading", "solid, phong, lao or cao (dos comes with the slab pass)",
                          shadingModeName(frame.shading));
     if (frame.size.x < 1 || frame.size.y < 1 || frame.size.x > context_.info().maxTextureSize ||
         frame.size.y > context_.info().maxTextureSize)
         throw InputError("<frame>", "size", "between 1x1 and the GL maximum texture size",
                          std::to_string(frame.size.x) + "x" + std::to_string(frame.size.y));
     ensureOutput(frame.size);
+    if (usesAmbientOcclusion(frame.shading)) {
+        updateAmbientOcclusion(frame.shading);
+    } else {
+        clip_.setDilationRadiusMm(0.0);
+        clip_.update();
+        lastFrameUpdatedAmbient_ = false;
+    }
     const VolumeGeometry& g = volume_.geometry();
     gl::Program& p = raycastProgram(frame.shading);
 
@@ -81,10 +120,8 @@ void Renderer::render(const FrameDescription& frame) {
     p.set("worldToTexture", glm::mat4(g.worldToTexture()));
     p.set("texelSize", glm::vec3(1.0 / glm::dvec3(g.dims)));
     p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
-    p.set("texelToTf", tf_->texelToTf());
-    p.set("gradientToTf", tf_->gradientToTf());
-    p.set("tfUnitLengthMm", tf_->unitLengthMm());
-    p.set("useGradientOpacity", tf_->useGradientOpacity() ? 1 : 0);
+    tf_->setUniforms(p);
+    p.set("clipMeshCount", clip_.count());
     const auto& m = tf_->material();
     p.set("material", glm::vec4(glm::dvec4(m.ambient, m.diffuse, m.specular, m.specularPower)));
 
@@ -106,9 +143,10 @@ void Renderer::render(const FrameDescription& frame) {
     }
 
     glBindTextureUnit(binding::volume, volume_.texture());
-    glBindTextureUnit(binding::transferFunction, tf_->texture());
-    glBindTextureUnit(binding::gradientOpacity, tf_->gradientTexture());
+    tf_->bind();
+    clip_.bind();
     glBindTextureUnit(binding::occupancy, occupancy_.name());
+    if (ao_ && usesAmbientOcclusion(frame.shading)) glBindTextureUnit(binding::ambient, ao_->ambientTexture());
     glBindImageTexture(binding::imageOutput, output_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (countSamples_) {
         if (!sampleCounter_) {
@@ -117,10 +155,10 @@ void Renderer::render(const FrameDescription& frame) {
         }
         const std::uint32_t zero[2] = {0, 0};
         glNamedBufferSubData(sampleCounter_.name(), 0, 8, zero);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sampleCounter_.name());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboSampleCounter, sampleCounter_.name());
     }
 
-    timers_.begin("raycast");
+    timers_.begin("VI ray casting");
     p.dispatchCovering(glm::uvec3(frame.size.x, frame.size.y, 1));
     timers_.end();
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -156,6 +194,9 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
         {"occupancy bricks", "R8", static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y) * static_cast<std::size_t>(grid.z)},
         {"output image", "RGBA32F", static_cast<std::size_t>(outputSize_.x) * static_cast<std::size_t>(outputSize_.y) * 16u},
     };
+    if (clip_.count() > 0) list.push_back({"clip maps (depth + dilated arrays)", "R32F 2D arrays", clip_.gpuBytes()});
+    if (ao_)
+        for (const GpuAllocation& a : ao_->allocations()) list.push_back(a);
     return list;
 }
 

@@ -2,6 +2,8 @@
 // The renderer of one scene: it owns the GPU resources the scene needs (allocated once, only those its
 // shading modes use) and runs the frame's passes. See DESIGN.md "One frame, as data flows".
 
+#include "clip/clip_mesh_set.h"
+#include "render/ambient_occlusion.h"
 #include "render/frame.h"
 #include "render/gl/context.h"
 #include "render/gl/program.h"
@@ -29,6 +31,16 @@ public:
     ~Renderer();
 
     void setTransferFunction(const TransferFunction& tf);
+    // LAO settings for lao/cao shading; a change recomputes V_PAO on the next AO frame.
+    void setLaoSettings(const LaoSettings& settings);
+    const LaoSettings& laoSettings() const { return laoSettings_; }
+    // The clip meshes; the app adds them and sets their poses between frames.
+    clip::ClipMeshSet& clipMeshes() { return clip_; }
+    const clip::ClipMeshSet& clipMeshes() const { return clip_; }
+    // The AO pipeline, allocated at the first lao/cao frame (null before: a scene allocates what it uses).
+    const AmbientOcclusion* ambientOcclusion() const { return ao_.get(); }
+    // Whether the last frame ran steps IV and V (they run only when something they read changed).
+    bool lastFrameUpdatedAmbient() const { return lastFrameUpdatedAmbient_; }
     const VolumeGeometry& geometry() const { return volume_.geometry(); }
     double resolveStepMm(const RaycastSettings& settings) const;
 
@@ -51,9 +63,19 @@ private:
     void updateOccupancy();
     void ensureOutput(glm::ivec2 size);
 
+    void updateAmbientOcclusion(ShadingMode mode);
+
     gl::Context& context_;
     GpuVolume volume_;
     std::unique_ptr<TransferFunctionTexture> tf_;
+    std::uint64_t tfVersion_ = 0;
+    clip::ClipMeshSet clip_;
+    LaoSettings laoSettings_;
+    std::unique_ptr<AmbientOcclusion> ao_;
+    // What V_AO was last computed from (steps IV-V rerun only when one of these changes).
+    std::uint64_t aoClipVersion_ = 0, aoTfVersion_ = 0;
+    ShadingMode aoMode_ = ShadingMode::Solid;
+    bool aoValid_ = false, aoPrecomputedValid_ = false, lastFrameUpdatedAmbient_ = false;
     gl::Texture occupancy_;
     gl::Texture output_;
     glm::ivec2 outputSize_{0};

@@ -1,5 +1,7 @@
 #include "render/transfer_function_texture.h"
 
+#include "render/bindings.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -70,6 +72,18 @@ float TransferFunctionTexture::maxOpacity(float texelLo, float texelHi) const {
     int level = std::bit_width(static_cast<unsigned>(hi - lo + 1)) - 1;
     const std::vector<float>& row = sparseMax_[static_cast<std::size_t>(level)];
     return std::max(row[static_cast<std::size_t>(lo)], row[static_cast<std::size_t>(hi - (1 << level) + 1)]);
+}
+
+void TransferFunctionTexture::setUniforms(gl::Program& p) const {
+    p.set("texelToTf", texelToTf_);
+    p.set("gradientToTf", gradientToTf_);
+    p.set("tfUnitLengthMm", unitLengthMm_);
+    p.set("useGradientOpacity", useGradientOpacity_ ? 1 : 0);
+}
+
+void TransferFunctionTexture::bind() const {
+    glBindTextureUnit(binding::transferFunction, texture_.name());
+    glBindTextureUnit(binding::gradientOpacity, gradientTexture_.name());
 }
 
 }  // namespace curette

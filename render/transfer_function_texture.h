@@ -5,6 +5,7 @@
 // empty-space skipping, from the same table the shader filters.
 
 #include "render/gl/objects.h"
+#include "render/gl/program.h"
 #include "render/transfer_function.h"
 
 #include <vector>
@@ -27,6 +28,10 @@ public:
     float unitLengthMm() const { return unitLengthMm_; }
     const TransferFunction::Material& material() const { return material_; }
     const std::vector<glm::vec4>& table() const { return table_; }
+
+    // Sets the uniforms of shaders/transfer_function.glsl on `program` and binds the tables to their units.
+    void setUniforms(gl::Program& program) const;
+    void bind() const;
 
     // Largest opacity the linearly filtered table returns for texel values in [lo, hi] (with one table
     // texel of margin for rounding of the coordinate on the GPU).

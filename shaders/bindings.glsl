@@ -12,3 +12,19 @@
 #define BINDING_CLIP_DILATED 9      // sampler2DArray: per-mesh dilated maps (D_front, D_back, ...)
 
 #define IMAGE_OUTPUT 0              // image2D: the rendered RGBA
+#define IMAGE_OPACITY 1             // image3D r16: V_o written by step IV
+#define IMAGE_MASK 2                // uimage3D r8ui: V_m written by step IV
+#define IMAGE_AMBIENT 3             // image3D r16: V_AO (or V_PAO in step I) written by step V
+#define IMAGE_DILATION 4            // image2DArray r32f: dilated map written by step III
+
+#define SSBO_SAMPLE_COUNTER 0       // uint: samples taken (bench only)
+#define SSBO_LAO_DIRECTIONS 1       // vec4[]: LAO step in texture space, weight / (K * M)
+#define SSBO_CLIP_MESHES 2          // ClipMeshGpu[]: per-mesh clipping camera
+#define SSBO_RECOMPUTE_LIST 3       // uint count, uint voxels[]: category-b voxels (step V, compacted)
+#define SSBO_DISPATCH 4             // uvec3: indirect dispatch size of the compacted step V
+#define SSBO_ANTIALIASING 5         // vec4[]: the N extra anti-aliasing offsets of step IV
+
+// Categories of V_m (CAO Fig. 5): a clipped, b affected by clipping, c unaffected.
+#define CATEGORY_CLIPPED 0u
+#define CATEGORY_AFFECTED 1u
+#define CATEGORY_UNAFFECTED 2u

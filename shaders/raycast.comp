@@ -9,10 +9,12 @@
 #include "transfer_function.glsl"
 #include "phong.glsl"
 #include "random.glsl"
+#include "clip_test.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D outputImage;
 layout(binding = BINDING_OCCUPANCY) uniform sampler3D occupancy;
+layout(binding = BINDING_AMBIENT) uniform sampler3D ambientOcclusion;   // V_AO (lao/cao shading)
 
 uniform mat4 inverseViewProjection;  // clip space -> world
 uniform vec3 eyeWorld;
@@ -72,6 +74,8 @@ void main() {
                     continue;
                 }
             }
+            // Step VI's shadow-test clipping: a sample inside any clip mesh is not there.
+            if (clipMeshCount > 0 && insideAnyClipMesh(eyeWorld + t * direction)) continue;
             ++samples;
             float texel = sampleTexel(tex);
             vec4 classified = classify(texel);
@@ -86,6 +90,9 @@ void main() {
             if (alpha <= 0.0) continue;
 #if SHADING == SHADING_PHONG
             vec3 color = shadePhong(classified.rgb, gradient, -direction, 1.0);
+#elif SHADING == SHADING_LAO || SHADING == SHADING_CAO
+            // The ambient factor of the sample from V_AO (CAO step VI): the colour lit by ambient light only.
+            vec3 color = classified.rgb * texture(ambientOcclusion, tex).r;
 #else
             vec3 color = classified.rgb;
 #endif

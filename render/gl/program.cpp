@@ -58,21 +58,22 @@ struct Expander {
     }
 };
 
-// Replaces "0(12)" style locations in a driver log with "file.glsl:12".
+// Replaces the driver's "SOURCE:LINE(COLUMN)" (Mesa) or "SOURCE(LINE)" (others) locations with
+// "file.glsl:LINE", using the #line source numbers expandShaderSource assigned.
 std::string annotateLog(const std::string& log, const std::vector<std::string>& files) {
     std::string result;
     std::istringstream in(log);
     std::string line;
     while (std::getline(in, line)) {
-        std::size_t paren = line.find('(');
-        std::size_t close = line.find(')');
-        if (paren != std::string::npos && close != std::string::npos && paren > 0 && close > paren) {
-            try {
-                int index = std::stoi(line.substr(0, paren));
-                if (index >= 0 && index < static_cast<int>(files.size()))
-                    line = files[static_cast<std::size_t>(index)] + ":" + line.substr(paren + 1, close - paren - 1) +
-                           line.substr(close + 1);
-            } catch (...) {
+        std::size_t end = line.find_first_not_of("0123456789");
+        if (end != std::string::npos && end > 0 && (line[end] == ':' || line[end] == '(')) {
+            std::size_t index = std::stoul(line.substr(0, end));
+            std::size_t numberStart = end + 1;
+            std::size_t numberEnd = line.find_first_not_of("0123456789", numberStart);
+            if (index < files.size() && numberEnd != std::string::npos && numberEnd > numberStart) {
+                std::string number = line.substr(numberStart, numberEnd - numberStart);
+                std::size_t rest = line.find(':', numberEnd);
+                line = files[index] + ":" + number + (rest == std::string::npos ? "" : line.substr(rest));
             }
         }
         result += "  " + line + "\n";

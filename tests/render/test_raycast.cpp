@@ -296,6 +296,16 @@ TEST(Raycast, BindingsMatchGlsl) {
     EXPECT_EQ(glsl.at("BINDING_CLIP_DEPTH"), binding::clipDepth);
     EXPECT_EQ(glsl.at("BINDING_CLIP_DILATED"), binding::clipDilated);
     EXPECT_EQ(glsl.at("IMAGE_OUTPUT"), binding::imageOutput);
+    EXPECT_EQ(glsl.at("IMAGE_OPACITY"), binding::imageOpacity);
+    EXPECT_EQ(glsl.at("IMAGE_MASK"), binding::imageMask);
+    EXPECT_EQ(glsl.at("IMAGE_AMBIENT"), binding::imageAmbient);
+    EXPECT_EQ(glsl.at("IMAGE_DILATION"), binding::imageDilation);
+    EXPECT_EQ(glsl.at("SSBO_SAMPLE_COUNTER"), binding::ssboSampleCounter);
+    EXPECT_EQ(glsl.at("SSBO_LAO_DIRECTIONS"), binding::ssboLaoDirections);
+    EXPECT_EQ(glsl.at("SSBO_CLIP_MESHES"), binding::ssboClipMeshes);
+    EXPECT_EQ(glsl.at("SSBO_RECOMPUTE_LIST"), binding::ssboRecomputeList);
+    EXPECT_EQ(glsl.at("SSBO_DISPATCH"), binding::ssboDispatch);
+    EXPECT_EQ(glsl.at("SSBO_ANTIALIASING"), binding::ssboAntiAliasing);
 }
 
 }  // namespace

@@ -1,0 +1,304 @@
+#include "clip/clip_mesh_set.h"
+
+#include "base/error.h"
+#include "base/log.h"
+#include "render/bindings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace curette::clip {
+
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+struct CameraGpu {  // std430 layout of ClipMeshGpu in shaders/clip_test.glsl
+    float worldToMap[16];
+    std::int32_t info[4];
+};
+static_assert(sizeof(CameraGpu) == 80);
+
+bool anyFinite(GLuint texture, int resolution) {
+    std::vector<float> values(static_cast<std::size_t>(resolution) * static_cast<std::size_t>(resolution));
+    glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)), values.data());
+    return std::any_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); });
+}
+
+}  // namespace
+
+ClipMeshSet::ClipMeshSet(ClipMapSettings settings) : settings_(settings) {}
+ClipMeshSet::~ClipMeshSet() = default;
+
+int ClipMeshSet::add(std::shared_ptr<const TriangleMesh> geometry, glm::dvec3 scale, const RigidPose& pose, std::string name) {
+    if (count() >= maxMeshes)
+        throw InputError(name, "clip_meshes", "at most " + std::to_string(maxMeshes) + " clip meshes at once",
+                         std::to_string(count() + 1));
+    if (!geometry || geometry->triangles.empty())
+        throw InputError(name, "mesh", "a mesh with triangles", "an empty mesh");
+    for (int a = 0; a < 3; ++a)
+        if (!(scale[a] > 0.0) || !std::isfinite(scale[a]))
+            throw InputError(name, "scale", "three positive finite factors (a zero scale has no inside)",
+                             std::to_string(scale.x) + ", " + std::to_string(scale.y) + ", " + std::to_string(scale.z));
+    Mesh mesh;
+    mesh.geometry = std::move(geometry);
+    mesh.scale = scale;
+    mesh.pose = pose;
+    mesh.name = std::move(name);
+    uploadGeometry(mesh);
+    meshes_.push_back(std::move(mesh));
+    ++version_;
+    return count() - 1;
+}
+
+void ClipMeshSet::remove(int index) {
+    meshes_.erase(meshes_.begin() + index);
+    // Later meshes move down one slot in the arrays: their maps must be redrawn there.
+    for (std::size_t i = static_cast<std::size_t>(index); i < meshes_.size(); ++i) meshes_[i].mapsDirty = true;
+    ++version_;
+}
+
+void ClipMeshSet::clear() {
+    meshes_.clear();
+    ++version_;
+}
+
+void ClipMeshSet::setPose(int index, const RigidPose& pose) {
+    Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    if (m.pose == pose) return;
+    m.pose = pose;
+    ++version_;
+}
+
+void ClipMeshSet::setScale(int index, glm::dvec3 scale) {
+    Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    for (int a = 0; a < 3; ++a)
+        if (!(scale[a] > 0.0) || !std::isfinite(scale[a]))
+            throw InputError(m.name, "scale", "three positive finite factors (a zero scale has no inside)",
+                             std::to_string(scale.x) + ", " + std::to_string(scale.y) + ", " + std::to_string(scale.z));
+    if (m.scale == scale) return;
+    m.scale = scale;
+    uploadGeometry(m);
+    ++version_;
+}
+
+void ClipMeshSet::setDilationRadiusMm(double radiusMm) {
+    if (radiusMm == dilationRadiusMm_) return;
+    dilationRadiusMm_ = radiusMm;
+    for (Mesh& m : meshes_) m.mapsDirty = true;  // the margin and the dilated maps depend on it
+    ++version_;
+}
+
+double ClipMeshSet::kernelRadiusMm(int index) const {
+    // Derivation (clip/README.md, "Dilation radius"): a point s inside the mesh and a voxel v within R of it
+    // map to pixels at most |v - s|_xy + sqrt(2) px apart (each lies within sqrt(2)/2 px of its pixel centre),
+    // so a kernel of radius R + sqrt(2) px over pixel centres covers every such pair; a small epsilon absorbs
+    // float rounding of the map transforms and depth comparisons.
+    double px = camera(index).pixelMm();
+    return dilationRadiusMm_ + std::sqrt(2.0) * px + 1e-3 * dilationRadiusMm_ + 1e-3;
+}
+
+void ClipMeshSet::uploadGeometry(Mesh& mesh) {
+    std::vector<glm::vec3> positions(mesh.geometry->positions.size());
+    mesh.localMin = glm::dvec3(std::numeric_limits<double>::infinity());
+    mesh.localMax = -mesh.localMin;
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        glm::dvec3 p = glm::dvec3(mesh.geometry->positions[i]) * mesh.scale;
+        positions[i] = glm::vec3(p);
+        mesh.localMin = glm::min(mesh.localMin, p);
+        mesh.localMax = glm::max(mesh.localMax, p);
+    }
+    mesh.vertices = gl::createBuffer();
+    glNamedBufferStorage(mesh.vertices.name(), static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
+    mesh.indices = gl::createBuffer();
+    glNamedBufferStorage(mesh.indices.name(), static_cast<GLsizeiptr>(mesh.geometry->triangles.size() * sizeof(glm::uvec3)),
+                         mesh.geometry->triangles.data(), 0);
+    mesh.indexCount = static_cast<GLsizei>(3 * mesh.geometry->triangles.size());
+    mesh.mapsDirty = true;
+}
+
+void ClipMeshSet::allocateArrays(int layers) {
+    auto makeArray = [&](const char* label) {
+        gl::Texture t = gl::createTexture(GL_TEXTURE_2D_ARRAY);
+        glTextureStorage3D(t.name(), 1, GL_R32F, resolution_, resolution_, layers);
+        glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glObjectLabel(GL_TEXTURE, t.name(), -1, label);
+        return t;
+    };
+    depthMaps_ = makeArray("clip depth maps (Z_front, Z_back per interval)");
+    dilatedAllocated_ = dilationRadiusMm_ > 0;
+    dilatedMaps_ = dilatedAllocated_ ? makeArray("clip dilated maps (D_front, D_back per interval)") : gl::Texture();
+    allocatedLayers_ = layers;
+    scratch_ = gl::createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(scratch_.name(), 1, GL_R32F, resolution_, resolution_);
+    scratchArray_ = gl::createTexture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(scratchArray_.name(), 1, GL_R32F, resolution_, resolution_, 1);
+    depthBuffer_ = gl::createRenderbuffer();
+    glNamedRenderbufferStorage(depthBuffer_.name(), GL_DEPTH_COMPONENT32F, resolution_, resolution_);
+    framebuffer_ = gl::createFramebuffer();
+    glNamedFramebufferTexture(framebuffer_.name(), GL_COLOR_ATTACHMENT0, scratch_.name(), 0);
+    glNamedFramebufferRenderbuffer(framebuffer_.name(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_.name());
+    if (glCheckNamedFramebufferStatus(framebuffer_.name(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw SystemError("clip depth-map framebuffer is incomplete");
+}
+
+void ClipMeshSet::update() {
+    if (!depthProgram_) {
+        depthProgram_ = gl::Program::graphics("clip_depth.vert", "clip_depth.frag");
+        dilationProgram_ = gl::Program::compute("dilation.comp");
+        vertexArray_ = gl::createVertexArray();
+        cameraBuffer_ = gl::createBuffer();
+        glNamedBufferStorage(cameraBuffer_.name(), maxMeshes * sizeof(CameraGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    if (meshes_.empty()) {
+        uploadCameras();
+        return;
+    }
+    // One resolution for all maps: enough for the largest mesh at the target pixel size.
+    int wanted = settings_.minResolution;
+    for (const Mesh& m : meshes_) {
+        double extent = std::max(m.localMax.x - m.localMin.x, m.localMax.y - m.localMin.y) + 2.0 * dilationRadiusMm_;
+        wanted = std::max(wanted, static_cast<int>(std::ceil(extent / settings_.pixelMm)) + 8);
+    }
+    wanted = std::min(wanted, settings_.maxResolution);
+    // Grow in steps of 25% so a mesh that scales up a little does not reallocate every frame.
+    bool reallocate = resolution_ == 0 || wanted > resolution_ || wanted < resolution_ / 2 ||
+                      allocatedLayers_ < layersPerMesh * count() || (dilationRadiusMm_ > 0) != dilatedAllocated_;
+    if (reallocate) {
+        if (resolution_ == 0 || wanted > resolution_ || wanted < resolution_ / 2)
+            resolution_ = std::min(settings_.maxResolution, std::max(wanted, resolution_ == 0 ? wanted : wanted + wanted / 4));
+        allocateArrays(layersPerMesh * std::max(count(), 4));
+        for (Mesh& m : meshes_) m.mapsDirty = true;
+    }
+    for (int i = 0; i < count(); ++i) {
+        Mesh& m = meshes_[static_cast<std::size_t>(i)];
+        if (!m.mapsDirty) continue;
+        m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, resolution_);
+        renderMaps(i);
+        if (dilatedAllocated_) dilateMaps(i);
+        m.mapsDirty = false;
+        ++mapRenders_;
+    }
+    uploadCameras();
+}
+
+void ClipMeshSet::renderMaps(int index) {
+    Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    const int base = layersPerMesh * index;
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.name());
+    glViewport(0, 0, resolution_, resolution_);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE);
+    // The camera looks along local +z with x right and y up, so faces turned towards it (normal.z < 0) wind
+    // clockwise on screen: call those front faces.
+    glFrontFace(GL_CW);
+    glDisable(GL_BLEND);
+    depthProgram_.use();
+    depthProgram_.set("localToClip", glm::mat4(m.camera.localToClip()));
+    glBindVertexArray(vertexArray_.name());
+    glVertexArrayVertexBuffer(vertexArray_.name(), 0, m.vertices.name(), 0, sizeof(glm::vec3));
+    glVertexArrayElementBuffer(vertexArray_.name(), m.indices.name());
+    glEnableVertexArrayAttrib(vertexArray_.name(), 0);
+    glVertexArrayAttribFormat(vertexArray_.name(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vertexArray_.name(), 0, 0);
+    glBindTextureUnit(binding::clipDepth, depthMaps_.name());
+
+    // Layers: 0 front 1, 1 back 1, 2 front 2 (peeled behind 0), 3 back 2 (peeled behind 1), and a probe
+    // front 3 (peeled behind 2) that only tells whether the mesh needs more than two intervals.
+    for (int layer = 0; layer < 5; ++layer) {
+        bool front = layer % 2 == 0;
+        const float clearDepth = 1.0f;
+        const float clearColor[4] = {front ? kInfinity : -kInfinity, 0, 0, 0};
+        glClearNamedFramebufferfv(framebuffer_.name(), GL_COLOR, 0, clearColor);
+        glClearNamedFramebufferfv(framebuffer_.name(), GL_DEPTH, 0, &clearDepth);
+        glCullFace(front ? GL_BACK : GL_FRONT);
+        depthProgram_.set("peelAgainst", layer >= 2 ? base + layer - 2 : -1);
+        glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+        if (layer == 2) m.intervals = anyFinite(scratch_.name(), resolution_) ? 2 : 1;
+        if (layer == 4) {
+            if (anyFinite(scratch_.name(), resolution_))
+                log::warn("clip mesh \"" + m.name + "\" has more than two depth intervals seen from its clipping camera "
+                          "(local +z); beyond the second it clips like its hull (CAO section 3.4, step II)");
+            break;
+        }
+        glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
+                           base + layer, resolution_, resolution_, 1);
+    }
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+    glFrontFace(GL_CCW);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void ClipMeshSet::dilateMaps(int index) {
+    const Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    const int base = layersPerMesh * index;
+    gl::Program& p = dilationProgram_;
+    p.set("resolution", resolution_);
+    p.set("radiusMm", static_cast<float>(kernelRadiusMm(index)));
+    p.set("pixelMm", static_cast<float>(m.camera.pixelMm()));
+    glm::uvec3 items(static_cast<unsigned>(resolution_), static_cast<unsigned>(resolution_), 1u);
+    for (int layer = 0; layer < layersPerMesh; ++layer) {
+        p.set("backMap", layer % 2 == 1 ? 1 : 0);
+        if (layer >= 2 * m.intervals) {
+            const float empty = layer % 2 == 0 ? kInfinity : -kInfinity;
+            glClearTexSubImage(dilatedMaps_.name(), 0, 0, 0, base + layer, resolution_, resolution_, 1, GL_RED, GL_FLOAT, &empty);
+            continue;
+        }
+        // Pass 1 along x into the scratch array, pass 2 along y into the dilated array.
+        glBindTextureUnit(binding::clipDepth, depthMaps_.name());
+        glBindImageTexture(binding::imageDilation, scratchArray_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        p.set("sourceLayer", base + layer);
+        p.set("destinationLayer", 0);
+        p.set("direction", glm::ivec2(1, 0));
+        p.dispatchCovering(items);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glBindTextureUnit(binding::clipDepth, scratchArray_.name());
+        glBindImageTexture(binding::imageDilation, dilatedMaps_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        p.set("sourceLayer", 0);
+        p.set("destinationLayer", base + layer);
+        p.set("direction", glm::ivec2(0, 1));
+        p.dispatchCovering(items);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+}
+
+void ClipMeshSet::uploadCameras() {
+    std::vector<CameraGpu> cameras(meshes_.size());
+    for (std::size_t i = 0; i < meshes_.size(); ++i) {
+        glm::mat4 m(meshes_[i].camera.worldToMap(meshes_[i].pose));
+        std::memcpy(cameras[i].worldToMap, &m[0][0], sizeof cameras[i].worldToMap);
+        cameras[i].info[0] = static_cast<std::int32_t>(layersPerMesh * i);
+        cameras[i].info[1] = meshes_[i].intervals;
+        cameras[i].info[2] = resolution_;
+        cameras[i].info[3] = 0;
+    }
+    if (!cameras.empty())
+        glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());
+}
+
+void ClipMeshSet::bind() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboClipMeshes, cameraBuffer_.name());
+    glBindTextureUnit(binding::clipDepth, depthMaps_.name());
+    glBindTextureUnit(binding::clipDilated, dilatedAllocated_ ? dilatedMaps_.name() : depthMaps_.name());
+}
+
+std::vector<float> ClipMeshSet::readMap(int index, int layer, bool dilated) const {
+    std::vector<float> values(static_cast<std::size_t>(resolution_) * static_cast<std::size_t>(resolution_));
+    glGetTextureSubImage(dilated ? dilatedMaps_.name() : depthMaps_.name(), 0, 0, 0, layersPerMesh * index + layer,
+                         resolution_, resolution_, 1, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)),
+                         values.data());
+    return values;
+}
+
+std::size_t ClipMeshSet::gpuBytes() const {
+    std::size_t layer = static_cast<std::size_t>(resolution_) * static_cast<std::size_t>(resolution_) * 4u;
+    return layer * static_cast<std::size_t>(allocatedLayers_) * (dilatedAllocated_ ? 2u : 1u) + 3u * layer;
+}
+
+}  // namespace curette::clip

@@ -1,0 +1,104 @@
+#pragma once
+// The active clip meshes and their maps (CAO section 3.6: one clipping camera and map set per mesh). Owns
+// the GPU side of steps II and III: for each mesh, depth maps of one or two intervals (depth peeling for
+// concave meshes) and, when AO needs them, the dilated maps; all meshes' maps live in two 2-D array
+// textures sharing one resolution. A rigid motion changes only the mesh's camera matrix (an SSBO entry);
+// maps are redrawn only when a mesh's geometry or scale, the dilation radius or the map resolution change.
+
+#include "clip/clipping_camera.h"
+#include "clip/rigid_pose.h"
+#include "clip/triangle_mesh.h"
+#include "render/gl/objects.h"
+#include "render/gl/program.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace curette::clip {
+
+struct ClipMapSettings {
+    double pixelMm = 0.5;        // target map pixel size (the renderer passes half the smallest voxel spacing)
+    int minResolution = 64;
+    int maxResolution = 1024;
+};
+
+class ClipMeshSet {
+public:
+    static constexpr int maxMeshes = 16;   // shaders/clip_test.glsl MAX_CLIP_MESHES
+    static constexpr int layersPerMesh = 4;  // front 1, back 1, front 2, back 2
+
+    explicit ClipMeshSet(ClipMapSettings settings = {});
+    ~ClipMeshSet();
+
+    // Adds a mesh (geometry in local millimetres, scaled by `scale`, placed by `pose`); returns its index.
+    // Throws InputError when the limit is reached, the scale is not positive and finite, or the mesh is empty.
+    int add(std::shared_ptr<const TriangleMesh> geometry, glm::dvec3 scale, const RigidPose& pose, std::string name);
+    void remove(int index);
+    void clear();
+    void setPose(int index, const RigidPose& pose);
+    void setScale(int index, glm::dvec3 scale);
+    // 0 disables the dilated maps (solid/phong/lao need only the depth maps).
+    void setDilationRadiusMm(double radiusMm);
+
+    int count() const { return static_cast<int>(meshes_.size()); }
+    const RigidPose& pose(int index) const { return meshes_[static_cast<std::size_t>(index)].pose; }
+    glm::dvec3 scale(int index) const { return meshes_[static_cast<std::size_t>(index)].scale; }
+    const std::string& name(int index) const { return meshes_[static_cast<std::size_t>(index)].name; }
+    const ClippingCamera& camera(int index) const { return meshes_[static_cast<std::size_t>(index)].camera; }
+    int intervals(int index) const { return meshes_[static_cast<std::size_t>(index)].intervals; }
+    int resolution() const { return resolution_; }
+    double dilationRadiusMm() const { return dilationRadiusMm_; }
+    // The radius the dilation kernel uses for mesh `index`: R plus sqrt(2) map pixels plus a rounding margin.
+    double kernelRadiusMm(int index) const;
+
+    // Changes whenever the clipped region may have changed (a pose, a scale, a mesh added or removed).
+    std::uint64_t version() const { return version_; }
+    // How many times step II/III ran for a mesh (tests check rigid motion does not redraw).
+    std::uint64_t mapRenderCount() const { return mapRenders_; }
+
+    // Steps II and III for meshes that need them, and the per-mesh cameras into the SSBO.
+    void update();
+    // Binds the SSBO and the map arrays to the units of shaders/clip_test.glsl.
+    void bind() const;
+
+    // Reads one map layer back (tests): layer 0..3 = front 1, back 1, front 2, back 2.
+    std::vector<float> readMap(int index, int layer, bool dilated) const;
+    std::size_t gpuBytes() const;
+
+private:
+    struct Mesh {
+        std::shared_ptr<const TriangleMesh> geometry;
+        glm::dvec3 scale{1.0};
+        RigidPose pose;
+        std::string name;
+        ClippingCamera camera;
+        int intervals = 1;
+        bool mapsDirty = true;
+        gl::Buffer vertices, indices;
+        GLsizei indexCount = 0;
+        glm::dvec3 localMin{0.0}, localMax{0.0};
+    };
+    void uploadGeometry(Mesh& mesh);
+    void allocateArrays(int layers);
+    void renderMaps(int index);
+    void dilateMaps(int index);
+    void uploadCameras();
+
+    ClipMapSettings settings_;
+    std::vector<Mesh> meshes_;
+    double dilationRadiusMm_ = 0.0;
+    int resolution_ = 0;
+    int allocatedLayers_ = 0;
+    bool dilatedAllocated_ = false;
+    std::uint64_t version_ = 1, mapRenders_ = 0;
+    gl::Texture depthMaps_, dilatedMaps_, scratchArray_, scratch_;
+    gl::Renderbuffer depthBuffer_;
+    gl::Framebuffer framebuffer_;
+    gl::VertexArray vertexArray_;
+    gl::Buffer cameraBuffer_;
+    gl::Program depthProgram_, dilationProgram_;
+};
+
+}  // namespace curette::clip

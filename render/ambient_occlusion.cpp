@@ -1,0 +1,241 @@
+#include "render/ambient_occlusion.h"
+
+#include "base/error.h"
+#include "base/progress.h"
+#include "render/bindings.h"
+#include "render/renderer.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace curette {
+
+namespace {
+
+gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label, bool zeroBorder) {
+    gl::Texture t = gl::createTexture(GL_TEXTURE_3D);
+    glTextureStorage3D(t.name(), 1, format, dims.x, dims.y, dims.z);
+    bool integer = format == GL_R8UI;
+    glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, integer ? GL_NEAREST : GL_LINEAR);
+    glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, integer ? GL_NEAREST : GL_LINEAR);
+    GLenum wrap = zeroBorder ? GL_CLAMP_TO_BORDER : GL_CLAMP_TO_EDGE;
+    for (GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(t.name(), axis, wrap);
+    const float border[4] = {0, 0, 0, 0};
+    glTextureParameterfv(t.name(), GL_TEXTURE_BORDER_COLOR, border);
+    glObjectLabel(GL_TEXTURE, t.name(), -1, label);
+    if (glGetError() == GL_OUT_OF_MEMORY) throw SystemError(std::string("not enough GPU memory for ") + label);
+    return t;
+}
+
+}  // namespace
+
+std::vector<glm::dvec3> antiAliasingOffsets(int count) {
+    auto halton = [](int index, int base) {
+        double f = 1, r = 0;
+        for (int i = index; i > 0; i /= base) f /= base, r += f * (i % base);
+        return r;
+    };
+    std::vector<glm::dvec3> offsets;
+    for (int i = 1; i <= count; ++i) offsets.emplace_back(2 * halton(i, 2) - 1, 2 * halton(i, 3) - 1, 2 * halton(i, 5) - 1);
+    return offsets;
+}
+
+AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings) : volume_(volume), settings_(settings) {
+    if (settings.samples < 1 || settings.samples > 1024)
+        throw InputError("<lao settings>", "samples", "an integer in [1, 1024]", std::to_string(settings.samples));
+    if (!(settings.stepMm > 0.0))
+        throw InputError("<lao settings>", "step_mm", "a positive length", std::to_string(settings.stepMm));
+    if (settings.antiAliasingSamples < 0 || settings.antiAliasingSamples > 256)
+        throw InputError("<lao settings>", "antialiasing_samples", "an integer in [0, 256]",
+                         std::to_string(settings.antiAliasingSamples));
+    glm::ivec3 dims = volume.geometry().dims;
+    opacity_ = makeVolumeTexture(dims, GL_R16, "V_o (clipped opacity)", true);
+    mask_ = makeVolumeTexture(dims, GL_R8UI, "V_m (categories)", false);
+    precomputed_ = makeVolumeTexture(dims, GL_R16, "V_PAO (unclipped LAO)", false);
+    ambient_ = makeVolumeTexture(dims, GL_R16, "V_AO", false);
+
+    std::vector<glm::vec4> aa;
+    for (const glm::dvec3& o : antiAliasingOffsets(std::max(settings.antiAliasingSamples, 1))) aa.emplace_back(glm::vec3(o), 0.0f);
+    antiAliasing_ = gl::createBuffer();
+    glNamedBufferStorage(antiAliasing_.name(), static_cast<GLsizeiptr>(aa.size() * sizeof(glm::vec4)), aa.data(), 0);
+
+    // Directions as one LAO step in texture coordinates, with w = w_k / (K * M) folding eq. 3's 1/K and
+    // eq. 2's 1/M into one factor.
+    std::vector<LaoDirection> list = settings.directions.build();
+    glm::dmat3 worldToTexture(volume.geometry().worldToTexture());
+    std::vector<glm::vec4> packed;
+    for (const LaoDirection& d : list)
+        packed.emplace_back(glm::vec3(worldToTexture * (d.direction * settings.stepMm)),
+                            static_cast<float>(d.weight / (double(list.size()) * settings.samples)));
+    directions_ = gl::createBuffer();
+    glNamedBufferStorage(directions_.name(), static_cast<GLsizeiptr>(packed.size() * sizeof(glm::vec4)), packed.data(), 0);
+
+    if (settings.dispatch == LaoSettings::Dispatch::Compacted) {
+        list_ = gl::createBuffer();
+        glNamedBufferStorage(list_.name(), static_cast<GLsizeiptr>(8 + 4 * volume.geometry().dims.x * std::size_t(dims.y) * dims.z),
+                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+        dispatch_ = gl::createBuffer();
+        glNamedBufferStorage(dispatch_.name(), 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    } else {
+        list_ = gl::createBuffer();  // holds only the counters in the full-grid variant
+        glNamedBufferStorage(list_.name(), 8, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    clipProgram_ = gl::Program::compute("voxel_clip.comp");
+    laoProgram_ = gl::Program::compute("lao.comp");
+    compactProgram_ = gl::Program::compute("lao_compact.comp");
+}
+
+AmbientOcclusion::~AmbientOcclusion() = default;
+
+double AmbientOcclusion::reachMm() const { return (settings_.samples - 1) * settings_.stepMm; }
+
+double AmbientOcclusion::dilationRadiusMm() const {
+    // Derivation of the dilation radius: how far from a clipped point s can a voxel v be whose V_AO changes?
+    //  - v's LAO (lao_ray.glsl) reads V_o trilinearly at points q with |q - v| <= (M - 1) * step  (reach);
+    //  - V_o at q blends voxels u with |q - u| < 1 voxel step per axis (index space), so
+    //    |u - q| <= cell diagonal = max over sign vectors of |A (+-1, +-1, +-1)|           (trilinear footprint);
+    //  - V_o at u changes only if one of u's nine clip samples (centre, corners at +-1 step along every axis;
+    //    the N extra samples are taken only when those nine disagree) changes side:
+    //    |s - u| <= cell diagonal                                                          (anti-aliasing reach).
+    // So R = reach + 2 * cell diagonal. The maps add one more term, the map-pixel quantisation of both v and
+    // s (sqrt(2) pixels) and a rounding epsilon, in clip::ClipMeshSet::kernelRadiusMm.
+    return reachMm() + 2.0 * volume_.geometry().cellDiagonalMm();
+}
+
+void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
+    glm::ivec3 dims = volume_.geometry().dims;
+    p.set("laoDirectionCount", settings_.directions.count);
+    p.set("laoSamples", settings_.samples);
+    p.set("volumeSize", dims);
+    p.set("laoTextureMargin", glm::vec3(0.5 / glm::dvec3(dims)));
+    p.set("maxGroupsX", 32768u);
+    p.set("laoOpacityExponent", opacityExponent);
+}
+
+void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation) {
+    gl::Program& p = clipProgram_;
+    const VolumeGeometry& g = volume_.geometry();
+    tf.setUniforms(p);
+    tf.bind();
+    p.set("indexToWorld", glm::mat4(g.indexToWorld));
+    p.set("volumeSize", g.dims);
+    p.set("antiAliasingSamples", settings_.antiAliasingSamples);
+    p.set("testDilation", testDilation ? 1 : 0);
+    p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
+    p.set("clipMeshCount", clip ? clip->count() : 0);
+    if (clip) clip->bind();
+    glBindTextureUnit(binding::volume, volume_.texture());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboAntiAliasing, antiAliasing_.name());
+    glBindImageTexture(binding::imageOpacity, opacity_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
+    glBindImageTexture(binding::imageMask, mask_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8UI);
+    p.dispatchCovering(glm::uvec3(g.dims));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExponent) {
+    glm::ivec3 dims = volume_.geometry().dims;
+    std::uint64_t voxels = static_cast<std::uint64_t>(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
+    const std::uint32_t zero[2] = {0, 0};
+    glNamedBufferSubData(list_.name(), 0, 8, zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboRecomputeList, list_.name());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboLaoDirections, directions_.name());
+    glBindTextureUnit(binding::opacity, opacity_.name());
+    glBindTextureUnit(binding::mask, mask_.name());
+    glBindTextureUnit(binding::precomputedAo, precomputed_.name());
+    glBindImageTexture(binding::imageAmbient, target, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
+    // 1-D jobs over a 2-D grid of work groups of 64 (lao_common.glsl linearInvocation).
+    auto groupsFor = [](std::uint64_t items) {
+        std::uint64_t groups = (items + 63) / 64;
+        std::uint64_t x = std::min<std::uint64_t>(groups, 32768);
+        return glm::uvec2(static_cast<unsigned>(std::max<std::uint64_t>(x, 1)), static_cast<unsigned>(x ? (groups + x - 1) / x : 1));
+    };
+    glm::uvec2 grid = groupsFor(voxels);
+    setLaoUniforms(laoProgram_, opacityExponent);
+    if (!compacted) {
+        laoProgram_.set("laoMode", 0);
+        laoProgram_.use();
+        glDispatchCompute(grid.x, grid.y, 1);
+    } else {
+        setLaoUniforms(compactProgram_, opacityExponent);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
+        compactProgram_.set("prepareDispatch", 0);
+        compactProgram_.use();
+        glDispatchCompute(grid.x, grid.y, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        compactProgram_.set("prepareDispatch", 1);
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        laoProgram_.set("laoMode", 1);
+        laoProgram_.use();
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatch_.name());
+        glDispatchComputeIndirect(0);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    std::uint32_t counts[2] = {0, 0};
+    glGetNamedBufferSubData(list_.name(), 0, 8, counts);
+    stats_.voxels = voxels;
+    stats_.recomputed = counts[1];
+}
+
+void AmbientOcclusion::precompute(const TransferFunctionTexture& tf, gl::TimerSet* timers) {
+    // Step I is step IV without meshes (every voxel keeps its TF opacity, all category b) followed by the
+    // LAO of every voxel, written to V_PAO.
+    Progress progress("LAO precompute (step I)", 2);
+    if (timers) timers->begin("I  LAO precompute");
+    runVoxelClipping(tf, nullptr, false);
+    progress.update(1);
+    runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
+    if (timers) timers->end();
+    progress.finish();
+    precomputed_valid_ = true;
+}
+
+void AmbientOcclusion::update(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode,
+                              gl::TimerSet* timers) {
+    if (!precomputed_valid_) precompute(tf, timers);
+    bool cao = mode == ShadingMode::Cao;
+    if (timers) timers->begin("IV voxel clipping");
+    runVoxelClipping(tf, &clip, cao);
+    if (timers) timers->end();
+    if (timers) timers->begin("V  LAO recompute");
+    runLao(ambient_.name(), settings_.dispatch == LaoSettings::Dispatch::Compacted,
+           static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
+    if (timers) timers->end();
+}
+
+std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
+    glm::ivec3 d = volume_.geometry().dims;
+    std::size_t n = std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z);
+    std::vector<GpuAllocation> list{{"V_o (clipped opacity)", "R16", 2 * n},
+                                    {"V_m (categories a/b/c)", "R8UI", n},
+                                    {"V_PAO (precomputed LAO)", "R16", 2 * n},
+                                    {"V_AO (LAO under clipping)", "R16", 2 * n}};
+    if (settings_.dispatch == LaoSettings::Dispatch::Compacted) list.push_back({"recompute list", "uint32 buffer", 4 * n + 8});
+    list.push_back({"LAO directions", "vec4 buffer", 16u * std::size_t(settings_.directions.count)});
+    return list;
+}
+
+namespace {
+template <typename T>
+std::vector<T> readTexture(GLuint texture, glm::ivec3 d, GLenum format, GLenum type) {
+    std::vector<T> values(std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(texture, 0, format, type, static_cast<GLsizei>(values.size() * sizeof(T)), values.data());
+    return values;
+}
+}  // namespace
+
+std::vector<std::uint16_t> AmbientOcclusion::readAmbient() const {
+    return readTexture<std::uint16_t>(ambient_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+}
+std::vector<std::uint16_t> AmbientOcclusion::readPrecomputed() const {
+    return readTexture<std::uint16_t>(precomputed_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+}
+std::vector<std::uint16_t> AmbientOcclusion::readOpacity() const {
+    return readTexture<std::uint16_t>(opacity_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+}
+std::vector<std::uint8_t> AmbientOcclusion::readMask() const {
+    return readTexture<std::uint8_t>(mask_.name(), volume_.geometry().dims, GL_RED_INTEGER, GL_UNSIGNED_BYTE);
+}
+
+}  // namespace curette

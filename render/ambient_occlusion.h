@@ -1,0 +1,95 @@
+#pragma once
+// Contextual Ambient Occlusion (seed 002): steps I, IV and V of DESIGN.md's CAO table.
+//   I   precompute(): LAO of every voxel without clipping -> V_PAO
+//   IV  update():     anti-aliased voxel clipping -> V_o (clipped opacity) and V_m (categories a/b/c)
+//   V   update():     V_AO: category c copies V_PAO, b (and a voxels next to a visible one) recompute LAO
+// Shading `lao` is the baseline CAO is measured against: the same passes without the dilation test, so every
+// visible voxel recomputes. Both produce bit-identical V_AO (the exactness contract, tested).
+//
+// Stored (only for lao/cao shading): V_o R16 (opacity per TF unit length), V_m R8UI, V_PAO R16, V_AO R16,
+// and in the compacted variant a recompute list of 4 bytes per voxel.
+
+#include "clip/clip_mesh_set.h"
+#include "render/gl/program.h"
+#include "render/gl/timer.h"
+#include "render/gpu_volume.h"
+#include "render/lao_directions.h"
+#include "render/shading_mode.h"
+#include "render/transfer_function_texture.h"
+
+#include <vector>
+
+namespace curette {
+
+struct GpuAllocation;
+
+struct LaoSettings {
+    LaoDirectionSet directions;
+    int samples = 20;                // M, samples per ray (eq. 2); the paper's Engine scene uses 20
+    double stepMm = 1.0;             // distance between LAO samples (the paper: 1 mm)
+    int antiAliasingSamples = 32;    // N of Algorithm 2 (the paper: 32)
+    // Step V: a full-grid dispatch that decides per voxel (early exit), or a compacted list of the voxels to
+    // recompute (atomic append + indirect dispatch). `curette bench cao` measures both; see README.
+    enum class Dispatch { Compacted, FullGrid } dispatch = Dispatch::Compacted;
+
+    bool operator==(const LaoSettings& o) const {
+        return directions.pattern == o.directions.pattern && directions.count == o.directions.count &&
+               directions.jitter == o.directions.jitter && directions.seed == o.directions.seed &&
+               directions.skyWeighting == o.directions.skyWeighting && samples == o.samples && stepMm == o.stepMm &&
+               antiAliasingSamples == o.antiAliasingSamples && dispatch == o.dispatch;
+    }
+};
+
+// The N extra anti-aliasing offsets of step IV (Algorithm 2, line 9) in voxel index units: Halton points
+// (bases 2, 3, 5) in [-1, 1]^3, fixed so every run classifies the same. One definition for the GPU buffer and
+// the CPU twin.
+std::vector<glm::dvec3> antiAliasingOffsets(int count);
+
+struct AmbientOcclusionStats {
+    std::uint64_t voxels = 0;
+    std::uint64_t recomputed = 0;      // voxels whose LAO ray ran in step V
+    double recomputedFraction() const { return voxels ? double(recomputed) / double(voxels) : 0.0; }
+};
+
+class AmbientOcclusion {
+public:
+    AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings);
+    ~AmbientOcclusion();
+
+    const LaoSettings& settings() const { return settings_; }
+    // The farthest LAO sample from its voxel: (M - 1) * step (lao_ray.glsl).
+    double reachMm() const;
+    // The radius around the clip meshes within which a voxel's AO can change (derivation in the .cpp).
+    double dilationRadiusMm() const;
+
+    // Step I for the volume under `tf`. Call again when the TF or the settings change.
+    void precompute(const TransferFunctionTexture& tf, gl::TimerSet* timers = nullptr);
+    // Steps IV and V under the meshes' current poses. mode: Cao (masked) or Lao (every visible voxel).
+    void update(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode,
+                gl::TimerSet* timers = nullptr);
+
+    GLuint ambientTexture() const { return ambient_.name(); }
+    const AmbientOcclusionStats& lastStats() const { return stats_; }
+    std::vector<GpuAllocation> allocations() const;
+
+    // Read-backs for tests and `replay --check` (x fastest).
+    std::vector<std::uint16_t> readAmbient() const;
+    std::vector<std::uint16_t> readPrecomputed() const;
+    std::vector<std::uint16_t> readOpacity() const;
+    std::vector<std::uint8_t> readMask() const;
+
+private:
+    void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation);
+    void runLao(GLuint target, bool compacted, float opacityExponent);
+    void setLaoUniforms(gl::Program& program, float opacityExponent);
+
+    const GpuVolume& volume_;
+    LaoSettings settings_;
+    gl::Texture opacity_, mask_, precomputed_, ambient_;
+    gl::Buffer directions_, antiAliasing_, list_, dispatch_;
+    gl::Program clipProgram_, laoProgram_, compactProgram_;
+    AmbientOcclusionStats stats_;
+    bool precomputed_valid_ = false;
+};
+
+}  // namespace curette

@@ -1,0 +1,77 @@
+#include "render/reference/lao_reference.h"
+
+#include "render/volume_geometry.h"
+
+#include <cmath>
+
+namespace curette::reference {
+
+VoxelClipping clipVoxels(const VolumeData& volume, const TransferFunction& tf, const InsideTest& inside,
+                         const InsideTest& dilated, const std::vector<glm::dvec3>& offsets) {
+    VoxelClipping result;
+    result.opacity.dims = volume.dims;
+    result.opacity.values.assign(volume.voxelCount(), 0.0);
+    result.category.assign(volume.voxelCount(), 0);
+    VolumeGeometry g{volume.dims, volume.indexToWorld};
+    glm::dmat3 gradientToWorld = g.gradientIndexToWorld() * volume.valueScale;
+    auto world = [&](glm::dvec3 index) { return glm::dvec3(volume.indexToWorld * glm::dvec4(index, 1.0)); };
+    auto texel = [&](glm::ivec3 v) {
+        v = glm::clamp(v, glm::ivec3(0), volume.dims - 1);
+        return volume.normalized(volume.linearIndex(v.x, v.y, v.z));
+    };
+    for (int k = 0; k < volume.dims.z; ++k)
+        for (int j = 0; j < volume.dims.y; ++j)
+            for (int i = 0; i < volume.dims.x; ++i) {
+                glm::ivec3 v(i, j, k);
+                glm::dvec3 c(v);
+                double alpha = tf.evaluateOpacity(volume.valueScale * texel(v) + volume.valueOffset);
+                if (tf.hasGradientOpacity()) {
+                    glm::dvec3 d(texel(v + glm::ivec3(1, 0, 0)) - texel(v - glm::ivec3(1, 0, 0)),
+                                 texel(v + glm::ivec3(0, 1, 0)) - texel(v - glm::ivec3(0, 1, 0)),
+                                 texel(v + glm::ivec3(0, 0, 1)) - texel(v - glm::ivec3(0, 0, 1)));
+                    alpha *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
+                }
+                int visible = inside(world(c)) ? 0 : 1;
+                for (int corner = 0; corner < 8; ++corner) {
+                    glm::dvec3 o((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1, (corner & 4) ? 1 : -1);
+                    visible += inside(world(c + o)) ? 0 : 1;
+                }
+                if (visible == 0) {
+                    alpha = 0;
+                } else if (visible < 9) {
+                    for (const glm::dvec3& o : offsets) visible += inside(world(c + o)) ? 0 : 1;
+                    alpha *= double(visible) / double(offsets.size() + 9);
+                }
+                std::size_t index = volume.linearIndex(i, j, k);
+                result.opacity.values[index] = alpha;
+                result.category[index] = visible == 0 ? 0 : (dilated && !dilated(world(c))) ? 2 : 1;
+            }
+    return result;
+}
+
+double localAmbientOcclusion(const Grid& opacity, const glm::dmat4& worldToTexture, const glm::dmat4& indexToWorld,
+                             glm::ivec3 v, const LaoParameters& p) {
+    glm::dvec3 centre = glm::dvec3(worldToTexture * (indexToWorld * glm::dvec4(glm::dvec3(v), 1.0)));
+    glm::dvec3 margin = 0.5 / glm::dvec3(opacity.dims);
+    double exponent = p.stepMm / p.unitLengthMm;
+    double ambient = 0;
+    for (const LaoDirection& d : p.directions) {
+        glm::dvec3 step = glm::dmat3(worldToTexture) * (d.direction * p.stepMm);
+        double transmittance = 1, sum = 0;
+        for (int m = 1; m <= p.samples; ++m) {
+            sum += transmittance;                          // eq. 2, term m
+            if (m == p.samples) break;
+            glm::dvec3 q = centre + double(m) * step;
+            if (glm::any(glm::lessThan(q, -margin)) || glm::any(glm::greaterThan(q, 1.0 + margin))) {
+                sum += transmittance * (p.samples - m);
+                break;
+            }
+            double a = opacity.sample(q, Wrap::ZeroBorder);
+            transmittance *= std::pow(1.0 - a, exponent);
+        }
+        ambient += d.weight * sum / p.samples;             // eq. 3 (weights average 1)
+    }
+    return ambient / static_cast<double>(p.directions.size());
+}
+
+}  // namespace curette::reference

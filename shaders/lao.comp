@@ -1,0 +1,45 @@
+#version 450
+// Steps I and V: LAO per voxel (lao_ray.glsl). One program for both so V_PAO and V_AO agree bit for bit.
+//   mode GRID: one invocation per voxel; the decision (lao_common.glsl) is taken here, so skipped voxels cost
+//              a mask read and a copy ("full-grid dispatch with early exit").
+//   mode LIST: one invocation per entry of the recompute list built by lao_compact.comp (indirect dispatch).
+// Step I runs GRID over a mask that marks every voxel b, writing V_PAO.
+#include "bindings.glsl"
+#include "lao_common.glsl"
+#include "lao_ray.glsl"
+
+#define MODE_GRID 0
+#define MODE_LIST 1
+
+layout(local_size_x = 64) in;
+layout(r16, binding = IMAGE_AMBIENT) uniform writeonly image3D ambientOut;
+layout(binding = BINDING_PRECOMPUTED_AO) uniform sampler3D precomputedAmbient;
+layout(std430, binding = SSBO_RECOMPUTE_LIST) buffer RecomputeList { uint listCount; uint computedCount; uint listVoxels[]; };
+
+uniform int laoMode;
+uniform ivec3 volumeSize;
+
+void main() {
+    uint id = linearInvocation();
+    ivec3 v;
+    if (laoMode == MODE_LIST) {
+        if (id >= listCount) return;
+        v = voxelFromIndex(listVoxels[id], volumeSize);
+    } else {
+        if (id >= uint(volumeSize.x * volumeSize.y * volumeSize.z)) return;
+        v = voxelFromIndex(id, volumeSize);
+        uint decision = stepVDecision(v, volumeSize);
+        if (decision == DECISION_COPY) {
+            imageStore(ambientOut, v, texelFetch(precomputedAmbient, v, 0));
+            return;
+        }
+        if (decision == DECISION_UNREACHABLE) {
+            imageStore(ambientOut, v, vec4(1.0));
+            return;
+        }
+    }
+    // The single call site of the LAO ray.
+    atomicAdd(computedCount, 1u);
+    float ambient = localAmbientOcclusion((vec3(v) + 0.5) / vec3(volumeSize));
+    imageStore(ambientOut, v, vec4(ambient));
+}

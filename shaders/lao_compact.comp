@@ -1,0 +1,36 @@
+#version 450
+// Step V, compacted variant, first half: take every voxel's decision (lao_common.glsl); write the copies and
+// the unreachable ones directly and append the voxels to recompute to a list (atomic append). A second
+// one-invocation pass turns the count into an indirect dispatch of lao.comp in LIST mode.
+#include "bindings.glsl"
+#include "lao_common.glsl"
+
+layout(local_size_x = 64) in;
+layout(r16, binding = IMAGE_AMBIENT) uniform writeonly image3D ambientOut;
+layout(binding = BINDING_PRECOMPUTED_AO) uniform sampler3D precomputedAmbient;
+layout(std430, binding = SSBO_RECOMPUTE_LIST) buffer RecomputeList { uint listCount; uint computedCount; uint listVoxels[]; };
+layout(std430, binding = SSBO_DISPATCH) buffer Dispatch { uvec3 dispatchSize; };
+
+uniform ivec3 volumeSize;
+uniform int prepareDispatch;   // 1: the single invocation that sizes the indirect dispatch
+uniform uint maxGroupsX;
+
+void main() {
+    if (prepareDispatch == 1) {
+        uint groups = (listCount + 63u) / 64u;
+        uint x = min(groups, maxGroupsX);
+        dispatchSize = uvec3(max(x, 1u), x == 0u ? 0u : (groups + x - 1u) / x, 1u);
+        return;
+    }
+    uint id = linearInvocation();
+    if (id >= uint(volumeSize.x * volumeSize.y * volumeSize.z)) return;
+    ivec3 v = voxelFromIndex(id, volumeSize);
+    uint decision = stepVDecision(v, volumeSize);
+    if (decision == DECISION_COPY) {
+        imageStore(ambientOut, v, texelFetch(precomputedAmbient, v, 0));
+    } else if (decision == DECISION_UNREACHABLE) {
+        imageStore(ambientOut, v, vec4(1.0));
+    } else {
+        listVoxels[atomicAdd(listCount, 1u)] = id;
+    }
+}

@@ -1,0 +1,45 @@
+// Local Ambient Occlusion of one voxel: CAO eq. 2 and 3. The one definition: step I (V_PAO) and step V
+// (V_AO) run the same program (lao.comp) with a single call site, so a voxel's value depends only on V_o
+// around it, bit for bit. The CPU twin is render/reference/lao_reference.cpp.
+//
+//   A_k(x) = 1/M * sum_{m=1..M} prod_{i=1..m-1} (1 - a_i)        (eq. 2)
+//   A(x)   = 1/K * sum_{k=1..K} w_k A_k(x)                        (eq. 3)
+//
+// Sample i lies i * step millimetres from the voxel centre along direction k, so term M needs samples 1..M-1
+// only: the farthest sample is (M - 1) * step away (render/ambient_occlusion.cpp derives the dilation radius
+// from this). a_i is V_o (opacity per TF unit length, trilinear, zero outside the volume) corrected to the
+// step length.
+#include "bindings.glsl"
+
+layout(binding = BINDING_OPACITY) uniform sampler3D clippedOpacity;
+layout(std430, binding = SSBO_LAO_DIRECTIONS) readonly buffer LaoDirections {
+    vec4 laoDirections[];  // xyz: one step along direction k in texture coordinates; w: w_k / (K * M)
+};
+uniform int laoDirectionCount;   // K
+uniform int laoSamples;          // M
+uniform float laoOpacityExponent;  // step / TF unit length
+uniform vec3 laoTextureMargin;   // half a texel: beyond it every sample reads the zero border
+
+float localAmbientOcclusion(vec3 centreTex) {
+    float ambient = 0.0;
+    for (int k = 0; k < laoDirectionCount; ++k) {
+        vec3 stepTex = laoDirections[k].xyz;
+        float transmittance = 1.0;
+        float sum = 0.0;
+        for (int m = 1; m <= laoSamples; ++m) {
+            sum += transmittance;  // term m: the transmittance of samples 1 .. m-1
+            if (m == laoSamples) break;
+            vec3 p = centreTex + float(m) * stepTex;
+            if (any(lessThan(p, -laoTextureMargin)) || any(greaterThan(p, 1.0 + laoTextureMargin))) {
+                // Left the volume: the remaining samples read zero opacity, so every later term is this
+                // transmittance (a straight ray never re-enters the box).
+                sum += transmittance * float(laoSamples - m);
+                break;
+            }
+            float a = texture(clippedOpacity, p).r;
+            transmittance *= pow(1.0 - a, laoOpacityExponent);
+        }
+        ambient += laoDirections[k].w * sum;
+    }
+    return ambient;
+}

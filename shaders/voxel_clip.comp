@@ -1,0 +1,67 @@
+#version 450
+// Step IV: anti-aliased shadow-test clipping of every voxel (CAO Algorithm 2), writing the clipped opacity
+// V_o and the category mask V_m. Nine samples (the centre and the eight corners one voxel step away along
+// the diagonals); where they disagree, N more at fixed offsets in [-1, 1]^3 and V_o is scaled by the visible
+// fraction (line 10). Category: a (clipped) when no sample is visible; otherwise b (affected) when the
+// voxel centre lies in a dilated shape, else c (unaffected). The LAO baseline (and step I) sets
+// testDilation = false: every visible voxel is b.
+#include "bindings.glsl"
+#include "transfer_function.glsl"
+#include "clip_test.glsl"
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
+layout(binding = BINDING_VOLUME) uniform sampler3D volumeData;
+layout(r16, binding = IMAGE_OPACITY) uniform writeonly image3D clippedOpacityOut;
+layout(r8ui, binding = IMAGE_MASK) uniform writeonly uimage3D maskOut;
+layout(std430, binding = SSBO_ANTIALIASING) readonly buffer AntiAliasing { vec4 antiAliasingOffsets[]; };
+
+uniform mat4 indexToWorld;
+uniform ivec3 volumeSize;
+uniform int antiAliasingSamples;   // N
+uniform bool testDilation;
+uniform mat3 gradientToWorld;      // index gradient -> world gradient (value per mm)
+
+// TF_o of Algorithm 2: the opacity per unit length of the voxel's own value (no interpolation), with the
+// gradient-opacity factor from central differences when the TF has one.
+float voxelOpacity(ivec3 v) {
+    float alpha = classify(texelFetch(volumeData, v, 0).r).a;
+    if (useGradientOpacity) {
+        ivec3 hi = volumeSize - 1;
+        vec3 d = vec3(texelFetch(volumeData, min(v + ivec3(1, 0, 0), hi), 0).r - texelFetch(volumeData, max(v - ivec3(1, 0, 0), 0), 0).r,
+                      texelFetch(volumeData, min(v + ivec3(0, 1, 0), hi), 0).r - texelFetch(volumeData, max(v - ivec3(0, 1, 0), 0), 0).r,
+                      texelFetch(volumeData, min(v + ivec3(0, 0, 1), hi), 0).r - texelFetch(volumeData, max(v - ivec3(0, 0, 1), 0), 0).r);
+        alpha *= gradientOpacityFactor(length(gradientToWorld * (0.5 * d)));
+    }
+    return alpha;
+}
+
+bool visibleAt(vec3 index) { return !insideAnyClipMesh((indexToWorld * vec4(index, 1.0)).xyz); }
+
+void main() {
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, volumeSize))) return;
+    vec3 centre = vec3(v);
+
+    int visible = 0;
+    if (clipMeshCount == 0) {
+        visible = 9;
+    } else {
+        visible += visibleAt(centre) ? 1 : 0;
+        for (int c = 0; c < 8; ++c) {
+            vec3 corner = vec3((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0);
+            visible += visibleAt(centre + corner) ? 1 : 0;
+        }
+    }
+    float opacity = voxelOpacity(v);
+    if (visible == 0) {
+        opacity = 0.0;
+    } else if (visible < 9) {
+        for (int s = 0; s < antiAliasingSamples; ++s) visible += visibleAt(centre + antiAliasingOffsets[s].xyz) ? 1 : 0;
+        opacity *= float(visible) / float(antiAliasingSamples + 9);
+    }
+    uint category = visible == 0 ? CATEGORY_CLIPPED
+                    : (testDilation && !insideAnyDilatedMesh((indexToWorld * vec4(centre, 1.0)).xyz)) ? CATEGORY_UNAFFECTED
+                                                                                                      : CATEGORY_AFFECTED;
+    imageStore(clippedOpacityOut, v, vec4(opacity));
+    imageStore(maskOut, v, uvec4(category));
+}
