@@ -14,12 +14,14 @@ inline constexpr unsigned precomputedAo = 6;
 inline constexpr unsigned mask = 7;
 inline constexpr unsigned clipDepth = 8;
 inline constexpr unsigned clipDilated = 9;
+inline constexpr unsigned occlusionPrevious = 10;
 
 inline constexpr unsigned imageOutput = 0;
 inline constexpr unsigned imageOpacity = 1;
 inline constexpr unsigned imageMask = 2;
 inline constexpr unsigned imageAmbient = 3;
 inline constexpr unsigned imageDilation = 4;
+inline constexpr unsigned imageOcclusionNext = 5;
 
 inline constexpr unsigned ssboSampleCounter = 0;
 inline constexpr unsigned ssboLaoDirections = 1;

@@ -25,11 +25,21 @@ struct RaycastSettings {
     bool skipEmptySpace = true;
 };
 
+// Directional occlusion shading (seed 001) and the slab pass.
+struct DosSettings {
+    double coneAngleDeg = 60.0;   // theta of the cone phase function (eq. 6); the paper shows 25-85 degrees
+    int gridSize = 3;             // n: n x n samples on the cone base (eq. 13-15); 1 = no blur
+    double sliceDistanceMm = 0.0; // d; 0: half the smallest voxel spacing
+    double ambientRadiance = 1.0; // La
+    bool operator==(const DosSettings&) const = default;
+};
+
 struct FrameDescription {
     OrbitCamera camera;
     glm::ivec2 size{512, 512};
     ShadingMode shading = ShadingMode::Phong;
     RaycastSettings raycast;
+    DosSettings dos;
     std::vector<Light> lights{Light{}};
 };
 

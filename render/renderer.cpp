@@ -88,9 +88,6 @@ gl::Program& Renderer::raycastProgram(ShadingMode mode) {
 }
 
 void Renderer::render(const FrameDescription& frame) {
-    if (frame.shading == ShadingMode::Dos)
-        throw InputError("<frame>", "shading", "solid, phong, lao or cao (dos comes with the slab pass)",
-                         shadingModeName(frame.shading));
     if (frame.size.x < 1 || frame.size.y < 1 || frame.size.x > context_.info().maxTextureSize ||
         frame.size.y > context_.info().maxTextureSize)
         throw InputError("<frame>", "size", "between 1x1 and the GL maximum texture size",
@@ -102,6 +99,15 @@ void Renderer::render(const FrameDescription& frame) {
         clip_.setDilationRadiusMm(0.0);
         clip_.update();
         lastFrameUpdatedAmbient_ = false;
+    }
+    if (frame.shading == ShadingMode::Dos) {
+        // Directional occlusion needs the slab pass (all rays advance slice by slice together).
+        timers_.begin("slab pass (DOS)");
+        slab_.run(frame, frame.dos, volume_, *tf_, clip_, output_.name(), 0);
+        timers_.end();
+        slabUsed_ = true;
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+        return;
     }
     const VolumeGeometry& g = volume_.geometry();
     gl::Program& p = raycastProgram(frame.shading);
@@ -197,6 +203,7 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
     if (clip_.count() > 0) list.push_back({"clip maps (depth + dilated arrays)", "R32F 2D arrays", clip_.gpuBytes()});
     if (ao_)
         for (const GpuAllocation& a : ao_->allocations()) list.push_back(a);
+    if (slabUsed_) list.push_back({"DOS occlusion buffers (2, ping-pong)", "RG32F", slab_.gpuBytes()});
     return list;
 }
 

@@ -10,6 +10,7 @@
 #include "render/gl/timer.h"
 #include "render/gpu_volume.h"
 #include "render/image.h"
+#include "render/slab_pass.h"
 #include "render/transfer_function_texture.h"
 
 #include <map>
@@ -39,6 +40,7 @@ public:
     const clip::ClipMeshSet& clipMeshes() const { return clip_; }
     // The AO pipeline, allocated at the first lao/cao frame (null before: a scene allocates what it uses).
     const AmbientOcclusion* ambientOcclusion() const { return ao_.get(); }
+    const SlabPass& slabPass() const { return slab_; }
     // Whether the last frame ran steps IV and V (they run only when something they read changed).
     bool lastFrameUpdatedAmbient() const { return lastFrameUpdatedAmbient_; }
     const VolumeGeometry& geometry() const { return volume_.geometry(); }
@@ -83,6 +85,8 @@ private:
     bool countSamples_ = false;
     std::map<std::pair<ShadingMode, bool>, gl::Program> raycastPrograms_;
     gl::TimerSet timers_;
+    SlabPass slab_;
+    bool slabUsed_ = false;
 };
 
 }  // namespace curette

@@ -10,12 +10,14 @@
 #define BINDING_MASK 7              // usampler3D: V_m
 #define BINDING_CLIP_DEPTH 8        // sampler2DArray: per-mesh depth maps (Z_front, Z_back, peeled layers)
 #define BINDING_CLIP_DILATED 9      // sampler2DArray: per-mesh dilated maps (D_front, D_back, ...)
+#define BINDING_OCCLUSION_PREVIOUS 10  // sampler2D rg32f: the slab pass's previous occlusion buffer
 
 #define IMAGE_OUTPUT 0              // image2D: the rendered RGBA
 #define IMAGE_OPACITY 1             // image3D r16: V_o written by step IV
 #define IMAGE_MASK 2                // uimage3D r8ui: V_m written by step IV
 #define IMAGE_AMBIENT 3             // image3D r16: V_AO (or V_PAO in step I) written by step V
 #define IMAGE_DILATION 4            // image2DArray r32f: dilated map written by step III
+#define IMAGE_OCCLUSION_NEXT 5      // image2D rg32f: the slab pass's next occlusion buffer
 
 #define SSBO_SAMPLE_COUNTER 0       // uint: samples taken (bench only)
 #define SSBO_LAO_DIRECTIONS 1       // vec4[]: LAO step in texture space, weight / (K * M)

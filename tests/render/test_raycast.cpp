@@ -300,6 +300,8 @@ TEST(Raycast, BindingsMatchGlsl) {
     EXPECT_EQ(glsl.at("IMAGE_MASK"), binding::imageMask);
     EXPECT_EQ(glsl.at("IMAGE_AMBIENT"), binding::imageAmbient);
     EXPECT_EQ(glsl.at("IMAGE_DILATION"), binding::imageDilation);
+    EXPECT_EQ(glsl.at("IMAGE_OCCLUSION_NEXT"), binding::imageOcclusionNext);
+    EXPECT_EQ(glsl.at("BINDING_OCCLUSION_PREVIOUS"), binding::occlusionPrevious);
     EXPECT_EQ(glsl.at("SSBO_SAMPLE_COUNTER"), binding::ssboSampleCounter);
     EXPECT_EQ(glsl.at("SSBO_LAO_DIRECTIONS"), binding::ssboLaoDirections);
     EXPECT_EQ(glsl.at("SSBO_CLIP_MESHES"), binding::ssboClipMeshes);

@@ -1,0 +1,124 @@
+#include "render/slab_pass.h"
+
+#include "base/error.h"
+#include "base/log.h"
+#include "render/bindings.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace curette {
+
+gl::Program& SlabPass::program(ShadingMode mode) {
+    auto found = programs_.find(mode);
+    if (found != programs_.end()) return found->second;
+    gl::Defines defines{{"SHADING", std::to_string(static_cast<int>(mode))}};
+    return programs_.emplace(mode, gl::Program::compute("dos_slice.comp", defines)).first->second;
+}
+
+void SlabPass::ensureBuffers(glm::ivec2 size) {
+    if (size == size_ && occlusion_[0]) return;
+    for (gl::Texture& t : occlusion_) {
+        t = gl::createTexture(GL_TEXTURE_2D);
+        glTextureStorage2D(t.name(), 1, GL_RG32F, size.x, size.y);
+        glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(t.name(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t.name(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glObjectLabel(GL_TEXTURE, t.name(), -1, "DOS occlusion buffer (all, geometry)");
+    }
+    size_ = size;
+}
+
+double SlabPass::resolveSliceDistanceMm(const DosSettings& s, const GpuVolume& volume) const {
+    return s.sliceDistanceMm > 0 ? s.sliceDistanceMm : 0.5 * volume.geometry().minSpacing();
+}
+
+void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, const GpuVolume& volume,
+                   const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, GLuint eyeBuffer, GLuint ambient) {
+    if (!(settings.coneAngleDeg >= 0.0 && settings.coneAngleDeg < 90.0))
+        throw InputError("<dos settings>", "cone_angle_deg", "an angle in [0, 90)", std::to_string(settings.coneAngleDeg));
+    if (settings.gridSize < 1 || settings.gridSize > 16)
+        throw InputError("<dos settings>", "grid", "an integer in [1, 16]", std::to_string(settings.gridSize));
+    ensureBuffers(frame.size);
+    const VolumeGeometry& g = volume.geometry();
+    const OrbitCamera& camera = frame.camera;
+    glm::dvec3 eye = camera.position(), forward = camera.forward();
+
+    // The slices cover the volume's depth range along the view axis, on a lattice of multiples of d from the
+    // eye (so orbiting does not make the slices swim through the data).
+    double d = resolveSliceDistanceMm(settings, volume);
+    double zMin = 1e300, zMax = -1e300;
+    for (const glm::dvec3& c : g.worldCorners()) {
+        double z = glm::dot(c - eye, forward);
+        zMin = std::min(zMin, z), zMax = std::max(zMax, z);
+    }
+    zMin = std::max(zMin, camera.nearMm);
+    long first = static_cast<long>(std::ceil(zMin / d)), last = static_cast<long>(std::floor(zMax / d));
+    if (last - first + 1 > maxSlices) {
+        double wanted = d;
+        d = (zMax - zMin) / (maxSlices - 1);
+        log::warn("slab pass: slice distance " + std::to_string(wanted) + " mm needs more than " + std::to_string(maxSlices) +
+                  " slices; using " + std::to_string(d) + " mm");
+        first = static_cast<long>(std::ceil(zMin / d));
+        last = static_cast<long>(std::floor(zMax / d));
+    }
+
+    // Start: an empty eye buffer, and full visibility in both occlusion channels.
+    const float clearEye[4] = {0, 0, 0, 0}, clearOcclusion[2] = {1, 1};
+    glClearTexImage(eyeBuffer, 0, GL_RGBA, GL_FLOAT, clearEye);
+    glClearTexImage(occlusion_[0].name(), 0, GL_RG, GL_FLOAT, clearOcclusion);
+
+    gl::Program& p = program(frame.shading);
+    double aspect = double(frame.size.x) / frame.size.y;
+    p.set("inverseViewProjection", glm::mat4(glm::inverse(camera.projection(aspect) * camera.view())));
+    p.set("eyeWorld", glm::vec3(eye));
+    p.set("viewForward", glm::vec3(forward));
+    p.set("outputSize", frame.size);
+    p.set("sliceDistance", static_cast<float>(d));
+    p.set("gridSize", settings.gridSize);
+    p.set("ambientRadiance", static_cast<float>(settings.ambientRadiance));
+    p.set("earlyTerminationAlpha", static_cast<float>(frame.raycast.earlyTerminationAlpha));
+    p.set("worldToTexture", glm::mat4(g.worldToTexture()));
+    p.set("texelSize", glm::vec3(1.0 / glm::dvec3(g.dims)));
+    p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume.valueScale()));
+    p.set("clipMeshCount", clip.count());
+    tf.setUniforms(p);
+    tf.bind();
+    clip.bind();
+    glBindTextureUnit(binding::volume, volume.texture());
+    if (ambient) glBindTextureUnit(binding::ambient, ambient);
+    glBindImageTexture(binding::imageOutput, eyeBuffer, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+
+    // Eq. 11 and 12: the cone base radius d tan(theta) in world units, projected at the previous slice's
+    // depth into pixels (the projection scales a length at depth z by H / (2 z tan(fovy / 2))).
+    double tanTheta = std::tan(glm::radians(settings.coneAngleDeg));
+    double pixelsPerMmAtUnitDepth = frame.size.y / (2.0 * std::tan(glm::radians(camera.fovYDeg) / 2.0));
+    int current = 0;
+    for (long k = first; k <= last; ++k) {
+        double z = double(k) * d;
+        double previousDepth = std::max(z - d, 1e-3);
+        p.set("sliceDepth", static_cast<float>(z));
+        p.set("coneRadiusPixels", static_cast<float>(d * tanTheta * pixelsPerMmAtUnitDepth / previousDepth));
+        glBindTextureUnit(binding::occlusionPrevious, occlusion_[current].name());
+        glBindImageTexture(binding::imageOcclusionNext, occlusion_[1 - current].name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+        p.dispatchCovering(glm::uvec3(static_cast<unsigned>(frame.size.x), static_cast<unsigned>(frame.size.y), 1u));
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        current = 1 - current;
+    }
+    slices_ = static_cast<int>(std::max(0L, last - first + 1));
+    last_ = current;
+}
+
+std::vector<glm::vec2> SlabPass::readOcclusion() const {
+    std::vector<glm::vec2> values(static_cast<std::size_t>(size_.x) * static_cast<std::size_t>(size_.y));
+    glGetTextureImage(occlusion_[last_].name(), 0, GL_RG, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(glm::vec2)),
+                      values.data());
+    return values;
+}
+
+std::size_t SlabPass::gpuBytes() const {
+    return 2u * static_cast<std::size_t>(size_.x) * static_cast<std::size_t>(size_.y) * 8u;
+}
+
+}  // namespace curette

@@ -1,0 +1,94 @@
+#version 450
+// One view-aligned slice of the slab pass (Directional Occlusion Shading, seed 001 Algorithms 1 and 3;
+// with tubes, seed 000 Algorithms 2-4). All rays advance together: slice k is the plane at view depth
+// z_k = firstDepth + k * sliceDistance, and a pixel's sample is where its ray crosses that plane, so the
+// segment it stands for is the true length along the ray, sliceDistance / cos(angle to the view axis).
+//
+// Occlusion buffer (two channels, DESIGN.md "Tubes and DOS"):
+//   .x "all": visibility of the ambient light through the cone, from the clipped volume and the tubes;
+//   .y "geometry": the same from the tubes alone.
+// Eye buffer update (seed 001 Algorithm 1): C += (1 - A) * alpha * La * colour * ambient(prev occlusion).
+// Occlusion update (Algorithm 3, eq. 11-15): the average of the previous buffer over an n x n grid on the
+// cone base (radius d tan(theta), projected at the previous slice's depth: the perspective correction of
+// eq. 12), times this slice's transmittance.
+#include "bindings.glsl"
+#include "shading_modes.glsl"
+#include "volume.glsl"
+#include "transfer_function.glsl"
+#include "clip_test.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D eyeBuffer;
+layout(rg32f, binding = IMAGE_OCCLUSION_NEXT) uniform writeonly image2D occlusionNext;
+layout(binding = BINDING_OCCLUSION_PREVIOUS) uniform sampler2D occlusionPrevious;
+layout(binding = BINDING_AMBIENT) uniform sampler3D ambientOcclusion;   // V_AO in cao/lao shading
+
+uniform mat4 inverseViewProjection;
+uniform vec3 eyeWorld;
+uniform vec3 viewForward;          // unit, world
+uniform ivec2 outputSize;
+uniform float sliceDepth;          // z_k: distance of this slice's plane from the eye along viewForward, mm
+uniform float sliceDistance;       // d, mm
+uniform float coneRadiusPixels;    // d tan(theta) in pixels at the previous slice's depth (eq. 11, 12)
+uniform int gridSize;              // n: the cone base is sampled on an n x n grid (points inside the disk)
+uniform float ambientRadiance;     // La
+uniform float earlyTerminationAlpha;
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, outputSize))) return;
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(outputSize) * 2.0 - 1.0;
+    ndc.y = -ndc.y;
+    vec4 farPoint = inverseViewProjection * vec4(ndc, 1.0, 1.0);
+    vec3 direction = normalize(farPoint.xyz / farPoint.w - eyeWorld);
+    float cosine = dot(direction, viewForward);
+    float t = sliceDepth / cosine;               // where this ray crosses the slice plane
+    float segment = sliceDistance / cosine;      // the true length of ray this sample stands for
+    vec3 world = eyeWorld + t * direction;
+    vec3 tex = toTexture(world);
+
+    // Opacity of this slice's sample (zero outside the volume or inside a clip mesh).
+    float alpha = 0.0;
+    vec3 albedo = vec3(0.0);
+    bool insideVolume = all(greaterThanEqual(tex, vec3(0.0))) && all(lessThanEqual(tex, vec3(1.0)));
+    if (insideVolume && !(clipMeshCount > 0 && insideAnyClipMesh(world))) {
+        vec4 classified = classify(sampleTexel(tex));
+        float alphaUnit = classified.a;
+        if (useGradientOpacity) alphaUnit *= gradientOpacityFactor(length(gradientWorld(tex)));
+        alpha = correctOpacity(alphaUnit, segment);
+        albedo = classified.rgb;
+    }
+
+    // Cone-base average of the previous occlusion buffer (Algorithm 3).
+    vec2 previousSum = vec2(0.0);
+    float count = 0.0;
+    vec2 centre = (vec2(pixel) + 0.5) / vec2(outputSize);
+    for (int j = 0; j < gridSize; ++j)
+        for (int i = 0; i < gridSize; ++i) {
+            vec2 p = (vec2(i, j) + 0.5) / float(gridSize) * 2.0 - 1.0;
+            if (gridSize > 1 && dot(p, p) > 1.0) continue;
+            vec2 offset = (gridSize > 1 ? p : vec2(0.0)) * coneRadiusPixels;
+            previousSum += texture(occlusionPrevious, centre + offset / vec2(outputSize)).rg;
+            count += 1.0;
+        }
+    vec2 occlusionBefore = texture(occlusionPrevious, centre).rg;
+    vec2 blurred = previousSum / count;
+
+    // Eye buffer (front to back). The sample is lit by the ambient light that reaches it through the cone:
+    // dos shading uses channel "all"; cao/lao take the volume's own occlusion from V_AO and only the tubes'
+    // shadows from channel "geometry", so nothing is counted twice.
+    vec4 eye = imageLoad(eyeBuffer, pixel);
+    if (alpha > 0.0 && eye.a < earlyTerminationAlpha) {
+#if SHADING == SHADING_DOS
+        float ambient = occlusionBefore.x;
+#else
+        float ambient = texture(ambientOcclusion, tex).r * occlusionBefore.y;
+#endif
+        eye.rgb += (1.0 - eye.a) * alpha * ambientRadiance * albedo * ambient;
+        eye.a += (1.0 - eye.a) * alpha;
+        imageStore(eyeBuffer, pixel, eye);
+    }
+    // This slice attenuates the light reaching every later slice; the geometry channel sees tubes only.
+    vec2 next = blurred * vec2(1.0 - alpha, 1.0);
+    imageStore(occlusionNext, pixel, vec4(clamp(next, 0.0, 1.0), 0.0, 0.0));
+}
