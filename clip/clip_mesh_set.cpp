@@ -84,6 +84,13 @@ void ClipMeshSet::setScale(int index, glm::dvec3 scale) {
     ++version_;
 }
 
+void ClipMeshSet::setClipsTubes(int index, bool clips) {
+    Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    if (m.clipsTubes == clips) return;
+    m.clipsTubes = clips;
+    ++version_;
+}
+
 void ClipMeshSet::setDilationRadiusMm(double radiusMm) {
     if (radiusMm == dilationRadiusMm_) return;
     dilationRadiusMm_ = radiusMm;
@@ -276,7 +283,7 @@ void ClipMeshSet::uploadCameras() {
         cameras[i].info[0] = static_cast<std::int32_t>(layersPerMesh * i);
         cameras[i].info[1] = meshes_[i].intervals;
         cameras[i].info[2] = resolution_;
-        cameras[i].info[3] = 0;
+        cameras[i].info[3] = meshes_[i].clipsTubes ? 1 : 0;
     }
     if (!cameras.empty())
         glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());

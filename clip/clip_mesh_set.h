@@ -39,6 +39,9 @@ public:
     void clear();
     void setPose(int index, const RigidPose& pose);
     void setScale(int index, glm::dvec3 scale);
+    // Whether mesh `index` also cuts tubes (they are always clipped by none otherwise).
+    void setClipsTubes(int index, bool clips);
+    bool clipsTubes(int index) const { return meshes_[static_cast<std::size_t>(index)].clipsTubes; }
     // 0 disables the dilated maps (solid/phong/lao need only the depth maps).
     void setDilationRadiusMm(double radiusMm);
 
@@ -75,6 +78,7 @@ private:
         std::string name;
         ClippingCamera camera;
         int intervals = 1;
+        bool clipsTubes = false;
         bool mapsDirty = true;
         gl::Buffer vertices, indices;
         GLsizei indexCount = 0;

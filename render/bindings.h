@@ -15,6 +15,10 @@ inline constexpr unsigned mask = 7;
 inline constexpr unsigned clipDepth = 8;
 inline constexpr unsigned clipDilated = 9;
 inline constexpr unsigned occlusionPrevious = 10;
+inline constexpr unsigned tubeDepth = 11;
+inline constexpr unsigned tubeColor = 12;
+inline constexpr unsigned tubeNormal = 13;
+inline constexpr unsigned partialOcclusion = 14;
 
 inline constexpr unsigned imageOutput = 0;
 inline constexpr unsigned imageOpacity = 1;
@@ -22,6 +26,7 @@ inline constexpr unsigned imageMask = 2;
 inline constexpr unsigned imageAmbient = 3;
 inline constexpr unsigned imageDilation = 4;
 inline constexpr unsigned imageOcclusionNext = 5;
+inline constexpr unsigned imagePartialOcclusion = 6;
 
 inline constexpr unsigned ssboSampleCounter = 0;
 inline constexpr unsigned ssboLaoDirections = 1;
@@ -29,6 +34,7 @@ inline constexpr unsigned ssboClipMeshes = 2;
 inline constexpr unsigned ssboRecomputeList = 3;
 inline constexpr unsigned ssboDispatch = 4;
 inline constexpr unsigned ssboAntiAliasing = 5;
+inline constexpr unsigned ssboPoissonDisk = 8;
 
 // V_m categories (CAO Fig. 5).
 inline constexpr unsigned categoryClipped = 0;

@@ -2,6 +2,7 @@
 
 #include "base/error.h"
 #include "render/bindings.h"
+#include "render/lighting.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -100,6 +101,10 @@ void Renderer::render(const FrameDescription& frame) {
         clip_.update();
         lastFrameUpdatedAmbient_ = false;
     }
+    if (tubes_) {
+        renderWithTubes(frame);
+        return;
+    }
     if (frame.shading == ShadingMode::Dos) {
         // Directional occlusion needs the slab pass (all rays advance slice by slice together).
         timers_.begin("slab pass (DOS)");
@@ -128,25 +133,7 @@ void Renderer::render(const FrameDescription& frame) {
     p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
     tf_->setUniforms(p);
     p.set("clipMeshCount", clip_.count());
-    const auto& m = tf_->material();
-    p.set("material", glm::vec4(glm::dvec4(m.ambient, m.diffuse, m.specular, m.specularPower)));
-
-    // Lights in world space.
-    int count = std::min<int>(static_cast<int>(frame.lights.size()), 4);
-    glm::vec3 directions[4], colors[4];
-    for (int i = 0; i < count; ++i) {
-        const Light& l = frame.lights[static_cast<std::size_t>(i)];
-        glm::dvec3 d = l.cameraSpace ? l.direction.x * frame.camera.right() + l.direction.y * frame.camera.up() -
-                                           l.direction.z * frame.camera.forward()
-                                     : l.direction;
-        directions[i] = glm::vec3(glm::normalize(d));
-        colors[i] = glm::vec3(l.color);
-    }
-    p.set("lightCount", count);
-    if (count > 0) {
-        glProgramUniform3fv(p.name(), p.location("lightDirection"), count, &directions[0].x);
-        glProgramUniform3fv(p.name(), p.location("lightColor"), count, &colors[0].x);
-    }
+    setLightingUniforms(p, frame, tf_->material());
 
     glBindTextureUnit(binding::volume, volume_.texture());
     tf_->bind();
@@ -166,6 +153,58 @@ void Renderer::render(const FrameDescription& frame) {
 
     timers_.begin("VI ray casting");
     p.dispatchCovering(glm::uvec3(frame.size.x, frame.size.y, 1));
+    timers_.end();
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+void Renderer::setTubes(const TubeVertices& vertices, const TubeShading& shading) {
+    tubes_ = std::make_unique<TubeSet>(vertices);
+    tubeShading_ = shading;
+}
+
+void Renderer::clearTubes() { tubes_.reset(); }
+
+void Renderer::renderWithTubes(const FrameDescription& frame) {
+    // Seed 000 Algorithm 1: G-buffer, slab pass (eye, partial and volumetric occlusion buffers), composite.
+    timers_.begin("tubes G-buffer");
+    tubes_->drawGBuffer(frame, clip_, gbuffer_);
+    timers_.end();
+    GLuint ambient = usesAmbientOcclusion(frame.shading) && ao_ ? ao_->ambientTexture() : 0;
+    timers_.begin("slab pass");
+    slab_.run(frame, frame.dos, volume_, *tf_, clip_, output_.name(), ambient, &gbuffer_, tubeShading_.geometryOpacity);
+    timers_.end();
+    slabUsed_ = true;
+
+    if (!compositeProgram_) compositeProgram_ = gl::Program::compute("tube_composite.comp");
+    if (poissonCount_ != tubeShading_.vicinitySamples) {
+        std::vector<glm::vec2> disk = poissonDisk(tubeShading_.vicinitySamples);
+        poissonDisk_ = gl::createBuffer();
+        glNamedBufferStorage(poissonDisk_.name(), static_cast<GLsizeiptr>(std::max<std::size_t>(disk.size(), 1) * sizeof(glm::vec2)),
+                             disk.data(), 0);
+        poissonCount_ = tubeShading_.vicinitySamples;
+    }
+    gl::Program& c = compositeProgram_;
+    double aspect = double(frame.size.x) / frame.size.y;
+    c.set("inverseViewProjection", glm::mat4(glm::inverse(frame.camera.projection(aspect) * frame.camera.view())));
+    c.set("eyeWorld", glm::vec3(frame.camera.position()));
+    c.set("outputSize", frame.size);
+    c.set("poissonCount", poissonCount_);
+    // Section 3.1.5: the vicinity radius l_vicinity tan(theta), projected at the surface's depth.
+    double pixelsPerMmAtUnitDepth = frame.size.y / (2.0 * std::tan(glm::radians(frame.camera.fovYDeg) / 2.0));
+    c.set("vicinityRadiusPixelsAtUnitDepth",
+          static_cast<float>(tubeShading_.vicinityDistanceMm * std::tan(glm::radians(frame.dos.coneAngleDeg)) * pixelsPerMmAtUnitDepth));
+    c.set("depthBiasMm", static_cast<float>(tubeShading_.depthBiasMm));
+    c.set("useOcclusion", frame.shading == ShadingMode::Solid || frame.shading == ShadingMode::Phong ? 0 : 1);
+    c.set("lineDiffuseExponent", static_cast<float>(tubeShading_.lineDiffuseExponent));
+    setLightingUniforms(c, frame, tubeShading_.material);
+    glBindImageTexture(binding::imageOutput, output_.name(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindTextureUnit(binding::tubeDepth, gbuffer_.depth());
+    glBindTextureUnit(binding::tubeColor, gbuffer_.color());
+    glBindTextureUnit(binding::tubeNormal, gbuffer_.normal());
+    glBindTextureUnit(binding::partialOcclusion, gbuffer_.partialOcclusion());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboPoissonDisk, poissonDisk_.name());
+    timers_.begin("composite + vicinity");
+    c.dispatchCovering(glm::uvec3(static_cast<unsigned>(frame.size.x), static_cast<unsigned>(frame.size.y), 1u));
     timers_.end();
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
@@ -204,6 +243,10 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
     if (ao_)
         for (const GpuAllocation& a : ao_->allocations()) list.push_back(a);
     if (slabUsed_) list.push_back({"DOS occlusion buffers (2, ping-pong)", "RG32F", slab_.gpuBytes()});
+    if (tubes_) {
+        list.push_back({"tube geometry", tubes_->lines() ? "line vertex buffers" : "triangle vertex buffers", tubes_->gpuBytes()});
+        list.push_back({"G-buffer + partial occlusion", "RGBA16F x2, R32F x2, D32F", gbuffer_.gpuBytes()});
+    }
     return list;
 }
 

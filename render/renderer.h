@@ -11,6 +11,7 @@
 #include "render/gpu_volume.h"
 #include "render/image.h"
 #include "render/slab_pass.h"
+#include "render/tube_set.h"
 #include "render/transfer_function_texture.h"
 
 #include <map>
@@ -41,6 +42,13 @@ public:
     // The AO pipeline, allocated at the first lao/cao frame (null before: a scene allocates what it uses).
     const AmbientOcclusion* ambientOcclusion() const { return ao_.get(); }
     const SlabPass& slabPass() const { return slab_; }
+    // Tubes (or illuminated lines) in world millimetres; a scene with tubes renders through the G-buffer,
+    // the slab pass and the compositor in every shading mode.
+    void setTubes(const TubeVertices& vertices, const TubeShading& shading);
+    void setTubeShading(const TubeShading& shading) { tubeShading_ = shading; }
+    void clearTubes();
+    bool hasTubes() const { return tubes_ != nullptr; }
+    const GBuffer& gbuffer() const { return gbuffer_; }
     // Whether the last frame ran steps IV and V (they run only when something they read changed).
     bool lastFrameUpdatedAmbient() const { return lastFrameUpdatedAmbient_; }
     const VolumeGeometry& geometry() const { return volume_.geometry(); }
@@ -87,6 +95,13 @@ private:
     gl::TimerSet timers_;
     SlabPass slab_;
     bool slabUsed_ = false;
+    std::unique_ptr<TubeSet> tubes_;
+    TubeShading tubeShading_;
+    GBuffer gbuffer_;
+    gl::Program compositeProgram_;
+    gl::Buffer poissonDisk_;
+    int poissonCount_ = 0;
+    void renderWithTubes(const FrameDescription& frame);
 };
 
 }  // namespace curette

@@ -3,17 +3,20 @@
 #include "base/error.h"
 #include "base/log.h"
 #include "render/bindings.h"
+#include "render/lighting.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace curette {
 
-gl::Program& SlabPass::program(ShadingMode mode) {
-    auto found = programs_.find(mode);
+gl::Program& SlabPass::program(ShadingMode mode, bool tubes) {
+    auto key = std::make_pair(mode, tubes);
+    auto found = programs_.find(key);
     if (found != programs_.end()) return found->second;
     gl::Defines defines{{"SHADING", std::to_string(static_cast<int>(mode))}};
-    return programs_.emplace(mode, gl::Program::compute("dos_slice.comp", defines)).first->second;
+    if (tubes) defines.emplace_back("HAS_TUBES", "1");
+    return programs_.emplace(key, gl::Program::compute("dos_slice.comp", defines)).first->second;
 }
 
 void SlabPass::ensureBuffers(glm::ivec2 size) {
@@ -35,7 +38,8 @@ double SlabPass::resolveSliceDistanceMm(const DosSettings& s, const GpuVolume& v
 }
 
 void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, const GpuVolume& volume,
-                   const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, GLuint eyeBuffer, GLuint ambient) {
+                   const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, GLuint eyeBuffer, GLuint ambient,
+                   GBuffer* tubes, double geometryOpacity) {
     if (!(settings.coneAngleDeg >= 0.0 && settings.coneAngleDeg < 90.0))
         throw InputError("<dos settings>", "cone_angle_deg", "an angle in [0, 90)", std::to_string(settings.coneAngleDeg));
     if (settings.gridSize < 1 || settings.gridSize > 16)
@@ -69,7 +73,16 @@ void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, c
     glClearTexImage(eyeBuffer, 0, GL_RGBA, GL_FLOAT, clearEye);
     glClearTexImage(occlusion_[0].name(), 0, GL_RG, GL_FLOAT, clearOcclusion);
 
-    gl::Program& p = program(frame.shading);
+    gl::Program& p = program(frame.shading, tubes != nullptr);
+    if (tubes) {
+        // Surfaces in front of the first slice keep full visibility.
+        const float one = 1.0f;
+        glClearTexImage(tubes->partialOcclusion(), 0, GL_RED, GL_FLOAT, &one);
+        glBindTextureUnit(binding::tubeDepth, tubes->depth());
+        glBindImageTexture(binding::imagePartialOcclusion, tubes->partialOcclusion(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        p.set("geometryOpacity", static_cast<float>(geometryOpacity));
+    }
+    setLightingUniforms(p, frame, tf.material());
     double aspect = double(frame.size.x) / frame.size.y;
     p.set("inverseViewProjection", glm::mat4(glm::inverse(camera.projection(aspect) * camera.view())));
     p.set("eyeWorld", glm::vec3(eye));

@@ -8,6 +8,7 @@
 #include "render/gl/program.h"
 #include "render/gpu_volume.h"
 #include "render/transfer_function_texture.h"
+#include "render/tube_set.h"
 
 #include <map>
 
@@ -18,9 +19,11 @@ public:
     static constexpr int maxSlices = 8192;
 
     // Renders the volume into `eyeBuffer` (RGBA32F, `frame.size`). `ambient` is V_AO for cao/lao shading
-    // (0 for dos).
+    // (0 otherwise). With `tubes` (a filled G-buffer) the tubes take part in the occlusion and the partial
+    // occlusion buffer is written.
     void run(const FrameDescription& frame, const DosSettings& settings, const GpuVolume& volume,
-             const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, GLuint eyeBuffer, GLuint ambient);
+             const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, GLuint eyeBuffer, GLuint ambient,
+             GBuffer* tubes = nullptr, double geometryOpacity = 0.0);
 
     double resolveSliceDistanceMm(const DosSettings& settings, const GpuVolume& volume) const;
     int slicesLastFrame() const { return slices_; }
@@ -29,10 +32,10 @@ public:
     std::size_t gpuBytes() const;
 
 private:
-    gl::Program& program(ShadingMode mode);
+    gl::Program& program(ShadingMode mode, bool tubes);
     void ensureBuffers(glm::ivec2 size);
 
-    std::map<ShadingMode, gl::Program> programs_;
+    std::map<std::pair<ShadingMode, bool>, gl::Program> programs_;
     gl::Texture occlusion_[2];
     glm::ivec2 size_{0};
     int slices_ = 0;

@@ -11,6 +11,10 @@
 #define BINDING_CLIP_DEPTH 8        // sampler2DArray: per-mesh depth maps (Z_front, Z_back, peeled layers)
 #define BINDING_CLIP_DILATED 9      // sampler2DArray: per-mesh dilated maps (D_front, D_back, ...)
 #define BINDING_OCCLUSION_PREVIOUS 10  // sampler2D rg32f: the slab pass's previous occlusion buffer
+#define BINDING_TUBE_DEPTH 11       // sampler2D r32f: G-buffer view depth of the nearest tube surface (0: none)
+#define BINDING_TUBE_COLOR 12       // sampler2D rgba16f: G-buffer surface colour
+#define BINDING_TUBE_NORMAL 13      // sampler2D rgba16f: G-buffer world normal (tubes) or tangent (lines), w: kind
+#define BINDING_PARTIAL_OCCLUSION 14   // sampler2D r32f: volume occlusion at each tube surface
 
 #define IMAGE_OUTPUT 0              // image2D: the rendered RGBA
 #define IMAGE_OPACITY 1             // image3D r16: V_o written by step IV
@@ -18,6 +22,7 @@
 #define IMAGE_AMBIENT 3             // image3D r16: V_AO (or V_PAO in step I) written by step V
 #define IMAGE_DILATION 4            // image2DArray r32f: dilated map written by step III
 #define IMAGE_OCCLUSION_NEXT 5      // image2D rg32f: the slab pass's next occlusion buffer
+#define IMAGE_PARTIAL_OCCLUSION 6   // image2D r32f: written by the slab pass at each tube surface's depth
 
 #define SSBO_SAMPLE_COUNTER 0       // uint: samples taken (bench only)
 #define SSBO_LAO_DIRECTIONS 1       // vec4[]: LAO step in texture space, weight / (K * M)
@@ -25,6 +30,12 @@
 #define SSBO_RECOMPUTE_LIST 3       // uint count, uint voxels[]: category-b voxels (step V, compacted)
 #define SSBO_DISPATCH 4             // uvec3: indirect dispatch size of the compacted step V
 #define SSBO_ANTIALIASING 5         // vec4[]: the N extra anti-aliasing offsets of step IV
+#define SSBO_POISSON_DISK 8         // vec2[]: vicinity-occlusion samples in the unit disk
+
+// G-buffer kinds (normal.w).
+#define SURFACE_NONE 0.0
+#define SURFACE_TUBE 1.0
+#define SURFACE_LINE 2.0
 
 // Categories of V_m (CAO Fig. 5): a clipped, b affected by clipping, c unaffected.
 #define CATEGORY_CLIPPED 0u

@@ -11,7 +11,8 @@
 
 struct ClipMeshGpu {
     mat4 worldToMap;   // world mm -> (map x, map y in [0,1], depth along the camera in mm)
-    ivec4 info;        // x: first layer in the map arrays, y: intervals (1 or 2), z: map resolution
+    ivec4 info;        // x: first layer in the map arrays, y: intervals (1 or 2), z: map resolution,
+                       // w: 1 when the mesh also clips tubes
 };
 
 layout(std430, binding = SSBO_CLIP_MESHES) readonly buffer ClipMeshes { ClipMeshGpu clipMeshes[]; };
@@ -40,6 +41,13 @@ bool insideMeshMaps(int i, vec3 world, bool dilated) {
 bool insideAnyClipMesh(vec3 world) {
     for (int i = 0; i < clipMeshCount; ++i)
         if (insideMeshMaps(i, world, false)) return true;
+    return false;
+}
+
+// Tubes are clipped only by the meshes set to clip them.
+bool insideAnyTubeClippingMesh(vec3 world) {
+    for (int i = 0; i < clipMeshCount; ++i)
+        if (clipMeshes[i].info.w != 0 && insideMeshMaps(i, world, false)) return true;
     return false;
 }
 

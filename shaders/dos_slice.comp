@@ -16,6 +16,7 @@
 #include "volume.glsl"
 #include "transfer_function.glsl"
 #include "clip_test.glsl"
+#include "phong.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D eyeBuffer;
@@ -34,6 +35,16 @@ uniform int gridSize;              // n: the cone base is sampled on an n x n gr
 uniform float ambientRadiance;     // La
 uniform float earlyTerminationAlpha;
 
+#ifdef HAS_TUBES
+// Tubes (seed 000): behind a tube surface the slice takes the tube's opacity in the occlusion buffer
+// (Algorithm 3: geometry shadows the volume), and the volume contributes to the eye buffer only in front
+// of the surface (Algorithm 2). At the first slice behind a surface, the occlusion reaching it is recorded
+// (Algorithm 4: the partial occlusion buffer).
+layout(binding = BINDING_TUBE_DEPTH) uniform sampler2D tubeDepth;
+layout(r32f, binding = IMAGE_PARTIAL_OCCLUSION) uniform writeonly image2D partialOcclusion;
+uniform float geometryOpacity;
+#endif
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, outputSize))) return;
@@ -44,20 +55,38 @@ void main() {
     float cosine = dot(direction, viewForward);
     float t = sliceDepth / cosine;               // where this ray crosses the slice plane
     float segment = sliceDistance / cosine;      // the true length of ray this sample stands for
+    // The sample stands for the ray between this slice and the next; a tube surface inside that interval
+    // cuts it short (Algorithm 2: sampling_distance = min(slice_distance, delta)).
+    float eyeSegment = segment;
+    bool behindSurface = false;
+#ifdef HAS_TUBES
+    float surfaceDepth = texelFetch(tubeDepth, pixel, 0).r;  // 0: no tube at this pixel
+    if (surfaceDepth > 0.0) {
+        behindSurface = sliceDepth >= surfaceDepth;
+        eyeSegment = min(sliceDistance, max(surfaceDepth - sliceDepth, 0.0)) / cosine;
+    }
+#endif
     vec3 world = eyeWorld + t * direction;
     vec3 tex = toTexture(world);
 
     // Opacity of this slice's sample (zero outside the volume or inside a clip mesh).
-    float alpha = 0.0;
+    float alphaUnit = 0.0;
     vec3 albedo = vec3(0.0);
+    vec3 gradient = vec3(0.0);
     bool insideVolume = all(greaterThanEqual(tex, vec3(0.0))) && all(lessThanEqual(tex, vec3(1.0)));
     if (insideVolume && !(clipMeshCount > 0 && insideAnyClipMesh(world))) {
         vec4 classified = classify(sampleTexel(tex));
-        float alphaUnit = classified.a;
-        if (useGradientOpacity) alphaUnit *= gradientOpacityFactor(length(gradientWorld(tex)));
-        alpha = correctOpacity(alphaUnit, segment);
+        alphaUnit = classified.a;
+#if SHADING == SHADING_PHONG
+        gradient = gradientWorld(tex);
+#else
+        if (useGradientOpacity) gradient = gradientWorld(tex);
+#endif
+        if (useGradientOpacity) alphaUnit *= gradientOpacityFactor(length(gradient));
         albedo = classified.rgb;
     }
+    float alpha = correctOpacity(alphaUnit, segment);           // for the occlusion buffer: the whole slice
+    float eyeAlpha = correctOpacity(alphaUnit, eyeSegment);     // for the eye: up to a tube surface
 
     // Cone-base average of the previous occlusion buffer (Algorithm 3).
     vec2 previousSum = vec2(0.0);
@@ -78,17 +107,31 @@ void main() {
     // dos shading uses channel "all"; cao/lao take the volume's own occlusion from V_AO and only the tubes'
     // shadows from channel "geometry", so nothing is counted twice.
     vec4 eye = imageLoad(eyeBuffer, pixel);
-    if (alpha > 0.0 && eye.a < earlyTerminationAlpha) {
+    if (!behindSurface && eyeAlpha > 0.0 && eye.a < earlyTerminationAlpha) {
 #if SHADING == SHADING_DOS
-        float ambient = occlusionBefore.x;
+        vec3 color = ambientRadiance * albedo * occlusionBefore.x;
+#elif SHADING == SHADING_LAO || SHADING == SHADING_CAO
+        vec3 color = ambientRadiance * albedo * texture(ambientOcclusion, tex).r * occlusionBefore.y;
+#elif SHADING == SHADING_PHONG
+        vec3 color = shadePhong(albedo, gradient, -direction, 1.0);
 #else
-        float ambient = texture(ambientOcclusion, tex).r * occlusionBefore.y;
+        vec3 color = albedo;
 #endif
-        eye.rgb += (1.0 - eye.a) * alpha * ambientRadiance * albedo * ambient;
-        eye.a += (1.0 - eye.a) * alpha;
+        eye.rgb += (1.0 - eye.a) * eyeAlpha * color;
+        eye.a += (1.0 - eye.a) * eyeAlpha;
         imageStore(eyeBuffer, pixel, eye);
     }
     // This slice attenuates the light reaching every later slice; the geometry channel sees tubes only.
-    vec2 next = blurred * vec2(1.0 - alpha, 1.0);
+    vec2 sliceAlpha = vec2(alpha, 0.0);
+#ifdef HAS_TUBES
+    if (behindSurface) sliceAlpha = vec2(geometryOpacity);
+    // Algorithm 4 and eq. 1-3: at the first slice behind the surface, the occlusion at the surface's depth,
+    // between the previous buffer at this pixel and its cone average one slice on.
+    if (surfaceDepth > 0.0 && behindSurface && sliceDepth - sliceDistance < surfaceDepth) {
+        float ratio = clamp((surfaceDepth - (sliceDepth - sliceDistance)) / sliceDistance, 0.0, 1.0);
+        imageStore(partialOcclusion, pixel, vec4(mix(occlusionBefore.x, blurred.x, ratio)));
+    }
+#endif
+    vec2 next = blurred * (1.0 - sliceAlpha);
     imageStore(occlusionNext, pixel, vec4(clamp(next, 0.0, 1.0), 0.0, 0.0));
 }

@@ -1,5 +1,6 @@
 #include "render/reference/raycast_reference.h"
 
+#include "render/lighting.h"
 #include "render/reference/random.h"
 #include "render/reference/volume_sampler.h"
 #include "render/volume_geometry.h"
@@ -62,10 +63,7 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
     std::vector<std::pair<glm::dvec3, glm::dvec3>> lights;
     for (const Light& l : frame.lights) {
         if (lights.size() == 4) break;
-        glm::dvec3 d = l.cameraSpace ? l.direction.x * frame.camera.right() + l.direction.y * frame.camera.up() -
-                                           l.direction.z * frame.camera.forward()
-                                     : l.direction;
-        lights.emplace_back(glm::normalize(d), l.color);
+        lights.emplace_back(worldLightDirection(l, frame.camera), l.color);
     }
     auto texel = [&](int i, int j, int k) { return volume.normalized(volume.linearIndex(i, j, k)); };
     auto sample = [&](glm::dvec3 tex) { return sampleTrilinear(texel, volume.dims, tex, Wrap::ClampToEdge); };

@@ -302,6 +302,12 @@ TEST(Raycast, BindingsMatchGlsl) {
     EXPECT_EQ(glsl.at("IMAGE_DILATION"), binding::imageDilation);
     EXPECT_EQ(glsl.at("IMAGE_OCCLUSION_NEXT"), binding::imageOcclusionNext);
     EXPECT_EQ(glsl.at("BINDING_OCCLUSION_PREVIOUS"), binding::occlusionPrevious);
+    EXPECT_EQ(glsl.at("BINDING_TUBE_DEPTH"), binding::tubeDepth);
+    EXPECT_EQ(glsl.at("BINDING_TUBE_COLOR"), binding::tubeColor);
+    EXPECT_EQ(glsl.at("BINDING_TUBE_NORMAL"), binding::tubeNormal);
+    EXPECT_EQ(glsl.at("BINDING_PARTIAL_OCCLUSION"), binding::partialOcclusion);
+    EXPECT_EQ(glsl.at("IMAGE_PARTIAL_OCCLUSION"), binding::imagePartialOcclusion);
+    EXPECT_EQ(glsl.at("SSBO_POISSON_DISK"), binding::ssboPoissonDisk);
     EXPECT_EQ(glsl.at("SSBO_SAMPLE_COUNTER"), binding::ssboSampleCounter);
     EXPECT_EQ(glsl.at("SSBO_LAO_DIRECTIONS"), binding::ssboLaoDirections);
     EXPECT_EQ(glsl.at("SSBO_CLIP_MESHES"), binding::ssboClipMeshes);

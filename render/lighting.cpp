@@ -1,0 +1,29 @@
+#include "render/lighting.h"
+
+#include <algorithm>
+
+namespace curette {
+
+glm::dvec3 worldLightDirection(const Light& l, const OrbitCamera& camera) {
+    glm::dvec3 d = l.cameraSpace ? l.direction.x * camera.right() + l.direction.y * camera.up() - l.direction.z * camera.forward()
+                                 : l.direction;
+    return glm::normalize(d);
+}
+
+void setLightingUniforms(gl::Program& p, const FrameDescription& frame, const TransferFunction::Material& m) {
+    int count = std::min<int>(static_cast<int>(frame.lights.size()), 4);
+    glm::vec3 directions[4], colors[4];
+    for (int i = 0; i < count; ++i) {
+        const Light& l = frame.lights[static_cast<std::size_t>(i)];
+        directions[i] = glm::vec3(worldLightDirection(l, frame.camera));
+        colors[i] = glm::vec3(l.color);
+    }
+    p.set("lightCount", count);
+    if (count > 0) {
+        glProgramUniform3fv(p.name(), p.location("lightDirection"), count, &directions[0].x);
+        glProgramUniform3fv(p.name(), p.location("lightColor"), count, &colors[0].x);
+    }
+    p.set("material", glm::vec4(glm::dvec4(m.ambient, m.diffuse, m.specular, m.specularPower)));
+}
+
+}  // namespace curette

@@ -1,0 +1,79 @@
+#version 450
+// Final compositing with tubes (seed 000 Algorithms 5 and 6). For a pixel covered by a tube, the occlusion
+// of the surface is the partial occlusion (volume and low-frequency geometry, from the slab pass) times the
+// vicinity term (high-frequency geometry: the fraction of Poisson-disk neighbours within
+// l_vicinity * tan(theta) that are not nearer to the eye than the surface plus a depth bias). The lit surface
+// lies behind the volume accumulated in front of it in the eye buffer.
+#include "bindings.glsl"
+#include "shading_modes.glsl"
+#include "phong.glsl"
+#include "illuminated_lines.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D eyeBuffer;
+layout(binding = BINDING_TUBE_DEPTH) uniform sampler2D tubeDepth;
+layout(binding = BINDING_TUBE_COLOR) uniform sampler2D tubeColor;
+layout(binding = BINDING_TUBE_NORMAL) uniform sampler2D tubeNormal;
+layout(binding = BINDING_PARTIAL_OCCLUSION) uniform sampler2D partialOcclusionBuffer;
+layout(std430, binding = SSBO_POISSON_DISK) readonly buffer PoissonDisk { vec2 poissonDisk[]; };
+
+uniform mat4 inverseViewProjection;
+uniform vec3 eyeWorld;
+uniform ivec2 outputSize;
+uniform int poissonCount;
+uniform float vicinityRadiusPixelsAtUnitDepth;   // l_vicinity tan(theta) * pixels per mm at 1 mm depth
+uniform float depthBiasMm;
+uniform bool useOcclusion;                       // false in solid/phong shading: no occlusion terms
+uniform float lineDiffuseExponent;               // p of eq. 3.15
+
+// Algorithm 5: 1 - (neighbours nearer than the biased surface depth) / samples.
+float vicinityOcclusion(ivec2 pixel, float surfaceDepth) {
+    float radius = vicinityRadiusPixelsAtUnitDepth / surfaceDepth;
+    float biased = surfaceDepth - depthBiasMm;  // an occluder must be this much nearer to the eye
+    int occluded = 0;
+    for (int i = 0; i < poissonCount; ++i) {
+        ivec2 q = clamp(pixel + ivec2(round(poissonDisk[i] * radius)), ivec2(0), outputSize - 1);
+        float d = texelFetch(tubeDepth, q, 0).r;
+        if (d > 0.0 && d < biased) ++occluded;
+    }
+    return 1.0 - float(occluded) / float(max(poissonCount, 1));
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, outputSize))) return;
+    vec4 normalKind = texelFetch(tubeNormal, pixel, 0);
+    if (normalKind.w == SURFACE_NONE) return;  // the volume alone: the eye buffer is the pixel
+    vec4 eye = imageLoad(eyeBuffer, pixel);
+    float surfaceDepth = texelFetch(tubeDepth, pixel, 0).r;
+    vec3 albedo = texelFetch(tubeColor, pixel, 0).rgb;
+    float occlusion = useOcclusion ? texelFetch(partialOcclusionBuffer, pixel, 0).r * vicinityOcclusion(pixel, surfaceDepth) : 1.0;
+
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(outputSize) * 2.0 - 1.0;
+    ndc.y = -ndc.y;
+    vec4 farPoint = inverseViewProjection * vec4(ndc, 1.0, 1.0);
+    vec3 toViewer = -normalize(farPoint.xyz / farPoint.w - eyeWorld);
+    vec3 shaded;
+    if (normalKind.w == SURFACE_TUBE) {
+        // Algorithm 6: occlusion * colour * (ambient + diffuse) + specular.
+        vec3 n = normalKind.xyz;
+        if (dot(n, toViewer) < 0.0) n = -n;
+        vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+        for (int i = 0; i < lightCount; ++i) {
+            float nl = max(dot(n, lightDirection[i]), 0.0);
+            diffuse += lightColor[i] * nl;
+            vec3 h = normalize(lightDirection[i] + toViewer);
+            specular += lightColor[i] * (nl > 0.0 ? pow(max(dot(n, h), 0.0), material.w) : 0.0);
+        }
+        shaded = occlusion * albedo * (material.x + material.y * diffuse) + material.z * specular;
+    } else {
+        vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+        for (int i = 0; i < lightCount; ++i) {
+            vec2 terms = illuminatedLineTerms(normalKind.xyz, lightDirection[i], toViewer, lineDiffuseExponent, material.w);
+            diffuse += lightColor[i] * terms.x;
+            specular += lightColor[i] * terms.y;
+        }
+        shaded = occlusion * albedo * (material.x + material.y * diffuse) + material.z * specular;
+    }
+    imageStore(eyeBuffer, pixel, vec4(shaded * (1.0 - eye.a) + eye.rgb, 1.0));
+}
