@@ -18,8 +18,9 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 struct CameraGpu {  // std430 layout of ClipMeshGpu in shaders/clip_test.glsl
     float worldToMap[16];
     std::int32_t info[4];
+    float bounds[4];
 };
-static_assert(sizeof(CameraGpu) == 80);
+static_assert(sizeof(CameraGpu) == 96);
 
 bool anyFinite(GLuint texture, int resolution) {
     std::vector<float> values(static_cast<std::size_t>(resolution) * static_cast<std::size_t>(resolution));
@@ -98,6 +99,14 @@ void ClipMeshSet::setDilationRadiusMm(double radiusMm) {
     ++version_;
 }
 
+void ClipMeshSet::setDilatedMapsNeeded(bool needed) {
+    if (needed == dilatedNeeded_) return;
+    dilatedNeeded_ = needed;
+    // Depth maps stay as they are; only the dilated ones appear (drawn at the next update) or go.
+    if (needed)
+        for (Mesh& m : meshes_) m.dilatedDirty = true;
+}
+
 double ClipMeshSet::kernelRadiusMm(int index) const {
     // Derivation (clip/README.md, "Dilation radius"): a point s inside the mesh and a voxel v within R of it
     // map to pixels at most |v - s|_xy + sqrt(2) px apart (each lies within sqrt(2)/2 px of its pixel centre),
@@ -136,7 +145,7 @@ void ClipMeshSet::allocateArrays(int layers) {
         return t;
     };
     depthMaps_ = makeArray("clip depth maps (Z_front, Z_back per interval)");
-    dilatedAllocated_ = dilationRadiusMm_ > 0;
+    dilatedAllocated_ = dilatedNeeded_;
     dilatedMaps_ = dilatedAllocated_ ? makeArray("clip dilated maps (D_front, D_back per interval)") : gl::Texture();
     allocatedLayers_ = layers;
     scratch_ = gl::createTexture(GL_TEXTURE_2D);
@@ -173,7 +182,7 @@ void ClipMeshSet::update() {
     wanted = std::min(wanted, settings_.maxResolution);
     // Grow in steps of 25% so a mesh that scales up a little does not reallocate every frame.
     bool reallocate = resolution_ == 0 || wanted > resolution_ || wanted < resolution_ / 2 ||
-                      allocatedLayers_ < layersPerMesh * count() || (dilationRadiusMm_ > 0) != dilatedAllocated_;
+                      allocatedLayers_ < layersPerMesh * count() || (dilatedNeeded_ && !dilatedAllocated_);
     if (reallocate) {
         if (resolution_ == 0 || wanted > resolution_ || wanted < resolution_ / 2)
             resolution_ = std::min(settings_.maxResolution, std::max(wanted, resolution_ == 0 ? wanted : wanted + wanted / 4));
@@ -182,12 +191,17 @@ void ClipMeshSet::update() {
     }
     for (int i = 0; i < count(); ++i) {
         Mesh& m = meshes_[static_cast<std::size_t>(i)];
-        if (!m.mapsDirty) continue;
-        m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, resolution_);
-        renderMaps(i);
-        if (dilatedAllocated_) dilateMaps(i);
-        m.mapsDirty = false;
-        ++mapRenders_;
+        if (m.mapsDirty) {
+            m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, resolution_);
+            renderMaps(i);
+            m.mapsDirty = false;
+            m.dilatedDirty = true;
+            ++mapRenders_;
+        }
+        if (dilatedNeeded_ && m.dilatedDirty) {
+            dilateMaps(i);
+            m.dilatedDirty = false;
+        }
     }
     uploadCameras();
 }
@@ -284,6 +298,16 @@ void ClipMeshSet::uploadCameras() {
         cameras[i].info[1] = meshes_[i].intervals;
         cameras[i].info[2] = resolution_;
         cameras[i].info[3] = meshes_[i].clipsTubes ? 1 : 0;
+        // A sphere around the camera's map box (x, y across the map, z over the depth range plus margin),
+        // slightly enlarged so float rounding never excludes a point the maps could call inside.
+        const ClippingCamera& c = meshes_[i].camera;
+        glm::dvec3 lo(c.mapOrigin, c.localMin.z - c.marginMm), hi(c.mapOrigin + c.mapSizeMm, c.localMax.z + c.marginMm);
+        glm::dvec3 centre = glm::dvec3(meshes_[i].pose.matrix() * glm::dvec4(0.5 * (lo + hi), 1.0));
+        double radius = 0.5 * glm::length(hi - lo) * 1.001 + 1e-3;
+        cameras[i].bounds[0] = static_cast<float>(centre.x);
+        cameras[i].bounds[1] = static_cast<float>(centre.y);
+        cameras[i].bounds[2] = static_cast<float>(centre.z);
+        cameras[i].bounds[3] = static_cast<float>(radius);
     }
     if (!cameras.empty())
         glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());

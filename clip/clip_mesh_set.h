@@ -42,8 +42,11 @@ public:
     // Whether mesh `index` also cuts tubes (they are always clipped by none otherwise).
     void setClipsTubes(int index, bool clips);
     bool clipsTubes(int index) const { return meshes_[static_cast<std::size_t>(index)].clipsTubes; }
-    // 0 disables the dilated maps (solid/phong/lao need only the depth maps).
+    // The radius of the LAO influence around the meshes: the clipping cameras leave room for it, so the maps
+    // are the same whichever shading mode runs (CAO equals LAO only under the very same clipping).
     void setDilationRadiusMm(double radiusMm);
+    // Whether the dilated maps are drawn (cao needs them; solid, phong, lao and dos do not).
+    void setDilatedMapsNeeded(bool needed);
 
     int count() const { return static_cast<int>(meshes_.size()); }
     const RigidPose& pose(int index) const { return meshes_[static_cast<std::size_t>(index)].pose; }
@@ -80,6 +83,7 @@ private:
         int intervals = 1;
         bool clipsTubes = false;
         bool mapsDirty = true;
+        bool dilatedDirty = true;
         gl::Buffer vertices, indices;
         GLsizei indexCount = 0;
         glm::dvec3 localMin{0.0}, localMax{0.0};
@@ -93,6 +97,7 @@ private:
     ClipMapSettings settings_;
     std::vector<Mesh> meshes_;
     double dilationRadiusMm_ = 0.0;
+    bool dilatedNeeded_ = false;
     int resolution_ = 0;
     int allocatedLayers_ = 0;
     bool dilatedAllocated_ = false;

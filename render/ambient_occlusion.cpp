@@ -86,9 +86,9 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
 
 AmbientOcclusion::~AmbientOcclusion() = default;
 
-double AmbientOcclusion::reachMm() const { return (settings_.samples - 1) * settings_.stepMm; }
+double AmbientOcclusion::reachMm(const LaoSettings& settings) { return (settings.samples - 1) * settings.stepMm; }
 
-double AmbientOcclusion::dilationRadiusMm() const {
+double AmbientOcclusion::dilationRadiusMm(const LaoSettings& settings, const VolumeGeometry& geometry) {
     // Derivation of the dilation radius: how far from a clipped point s can a voxel v be whose V_AO changes?
     //  - v's LAO (lao_ray.glsl) reads V_o trilinearly at points q with |q - v| <= (M - 1) * step  (reach);
     //  - V_o at q blends voxels u with |q - u| < 1 voxel step per axis (index space), so
@@ -98,7 +98,7 @@ double AmbientOcclusion::dilationRadiusMm() const {
     //    |s - u| <= cell diagonal                                                          (anti-aliasing reach).
     // So R = reach + 2 * cell diagonal. The maps add one more term, the map-pixel quantisation of both v and
     // s (sqrt(2) pixels) and a rounding epsilon, in clip::ClipMeshSet::kernelRadiusMm.
-    return reachMm() + 2.0 * volume_.geometry().cellDiagonalMm();
+    return reachMm(settings) + 2.0 * geometry.cellDiagonalMm();
 }
 
 void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
@@ -122,6 +122,8 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     p.set("testDilation", testDilation ? 1 : 0);
     p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
     p.set("clipMeshCount", clip ? clip->count() : 0);
+    // Clip samples lie within one voxel step along every axis: at most a cell diagonal from the centre.
+    p.set("sampleReachMm", static_cast<float>(g.cellDiagonalMm() * 1.001));
     if (clip) clip->bind();
     glBindTextureUnit(binding::volume, volume_.texture());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboAntiAliasing, antiAliasing_.name());

@@ -28,6 +28,9 @@ struct LaoSettings {
     int samples = 20;                // M, samples per ray (eq. 2); the paper's Engine scene uses 20
     double stepMm = 1.0;             // distance between LAO samples (the paper: 1 mm)
     int antiAliasingSamples = 32;    // N of Algorithm 2 (the paper: 32)
+    // Shading: colour = TF colour * ambientScale * A. With 2 an open flat surface (A = 0.5) shows its TF
+    // colour (the reference implementation also doubles LAO). Not part of V_AO, so not of the contract.
+    double ambientScale = 2.0;
     // Step V: a full-grid dispatch that decides per voxel (early exit), or a compacted list of the voxels to
     // recompute (atomic append + indirect dispatch). `curette bench cao` measures both; see README.
     enum class Dispatch { Compacted, FullGrid } dispatch = Dispatch::Compacted;
@@ -36,7 +39,7 @@ struct LaoSettings {
         return directions.pattern == o.directions.pattern && directions.count == o.directions.count &&
                directions.jitter == o.directions.jitter && directions.seed == o.directions.seed &&
                directions.skyWeighting == o.directions.skyWeighting && samples == o.samples && stepMm == o.stepMm &&
-               antiAliasingSamples == o.antiAliasingSamples && dispatch == o.dispatch;
+               antiAliasingSamples == o.antiAliasingSamples && dispatch == o.dispatch && ambientScale == o.ambientScale;
     }
 };
 
@@ -58,9 +61,11 @@ public:
 
     const LaoSettings& settings() const { return settings_; }
     // The farthest LAO sample from its voxel: (M - 1) * step (lao_ray.glsl).
-    double reachMm() const;
+    double reachMm() const { return reachMm(settings_); }
+    static double reachMm(const LaoSettings& settings);
     // The radius around the clip meshes within which a voxel's AO can change (derivation in the .cpp).
-    double dilationRadiusMm() const;
+    double dilationRadiusMm() const { return dilationRadiusMm(settings_, volume_.geometry()); }
+    static double dilationRadiusMm(const LaoSettings& settings, const VolumeGeometry& geometry);
 
     // Step I for the volume under `tf`. Call again when the TF or the settings change.
     void precompute(const TransferFunctionTexture& tf, gl::TimerSet* timers = nullptr);

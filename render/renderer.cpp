@@ -11,12 +11,20 @@ namespace curette {
 Renderer::Renderer(gl::Context& context, const VolumeData& volume, const TransferFunction& tf)
     : context_(context), volume_(context.info(), volume),
       clip_(clip::ClipMapSettings{0.5 * volume_.geometry().minSpacing(), 64, 1024}) {
+    timers_.setSynchronous(context.info().softwareRenderer);
+    clip_.setDilationRadiusMm(AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()));
     setTransferFunction(tf);
 }
 
 void Renderer::setLaoSettings(const LaoSettings& settings) {
-    if (settings == laoSettings_) return;
+    // The ambient scale only shades: changing it alone keeps every AO volume.
+    LaoSettings comparable = settings;
+    comparable.ambientScale = laoSettings_.ambientScale;
+    bool aoChanged = !(comparable == laoSettings_);
     laoSettings_ = settings;
+    if (!aoChanged) return;
+    // The clip maps leave room for the LAO reach in every mode, so every mode clips identically.
+    clip_.setDilationRadiusMm(AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()));
     ao_.reset();  // buffers depend on the settings (directions, list); reallocated at the next AO frame
     aoValid_ = aoPrecomputedValid_ = false;
 }
@@ -28,7 +36,7 @@ void Renderer::updateAmbientOcclusion(ShadingMode mode) {
         aoValid_ = aoPrecomputedValid_ = false;
     }
     // Only cao needs the dilated maps; lao recomputes every visible voxel.
-    clip_.setDilationRadiusMm(mode == ShadingMode::Cao ? ao_->dilationRadiusMm() : 0.0);
+    clip_.setDilatedMapsNeeded(mode == ShadingMode::Cao);
     clip_.update();
     if (!aoPrecomputedValid_ || aoTfVersion_ != tfVersion_) {
         ao_->precompute(*tf_, &timers_);
@@ -97,7 +105,6 @@ void Renderer::render(const FrameDescription& frame) {
     if (usesAmbientOcclusion(frame.shading)) {
         updateAmbientOcclusion(frame.shading);
     } else {
-        clip_.setDilationRadiusMm(0.0);
         clip_.update();
         lastFrameUpdatedAmbient_ = false;
     }
@@ -133,6 +140,7 @@ void Renderer::render(const FrameDescription& frame) {
     p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
     tf_->setUniforms(p);
     p.set("clipMeshCount", clip_.count());
+    p.set("ambientScale", static_cast<float>(laoSettings_.ambientScale));
     setLightingUniforms(p, frame, tf_->material());
 
     glBindTextureUnit(binding::volume, volume_.texture());
@@ -171,7 +179,8 @@ void Renderer::renderWithTubes(const FrameDescription& frame) {
     timers_.end();
     GLuint ambient = usesAmbientOcclusion(frame.shading) && ao_ ? ao_->ambientTexture() : 0;
     timers_.begin("slab pass");
-    slab_.run(frame, frame.dos, volume_, *tf_, clip_, output_.name(), ambient, &gbuffer_, tubeShading_.geometryOpacity);
+    slab_.run(frame, frame.dos, volume_, *tf_, clip_, output_.name(), ambient, &gbuffer_, tubeShading_.geometryOpacity,
+              laoSettings_.ambientScale);
     timers_.end();
     slabUsed_ = true;
 

@@ -39,7 +39,7 @@ double SlabPass::resolveSliceDistanceMm(const DosSettings& s, const GpuVolume& v
 
 void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, const GpuVolume& volume,
                    const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, GLuint eyeBuffer, GLuint ambient,
-                   GBuffer* tubes, double geometryOpacity) {
+                   GBuffer* tubes, double geometryOpacity, double ambientScale) {
     if (!(settings.coneAngleDeg >= 0.0 && settings.coneAngleDeg < 90.0))
         throw InputError("<dos settings>", "cone_angle_deg", "an angle in [0, 90)", std::to_string(settings.coneAngleDeg));
     if (settings.gridSize < 1 || settings.gridSize > 16)
@@ -96,6 +96,7 @@ void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, c
     p.set("texelSize", glm::vec3(1.0 / glm::dvec3(g.dims)));
     p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume.valueScale()));
     p.set("clipMeshCount", clip.count());
+    p.set("ambientScale", static_cast<float>(ambientScale));
     tf.setUniforms(p);
     tf.bind();
     clip.bind();

@@ -23,7 +23,7 @@ public:
     // occlusion buffer is written.
     void run(const FrameDescription& frame, const DosSettings& settings, const GpuVolume& volume,
              const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, GLuint eyeBuffer, GLuint ambient,
-             GBuffer* tubes = nullptr, double geometryOpacity = 0.0);
+             GBuffer* tubes = nullptr, double geometryOpacity = 0.0, double ambientScale = 2.0);
 
     double resolveSliceDistanceMm(const DosSettings& settings, const GpuVolume& volume) const;
     int slicesLastFrame() const { return slices_; }

@@ -13,6 +13,8 @@ struct ClipMeshGpu {
     mat4 worldToMap;   // world mm -> (map x, map y in [0,1], depth along the camera in mm)
     ivec4 info;        // x: first layer in the map arrays, y: intervals (1 or 2), z: map resolution,
                        // w: 1 when the mesh also clips tubes
+    vec4 bounds;       // world centre and radius of a sphere holding the camera's whole map box: outside
+                       // it no map can answer "inside", so the lookups are skipped (same answer, cheaper)
 };
 
 layout(std430, binding = SSBO_CLIP_MESHES) readonly buffer ClipMeshes { ClipMeshGpu clipMeshes[]; };
@@ -23,6 +25,8 @@ uniform int clipMeshCount;
 // Point `world` inside the interval(s) of mesh `i` in maps `maps` (depth or dilated).
 bool insideMeshMaps(int i, vec3 world, bool dilated) {
     ClipMeshGpu mesh = clipMeshes[i];
+    vec3 offset = world - mesh.bounds.xyz;
+    if (dot(offset, offset) > mesh.bounds.w * mesh.bounds.w) return false;
     vec3 m = (mesh.worldToMap * vec4(world, 1.0)).xyz;
     if (any(lessThan(m.xy, vec2(0.0))) || any(greaterThanEqual(m.xy, vec2(1.0)))) return false;
     ivec2 pixel = ivec2(m.xy * float(mesh.info.z));
@@ -33,6 +37,17 @@ bool insideMeshMaps(int i, vec3 world, bool dilated) {
         float back = dilated ? texelFetch(clipDilatedMaps, ivec3(pixel, layer + 1), 0).r
                              : texelFetch(clipDepthMaps, ivec3(pixel, layer + 1), 0).r;
         if (front < m.z && m.z < back) return true;  // eq. 1 negated: inside the interval
+    }
+    return false;
+}
+
+// Whether any mesh's map box comes within `margin` of `world`: if not, every clip and dilation test of
+// points within `margin` is false (step IV uses it to skip voxels far from all meshes).
+bool nearAnyClipMesh(vec3 world, float margin) {
+    for (int i = 0; i < clipMeshCount; ++i) {
+        vec3 offset = world - clipMeshes[i].bounds.xyz;
+        float reach = clipMeshes[i].bounds.w + margin;
+        if (dot(offset, offset) <= reach * reach) return true;
     }
     return false;
 }

@@ -34,6 +34,7 @@ uniform float coneRadiusPixels;    // d tan(theta) in pixels at the previous sli
 uniform int gridSize;              // n: the cone base is sampled on an n x n grid (points inside the disk)
 uniform float ambientRadiance;     // La
 uniform float earlyTerminationAlpha;
+uniform float ambientScale;        // lao/cao: the factor applied to V_AO
 
 #ifdef HAS_TUBES
 // Tubes (seed 000): behind a tube surface the slice takes the tube's opacity in the occlusion buffer
@@ -111,7 +112,7 @@ void main() {
 #if SHADING == SHADING_DOS
         vec3 color = ambientRadiance * albedo * occlusionBefore.x;
 #elif SHADING == SHADING_LAO || SHADING == SHADING_CAO
-        vec3 color = ambientRadiance * albedo * texture(ambientOcclusion, tex).r * occlusionBefore.y;
+        vec3 color = ambientRadiance * albedo * ambientScale * texture(ambientOcclusion, tex).r * occlusionBefore.y;
 #elif SHADING == SHADING_PHONG
         vec3 color = shadePhong(albedo, gradient, -direction, 1.0);
 #else

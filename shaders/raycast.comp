@@ -23,6 +23,7 @@ uniform float stepMm;
 uniform float earlyTerminationAlpha;
 uniform uint jitterSeed;             // 0: no jitter
 uniform bool skipEmptySpace;
+uniform float ambientScale;          // lao/cao: the factor applied to V_AO
 uniform ivec3 volumeSize;
 uniform int brickSize;
 #ifdef COUNT_SAMPLES
@@ -91,8 +92,9 @@ void main() {
 #if SHADING == SHADING_PHONG
             vec3 color = shadePhong(classified.rgb, gradient, -direction, 1.0);
 #elif SHADING == SHADING_LAO || SHADING == SHADING_CAO
-            // The ambient factor of the sample from V_AO (CAO step VI): the colour lit by ambient light only.
-            vec3 color = classified.rgb * texture(ambientOcclusion, tex).r;
+            // The ambient factor of the sample from V_AO (CAO step VI): the colour lit by ambient light only,
+            // scaled so an open flat surface (half its rays blocked, A = 0.5) shows the TF colour.
+            vec3 color = classified.rgb * ambientScale * texture(ambientOcclusion, tex).r;
 #else
             vec3 color = classified.rgb;
 #endif

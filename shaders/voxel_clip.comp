@@ -20,6 +20,7 @@ uniform ivec3 volumeSize;
 uniform int antiAliasingSamples;   // N
 uniform bool testDilation;
 uniform mat3 gradientToWorld;      // index gradient -> world gradient (value per mm)
+uniform float sampleReachMm;       // the farthest any of a voxel's clip samples lies from its centre
 
 // TF_o of Algorithm 2: the opacity per unit length of the voxel's own value (no interpolation), with the
 // gradient-opacity factor from central differences when the TF has one.
@@ -43,7 +44,11 @@ void main() {
     vec3 centre = vec3(v);
 
     int visible = 0;
-    if (clipMeshCount == 0) {
+    vec3 centreWorld = (indexToWorld * vec4(centre, 1.0)).xyz;
+    // Far from every mesh's map box, every sample is visible and the centre is in no dilated shape: the
+    // full test below would conclude exactly this, so skip it.
+    bool near = clipMeshCount > 0 && nearAnyClipMesh(centreWorld, sampleReachMm);
+    if (!near) {
         visible = 9;
     } else {
         visible += visibleAt(centre) ? 1 : 0;
@@ -60,8 +65,8 @@ void main() {
         opacity *= float(visible) / float(antiAliasingSamples + 9);
     }
     uint category = visible == 0 ? CATEGORY_CLIPPED
-                    : (testDilation && !insideAnyDilatedMesh((indexToWorld * vec4(centre, 1.0)).xyz)) ? CATEGORY_UNAFFECTED
-                                                                                                      : CATEGORY_AFFECTED;
+                    : (testDilation && !(near && insideAnyDilatedMesh(centreWorld))) ? CATEGORY_UNAFFECTED
+                                                                                     : CATEGORY_AFFECTED;
     imageStore(clippedOpacityOut, v, vec4(opacity));
     imageStore(maskOut, v, uvec4(category));
 }

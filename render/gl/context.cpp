@@ -60,6 +60,8 @@ void Context::checkRequirementsAndQuery() {
     GLint bits = 0;
     glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
     info_.timerQueries = bits > 0;
+    info_.softwareRenderer = info_.renderer.find("llvmpipe") != std::string::npos ||
+                             info_.renderer.find("softpipe") != std::string::npos;
     log::info("GL context: " + info_.renderer + ", " + info_.version);
 }
 

@@ -18,6 +18,7 @@ struct ContextInfo {
     int maxTextureSize = 0;
     int maxComputeWorkGroupCount[3] = {0, 0, 0};
     bool timerQueries = false;
+    bool softwareRenderer = false;   // llvmpipe/softpipe: timer queries do not time compute work
 };
 
 class Context {

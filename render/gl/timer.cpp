@@ -9,15 +9,26 @@ void TimerSet::begin(const std::string& name) {
     Scope* scope = nullptr;
     for (Scope& s : scopes_)
         if (s.name == name) scope = &s;
-    if (!scope) scope = &scopes_.emplace_back(Scope{name, {}, 0});
+    if (!scope) scope = &scopes_.emplace_back(Scope{name, {}, 0, 0.0});
+    open_ = scope;
+    if (synchronous_) {
+        glFinish();
+        ++scope->used;
+        started_ = std::chrono::steady_clock::now();
+        return;
+    }
     if (scope->used == scope->queries.size()) scope->queries.push_back(createQuery(GL_TIME_ELAPSED));
     glBeginQuery(GL_TIME_ELAPSED, scope->queries[scope->used++].name());
-    open_ = scope;
 }
 
 void TimerSet::end() {
     assert(open_);
-    glEndQuery(GL_TIME_ELAPSED);
+    if (synchronous_) {
+        glFinish();
+        open_->synchronousMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
+    } else {
+        glEndQuery(GL_TIME_ELAPSED);
+    }
     open_ = nullptr;
 }
 
@@ -25,8 +36,9 @@ std::vector<std::pair<std::string, double>> TimerSet::collectMilliseconds() {
     std::vector<std::pair<std::string, double>> result;
     for (Scope& s : scopes_) {
         if (!s.used) continue;
-        double total = 0;
-        for (std::size_t i = 0; i < s.used; ++i) {
+        double total = s.synchronousMs;
+        s.synchronousMs = 0;
+        for (std::size_t i = 0; i < s.used && !synchronous_; ++i) {
             GLuint64 ns = 0;
             glGetQueryObjectui64v(s.queries[i].name(), GL_QUERY_RESULT, &ns);
             total += static_cast<double>(ns) * 1e-6;

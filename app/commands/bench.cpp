@@ -1,0 +1,39 @@
+// curette bench <what> --scene S: speed (and error next to it) of one part of the pipeline. Tests assert
+// results; benches report numbers, as a table and as JSON.
+#include "app/bench/bench_cao.h"
+#include "app/bench/bench_raycast.h"
+#include "app/command_line.h"
+#include "app/commands/commands.h"
+#include "base/error.h"
+
+namespace curette::commands {
+
+int bench(const Arguments& args) {
+    if (args.empty())
+        throw InputError("<command line>", "bench", "what to measure: raycast or cao (curette bench raycast --scene S)",
+                         "nothing");
+    std::string what = args[0];
+    Arguments rest(args.begin() + 1, args.end());
+    if (what == "raycast") {
+        CommandLine cl(rest, {{"scene", true, "scene file"},
+                              {"size", true, "image size (default 512x512)"},
+                              {"frames", true, "frames measured per configuration (default 8)"},
+                              {"reference-pixels", true, "pixels checked against the CPU reference (default 48)"},
+                              {"json", true, "JSON output file (default bench-raycast.json)"}});
+        return bench::benchRaycast(cl);
+    }
+    if (what == "cao") {
+        CommandLine cl(rest, {{"scene", true, "scene file (its volume, TF and LAO settings; the bench adds the spheres)"},
+                              {"rays", true, "LAO ray counts K, e.g. 6,14,26,54 (default)"},
+                              {"meshes", true, "mesh counts to measure, 1 and/or 2 (default 1,2)"},
+                              {"frames", true, "frames per configuration (default 3)"},
+                              {"size", true, "image size (default 512x512)"},
+                              {"ground-truth-voxels", true, "voxels checked against 512-ray LAO (default 400)"},
+                              {"compare-dispatch", false, "compare step V variants at every K (default: K = 26 only)"},
+                              {"json", true, "JSON output file (default bench-cao.json)"}});
+        return bench::benchCao(cl);
+    }
+    throw InputError("<command line>", "bench " + what, "one of: raycast, cao", "\"" + what + "\"");
+}
+
+}  // namespace curette::commands

@@ -1,0 +1,17 @@
+#pragma once
+// The sub-commands of the `curette` executable. Each takes the arguments after its name, returns the
+// process exit code, and throws InputError/SystemError for main() to report.
+
+#include <string>
+#include <vector>
+
+namespace curette::commands {
+
+using Arguments = std::vector<std::string>;
+
+int info(const Arguments& args);     // curette info FILE
+int render(const Arguments& args);   // curette render --scene S --out F.png
+int view(const Arguments& args);     // curette view --scene S
+int bench(const Arguments& args);    // curette bench raycast|... --scene S
+
+}  // namespace curette::commands

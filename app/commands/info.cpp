@@ -1,0 +1,100 @@
+// curette info FILE: what a volume file holds, before rendering it.
+#include "app/command_line.h"
+#include "app/commands/commands.h"
+#include "app/io/volume_file.h"
+#include "app/volume_statistics.h"
+#include "base/error.h"
+#include "render/volume_geometry.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace curette::commands {
+
+namespace {
+
+ScalarType parseType(const std::string& text) {
+    const std::pair<const char*, ScalarType> names[] = {{"uint8", ScalarType::UInt8},     {"int16", ScalarType::Int16},
+                                                        {"uint16", ScalarType::UInt16},   {"int32", ScalarType::Int32},
+                                                        {"float32", ScalarType::Float32}, {"float64", ScalarType::Float64}};
+    for (auto [name, type] : names)
+        if (text == name) return type;
+    throw InputError("<command line>", "--raw-type", "one of uint8, int16, uint16, int32, float32, float64", "\"" + text + "\"");
+}
+
+}  // namespace
+
+int info(const Arguments& args) {
+    CommandLine cl(args, {{"raw-dims", true, "raw file: dimensions XxYxZ"},
+                          {"raw-type", true, "raw file: uint8|int16|uint16|int32|float32|float64"},
+                          {"raw-spacing", true, "raw file: spacing in mm, e.g. 1,1,2 (default 1,1,1)"},
+                          {"raw-big-endian", false, "raw file: samples are big-endian"},
+                          {"raw-header-bytes", true, "raw file: bytes to skip first"},
+                          {"raw-gzip", false, "raw file: the file is gzip-compressed"}});
+    if (cl.positional().size() != 1)
+        throw InputError("<command line>", "FILE", "exactly one volume file: curette info FILE [raw options]",
+                         std::to_string(cl.positional().size()) + " arguments");
+    io::VolumeReadOptions options;
+    if (auto dims = cl.value("raw-dims")) {
+        io::RawLayout layout;
+        std::string text = *dims;
+        std::replace(text.begin(), text.end(), 'x', ',');
+        auto d = CommandLine::parseIntList("raw-dims", text, 1, 1 << 20);
+        if (d.size() != 3) throw InputError("<command line>", "--raw-dims", "XxYxZ, e.g. 64x64x32", "\"" + *dims + "\"");
+        layout.dims = {d[0], d[1], d[2]};
+        layout.type = parseType(cl.required("raw-type"));
+        if (auto s = cl.value("raw-spacing")) {
+            std::string t = *s;
+            std::vector<double> v;
+            std::size_t start = 0;
+            while (true) {
+                std::size_t comma = t.find(',', start);
+                v.push_back(CommandLine::parseDouble("raw-spacing", t.substr(start, comma - start), 1e-9, 1e9));
+                if (comma == std::string::npos) break;
+                start = comma + 1;
+            }
+            if (v.size() != 3) throw InputError("<command line>", "--raw-spacing", "three numbers, e.g. 1,1,2", "\"" + t + "\"");
+            layout.spacing = {v[0], v[1], v[2]};
+        }
+        layout.bigEndian = cl.flag("raw-big-endian");
+        if (auto h = cl.value("raw-header-bytes")) layout.headerBytes = static_cast<std::uint64_t>(CommandLine::parseDouble("raw-header-bytes", *h, 0, 1e15));
+        layout.gzip = cl.flag("raw-gzip");
+        options.format = io::VolumeFormat::Raw;
+        options.raw = layout;
+    }
+    const std::string& path = cl.positional()[0];
+    VolumeData volume = io::readVolume(path, options);
+    VolumeGeometry g{volume.dims, volume.indexToWorld};
+    VolumeStatistics s = computeStatistics(volume);
+
+    const char* storage = volume.format == StorageFormat::UNorm8 ? "R8" : volume.format == StorageFormat::UNorm16 ? "R16" : "R32F";
+    glm::dvec3 sp = g.spacing();
+    std::printf("file         %s\n", path.c_str());
+    std::printf("type         %s (GPU texture %s, %zu bytes)\n", scalarTypeName(volume.sourceType), storage, volume.voxels.size());
+    std::printf("dimensions   %d x %d x %d (%zu voxels)\n", volume.dims.x, volume.dims.y, volume.dims.z, volume.voxelCount());
+    std::printf("spacing      %g x %g x %g mm\n", sp.x, sp.y, sp.z);
+    std::printf("affine       index (i,j,k) -> world mm (RAS)\n");
+    for (int r = 0; r < 3; ++r)
+        std::printf("             [ %9.4f %9.4f %9.4f %10.4f ]\n", volume.indexToWorld[0][r], volume.indexToWorld[1][r],
+                    volume.indexToWorld[2][r], volume.indexToWorld[3][r]);
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::dvec3& c : g.worldCorners()) lo = glm::min(lo, c), hi = glm::max(hi, c);
+    std::printf("world box    x [%.2f, %.2f]  y [%.2f, %.2f]  z [%.2f, %.2f] mm\n", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
+    std::printf("values       min %g  max %g  mean %.4g  std %.4g  non-zero %.1f %%\n", s.min, s.max, s.mean,
+                s.standardDeviation, 100.0 * s.nonZeroFraction);
+    std::printf("percentiles  1%%: %.4g  25%%: %.4g  50%%: %.4g  75%%: %.4g  99%%: %.4g\n", s.percentiles[0],
+                s.percentiles[1], s.percentiles[2], s.percentiles[3], s.percentiles[4]);
+    std::printf("histogram    (%zu bins over [min, max], bar length ~ log count)\n", s.histogram.size());
+    std::uint64_t top = *std::max_element(s.histogram.begin(), s.histogram.end());
+    double width = s.histogram.empty() ? 0 : (s.max - s.min) / static_cast<double>(s.histogram.size());
+    for (std::size_t b = 0; b < s.histogram.size(); ++b) {
+        std::uint64_t count = s.histogram[b];
+        int bar = count == 0 ? 0 : 1 + static_cast<int>(39.0 * std::log1p(static_cast<double>(count)) / std::log1p(static_cast<double>(top)));
+        std::printf("  %10.4g .. %-10.4g %10llu %s\n", s.min + width * static_cast<double>(b),
+                    s.min + width * static_cast<double>(b + 1), static_cast<unsigned long long>(count),
+                    std::string(static_cast<std::size_t>(bar), '#').c_str());
+    }
+    return 0;
+}
+
+}  // namespace curette::commands

@@ -1,0 +1,64 @@
+#include "app/io/gzip.h"
+
+#include "base/error.h"
+#include "base/progress.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <climits>
+
+namespace curette::io {
+
+bool isGzip(std::span<const std::uint8_t> bytes) { return bytes.size() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b; }
+
+std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes,
+                                 std::uint64_t stopAfter) {
+    std::vector<std::uint8_t> out;
+    Progress progress("decompressing " + source, static_cast<double>(bytes.size()));
+    z_stream stream{};
+    // 16 + MAX_WBITS: expect a gzip header; the loop below restarts for each further member.
+    if (inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK) throw SystemError(source + ": zlib could not initialise");
+    std::size_t consumed = 0;
+    std::uint8_t chunk[1 << 16];
+    while (consumed < bytes.size()) {
+        stream.next_in = const_cast<Bytef*>(bytes.data() + consumed);
+        stream.avail_in = static_cast<uInt>(std::min<std::size_t>(bytes.size() - consumed, UINT_MAX));
+        int status = Z_OK;
+        while (status != Z_STREAM_END) {
+            stream.next_out = chunk;
+            stream.avail_out = sizeof chunk;
+            status = inflate(&stream, Z_NO_FLUSH);
+            if (status == Z_NEED_DICT || status == Z_DATA_ERROR || status == Z_MEM_ERROR) {
+                std::string reason = stream.msg ? stream.msg : "corrupt data";
+                inflateEnd(&stream);
+                throw InputError(source, "gzip stream", "valid gzip-compressed data", reason);
+            }
+            std::size_t produced = sizeof chunk - stream.avail_out;
+            if (out.size() + produced > maxBytes) {
+                inflateEnd(&stream);
+                throw InputError(source, "gzip stream", "at most " + std::to_string(maxBytes) + " bytes once decompressed",
+                                 "more");
+            }
+            out.insert(out.end(), chunk, chunk + produced);
+            progress.update(static_cast<double>(bytes.size() - stream.avail_in));
+            if (stopAfter > 0 && out.size() >= stopAfter) {
+                inflateEnd(&stream);
+                return out;
+            }
+            if (status == Z_BUF_ERROR || (status == Z_OK && stream.avail_in == 0 && produced == 0)) {
+                inflateEnd(&stream);
+                throw InputError(source, "gzip stream", "a complete gzip stream", "a truncated one");
+            }
+        }
+        consumed = bytes.size() - stream.avail_in;
+        // Trailing zero padding after the last member is tolerated (some tools pad).
+        if (std::all_of(bytes.begin() + static_cast<std::ptrdiff_t>(consumed), bytes.end(), [](std::uint8_t b) { return b == 0; })) break;
+        if (!isGzip(bytes.subspan(consumed))) break;  // not another member: trailing garbage is ignored
+        inflateReset(&stream);
+    }
+    inflateEnd(&stream);
+    return out;
+}
+
+}  // namespace curette::io

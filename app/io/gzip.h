@@ -1,0 +1,20 @@
+#pragma once
+// gzip decompression (RFC 1952, through zlib), including files of several concatenated members, with a
+// limit so a small file cannot claim gigabytes.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace curette::io {
+
+bool isGzip(std::span<const std::uint8_t> bytes);
+
+// Inflates all members. Throws InputError(source, "gzip stream", ...) when the stream is corrupt or
+// truncated, or when the output would exceed maxBytes.
+// With stopAfter > 0, returns as soon as that many bytes are out (to read a header before sizing the whole).
+std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes,
+                                 std::uint64_t stopAfter = 0);
+
+}  // namespace curette::io

@@ -1,0 +1,138 @@
+#include "app/io/transfer_function_file.h"
+
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "base/json_reader.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace curette::io {
+
+TransferFunction parseTransferFunctionJson(const nlohmann::json& json, const std::string& source, const std::string& keyPrefix) {
+    JsonReader r(json, source, keyPrefix);
+    if (!r.isObject()) r.fail("a transfer function object with \"color\" and \"opacity\"");
+    TransferFunction tf;
+    if (auto n = r.find("name")) tf.name = n->string();
+    if (auto u = r.find("unit_length_mm")) tf.unitLengthMm = u->number(1e-6, 1e6);
+    for (const JsonReader& p : r.at("color").elements(1)) {
+        std::vector<double> v = p.numbers(4);
+        for (int c = 1; c < 4; ++c)
+            if (v[static_cast<std::size_t>(c)] < 0 || v[static_cast<std::size_t>(c)] > 1) p.fail("[value, r, g, b] with r, g, b in [0, 1]");
+        tf.color.push_back({v[0], {v[1], v[2], v[3]}});
+    }
+    for (const JsonReader& p : r.at("opacity").elements(1)) {
+        std::vector<double> v = p.numbers(2);
+        if (v[1] < 0 || v[1] > 1) p.fail("[value, alpha] with alpha in [0, 1]");
+        tf.opacity.push_back({v[0], v[1]});
+    }
+    if (auto g = r.find("gradient_opacity"))
+        for (const JsonReader& p : g->elements(0)) {
+            std::vector<double> v = p.numbers(2);
+            if (v[0] < 0 || v[1] < 0 || v[1] > 1) p.fail("[gradient magnitude >= 0, factor in [0, 1]]");
+            tf.gradientOpacity.push_back({v[0], v[1]});
+        }
+    if (auto m = r.find("material")) {
+        if (auto a = m->find("ambient")) tf.material.ambient = a->number(0, 10);
+        if (auto d = m->find("diffuse")) tf.material.diffuse = d->number(0, 10);
+        if (auto s = m->find("specular")) tf.material.specular = s->number(0, 10);
+        if (auto p = m->find("specular_power")) tf.material.specularPower = p->number(0, 1000);
+        m->finish();
+    }
+    r.finish();
+    tf.validate(source);
+    return tf;
+}
+
+TransferFunction parseTransferFunctionJsonText(std::string_view text, const std::string& source) {
+    nlohmann::json json = parseJson(text, source);
+    return parseTransferFunctionJson(json, source);
+}
+
+namespace {
+
+std::vector<double> parseNumbers(const std::string& line, const std::string& source, const std::string& field) {
+    std::vector<double> values;
+    std::istringstream in(line);
+    for (std::string token; in >> token;) {
+        double v = 0;
+        auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+        if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(v))
+            throw InputError(source, field, "numbers", "\"" + token + "\"");
+        values.push_back(v);
+    }
+    return values;
+}
+
+// "N v1 v2 ... vN" grouped `stride` numbers per point.
+std::vector<std::vector<double>> parseFunction(const std::string& line, int stride, const std::string& source, const std::string& field) {
+    std::vector<double> v = parseNumbers(line, source, field);
+    if (v.empty()) throw InputError(source, field, "a count followed by that many numbers", "an empty line");
+    double count = v[0];
+    if (count < 0 || count != std::floor(count) || static_cast<std::size_t>(count) != v.size() - 1)
+        throw InputError(source, field, "a count equal to the numbers that follow it", std::to_string(static_cast<long long>(count)) +
+                                                                                          " announced, " + std::to_string(v.size() - 1) + " present");
+    if (static_cast<std::size_t>(count) % static_cast<std::size_t>(stride) != 0)
+        throw InputError(source, field, "a multiple of " + std::to_string(stride) + " numbers", std::to_string(static_cast<long long>(count)));
+    std::vector<std::vector<double>> points;
+    for (std::size_t i = 1; i + static_cast<std::size_t>(stride) <= v.size(); i += static_cast<std::size_t>(stride))
+        points.emplace_back(v.begin() + static_cast<std::ptrdiff_t>(i), v.begin() + static_cast<std::ptrdiff_t>(i) + stride);
+    return points;
+}
+
+}  // namespace
+
+TransferFunction parseSlicerVolumeProperty(std::string_view text, const std::string& source) {
+    std::vector<std::string> lines;
+    std::istringstream in{std::string(text)};
+    for (std::string line; std::getline(in, line);) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.find_first_not_of(" \t") == std::string::npos) continue;
+        lines.push_back(line);
+    }
+    if (lines.size() < 9)
+        throw InputError(source, "lines", "9 lines (interpolation, shade, diffuse, ambient, specular, power, scalar opacity, "
+                                          "gradient opacity, colour)", std::to_string(lines.size()));
+    TransferFunction tf;
+    tf.name = std::filesystem::path(source).stem().string();
+    auto scalar = [&](int line, const char* what) {
+        std::vector<double> v = parseNumbers(lines[static_cast<std::size_t>(line)], source, "line " + std::to_string(line + 1) + " (" + what + ")");
+        if (v.size() != 1) throw InputError(source, "line " + std::to_string(line + 1) + " (" + what + ")", "one number", std::to_string(v.size()) + " numbers");
+        return v[0];
+    };
+    scalar(0, "interpolation");
+    scalar(1, "shade");
+    tf.material.diffuse = scalar(2, "diffuse");
+    tf.material.ambient = scalar(3, "ambient");
+    tf.material.specular = scalar(4, "specular");
+    tf.material.specularPower = scalar(5, "specular power");
+    for (const auto& p : parseFunction(lines[6], 2, source, "line 7 (scalar opacity)")) tf.opacity.push_back({p[0], p[1]});
+    for (const auto& p : parseFunction(lines[7], 2, source, "line 8 (gradient opacity)")) tf.gradientOpacity.push_back({p[0], p[1]});
+    for (const auto& p : parseFunction(lines[8], 4, source, "line 9 (colour)")) tf.color.push_back({p[0], {p[1], p[2], p[3]}});
+    tf.validate(source);
+    return tf;
+}
+
+TransferFunction readTransferFunction(const std::filesystem::path& path) {
+    std::vector<std::uint8_t> bytes = readFileBytes(path);
+    std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    std::string extension = path.extension().string();
+    if (extension == ".json") return parseTransferFunctionJsonText(text, path.string());
+    if (extension == ".vp") return parseSlicerVolumeProperty(text, path.string());
+    throw InputError(path.string(), "extension", ".json (curette) or .vp (3D Slicer volume property)", "\"" + extension + "\"");
+}
+
+std::string writeTransferFunctionJson(const TransferFunction& tf) {
+    nlohmann::ordered_json j;
+    j["name"] = tf.name;
+    j["unit_length_mm"] = tf.unitLengthMm;
+    for (const auto& p : tf.color) j["color"].push_back({p.value, p.rgb.r, p.rgb.g, p.rgb.b});
+    for (const auto& p : tf.opacity) j["opacity"].push_back({p.value, p.y});
+    for (const auto& p : tf.gradientOpacity) j["gradient_opacity"].push_back({p.value, p.y});
+    j["material"] = {{"ambient", tf.material.ambient}, {"diffuse", tf.material.diffuse}, {"specular", tf.material.specular},
+                     {"specular_power", tf.material.specularPower}};
+    return j.dump(2) + "\n";
+}
+
+}  // namespace curette::io

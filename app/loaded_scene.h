@@ -1,0 +1,30 @@
+#pragma once
+// A scene with its volume read from disk: the common first step of render, view, bench and replay.
+
+#include "app/scene.h"
+#include "render/renderer.h"
+#include "render/volume.h"
+
+namespace curette {
+
+struct LoadedScene {
+    Scene scene;
+    VolumeData volume;
+};
+
+LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
+
+// Hands the scene's LAO settings and clip meshes to a renderer made for its volume (every command that
+// renders a scene goes through here, so they all render the same thing).
+void configureRenderer(const Scene& scene, Renderer& renderer);
+
+// Applies the --size/--shading/--azimuth/--elevation overrides shared by render-like commands.
+struct FrameOverrides {
+    std::optional<glm::ivec2> size;
+    std::optional<ShadingMode> shading;
+    std::optional<double> azimuthDeg, elevationDeg;
+};
+void applyOverrides(const FrameOverrides& overrides, FrameDescription& frame);
+ShadingMode parseShadingOption(const std::string& option, const std::string& text);
+
+}  // namespace curette

@@ -1,0 +1,55 @@
+// curette: carve CT and MRI volumes with exact ambient occlusion. See README.md.
+#include "app/commands/commands.h"
+#include "base/error.h"
+#include "base/log.h"
+
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+
+namespace {
+
+const char* kUsage =
+    "usage: curette <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  info FILE                        what a volume file holds: dimensions, spacing, affine, type,\n"
+    "                                   value range, histogram\n"
+    "  render --scene S --out F.png     render one frame headless (EGL) and write a PNG\n"
+    "         [--size WxH] [--shading MODE] [--azimuth DEG] [--elevation DEG]\n"
+    "  view --scene S                   interactive viewer window (needs a display)\n"
+    "  bench raycast --scene S          ray-casting speed: ms per frame and samples per second\n"
+    "         [--size WxH] [--frames N] [--json FILE]\n"
+    "\n"
+    "shading modes: solid, phong (and, as they land, lao, cao, dos)\n"
+    "exit codes: 0 success, 2 bad input (the message names file, field and expected form),\n"
+    "            3 system problem (GL driver, disk), 1 anything else\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+        std::fputs(kUsage, argc < 2 ? stderr : stdout);
+        return argc < 2 ? 2 : 0;
+    }
+    std::string command = argv[1];
+    curette::commands::Arguments args(argv + 2, argv + argc);
+    try {
+        if (command == "info") return curette::commands::info(args);
+        if (command == "render") return curette::commands::render(args);
+        if (command == "view") return curette::commands::view(args);
+        if (command == "bench") return curette::commands::bench(args);
+        std::fprintf(stderr, "curette: unknown command \"%s\"\n\n%s", command.c_str(), kUsage);
+        return 2;
+    } catch (const curette::InputError& e) {
+        std::fprintf(stderr, "curette %s: error: %s\n", command.c_str(), e.what());
+        return 2;
+    } catch (const curette::SystemError& e) {
+        std::fprintf(stderr, "curette %s: error: %s\n", command.c_str(), e.what());
+        return 3;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "curette %s: internal error: %s\n", command.c_str(), e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,80 @@
+#pragma once
+// The scene file (JSON): what to load and how to look at it. Everything a scene needs is named here, so a
+// scene allocates and computes only what it uses. Relative paths are relative to the scene file.
+//
+// {
+//   "volume": {"path": "/usr/share/mricron/templates/ch2.nii.gz",
+//              "format": "auto" | "nifti" | "nrrd" | "raw",
+//              "raw": {"dims": [x,y,z], "type": "uint8|int16|uint16|int32|float32|float64",
+//                      "endian": "little|big", "spacing": [..], "origin": [..], "header_bytes": 0,
+//                      "gzip": false}},                                  (raw only)
+//   "transfer_function": "tf.json" | "tf.vp" | { inline TF, see assets/tf/README.md },
+//   "camera": {"target": "center" | [x,y,z], "distance_mm": "fit" | number, "azimuth_deg": 0,
+//              "elevation_deg": 0, "fov_deg": 30},
+//   "shading": "solid" | "phong" | "lao" | "cao" | "dos",
+//   "lights": [{"direction": [x,y,z], "color": [r,g,b], "intensity": 1, "space": "camera" | "world"}],
+//   "image": {"width": 512, "height": 512, "background": [r,g,b,a]},
+//   "raycast": {"step_mm": 0 (auto), "early_termination": 0.99, "jitter_seed": 0, "skip_empty_space": true},
+//   "ambient_occlusion": {"rays": "26" | "6" | "14" | "54" | "fibonacci:K", "samples": 20, "step_mm": 1.0,
+//                         "antialiasing_samples": 32, "jitter": 0.025, "weights": "uniform" | "sky",
+//                         "ambient_scale": 2.0, "dispatch": "compacted" | "full_grid"},
+//   "clip_meshes": [{"name": "probe", "mesh": {see clip/mesh_description.h}, "position_mm": [x,y,z],
+//                    "rotation_deg": [about x, about y, about z] (applied x, then y, then z),
+//                    "scale": 1.0 | [sx,sy,sz], "clips_tubes": false}]       (at most 16)
+// }
+
+#include "app/io/volume_file.h"
+#include "clip/rigid_pose.h"
+#include "clip/triangle_mesh.h"
+#include "render/ambient_occlusion.h"
+#include "render/frame.h"
+#include "render/transfer_function.h"
+#include "render/volume_geometry.h"
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+namespace curette {
+
+struct CameraSpec {
+    std::optional<glm::dvec3> target;        // nullopt: the volume's centre
+    std::optional<double> distanceMm;        // nullopt: fit the volume in view
+    double azimuthDeg = 0, elevationDeg = 0, fovYDeg = 30;
+};
+
+struct SceneClipMesh {
+    std::string name;
+    std::shared_ptr<const clip::TriangleMesh> geometry;
+    clip::RigidPose pose;
+    glm::dvec3 scale{1.0};
+    bool clipsTubes = false;
+};
+
+struct Scene {
+    std::filesystem::path file;
+    std::filesystem::path volumePath;
+    io::VolumeReadOptions volumeOptions;
+    TransferFunction transferFunction;
+    std::string transferFunctionSource;      // file path, or "<scene file>: transfer_function"
+    CameraSpec camera;
+    ShadingMode shading = ShadingMode::Phong;
+    std::vector<Light> lights{Light{}};
+    glm::ivec2 imageSize{512, 512};
+    glm::dvec4 background{0, 0, 0, 1};
+    RaycastSettings raycast;
+    LaoSettings lao;
+    std::vector<SceneClipMesh> clipMeshes;
+};
+
+// Reads and validates a scene file (and the TF file it names); throws InputError naming the key.
+Scene loadScene(const std::filesystem::path& path);
+Scene parseScene(std::string_view text, const std::filesystem::path& path);
+
+// The camera the scene asks for, resolved against the loaded volume ("center", "fit").
+OrbitCamera resolveCamera(const CameraSpec& spec, const VolumeGeometry& geometry);
+
+// The first frame of the scene: resolved camera, image size, shading, lights, ray settings.
+FrameDescription initialFrame(const Scene& scene, const VolumeGeometry& geometry);
+
+}  // namespace curette

@@ -1,0 +1,20 @@
+#pragma once
+// Summary statistics of a volume's physical values, for `curette info`.
+
+#include "render/volume.h"
+
+#include <array>
+#include <vector>
+
+namespace curette {
+
+struct VolumeStatistics {
+    double min = 0, max = 0, mean = 0, standardDeviation = 0;
+    double nonZeroFraction = 0;                       // voxels != 0 (physical value)
+    std::array<double, 5> percentiles{};              // 1, 25, 50, 75, 99 %, from a 4096-bin histogram
+    std::vector<std::uint64_t> histogram;             // `bins` equal bins over [min, max]
+};
+
+VolumeStatistics computeStatistics(const VolumeData& volume, int bins = 16);
+
+}  // namespace curette

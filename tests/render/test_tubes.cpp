@@ -1,0 +1,222 @@
+// Tubes with the volume (seed 000 Fig. 2): one test per interaction, on small synthetic scenes. The camera
+// sits on +y looking along -y (azimuth 0), so "in front" means larger y.
+#include "render/renderer.h"
+#include "tests/render/gl_test_support.h"
+#include "clip/primitives.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace curette {
+namespace {
+
+using test::glContext;
+
+// A straight capped tube along `axis` through `centre`, built directly (the tract pipeline has its own
+// tests); enough for occlusion tests.
+TubeVertices straightTube(glm::dvec3 centre, glm::dvec3 axis, double length, double radius, glm::vec4 color) {
+    TubeVertices v;
+    axis = glm::normalize(axis);
+    glm::dvec3 u = glm::normalize(glm::cross(axis, std::abs(axis.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+    glm::dvec3 w = glm::cross(axis, u);
+    const int sides = 16, rings = 8;
+    for (int r = 0; r <= rings; ++r)
+        for (int s = 0; s < sides; ++s) {
+            double a = 2 * std::numbers::pi * s / sides;
+            glm::dvec3 n = std::cos(a) * u + std::sin(a) * w;
+            v.positions.emplace_back(glm::vec3(centre + (double(r) / rings - 0.5) * length * axis + radius * n));
+            v.directions.emplace_back(glm::vec3(n));
+            v.colors.push_back(color);
+        }
+    for (int r = 0; r < rings; ++r)
+        for (int s = 0; s < sides; ++s) {
+            std::uint32_t a = static_cast<std::uint32_t>(r * sides + s), b = static_cast<std::uint32_t>(r * sides + (s + 1) % sides);
+            std::uint32_t c = a + sides, d = b + sides;
+            v.indices.insert(v.indices.end(), {a, b, d, a, d, c});
+        }
+    for (int end = 0; end < 2; ++end) {  // caps: a fan around a centre vertex
+        std::uint32_t first = static_cast<std::uint32_t>(v.positions.size());
+        glm::dvec3 n = end ? axis : -axis;
+        v.positions.emplace_back(glm::vec3(centre + (end ? 0.5 : -0.5) * length * axis));
+        v.directions.emplace_back(glm::vec3(n));
+        v.colors.push_back(color);
+        for (int s = 0; s < sides; ++s) {
+            double a = 2 * std::numbers::pi * s / sides;
+            v.positions.emplace_back(glm::vec3(centre + (end ? 0.5 : -0.5) * length * axis + radius * (std::cos(a) * u + std::sin(a) * w)));
+            v.directions.emplace_back(glm::vec3(n));
+            v.colors.push_back(color);
+        }
+        for (int s = 0; s < sides; ++s)
+            v.indices.insert(v.indices.end(), {first, first + 1 + static_cast<std::uint32_t>(s), first + 1 + static_cast<std::uint32_t>((s + 1) % sides)});
+    }
+    return v;
+}
+
+TubeVertices merge(TubeVertices a, const TubeVertices& b) {
+    std::uint32_t offset = static_cast<std::uint32_t>(a.positions.size());
+    a.positions.insert(a.positions.end(), b.positions.begin(), b.positions.end());
+    a.directions.insert(a.directions.end(), b.directions.begin(), b.directions.end());
+    a.colors.insert(a.colors.end(), b.colors.begin(), b.colors.end());
+    for (std::uint32_t i : b.indices) a.indices.push_back(i + offset);
+    return a;
+}
+
+FrameDescription frontFrame(ShadingMode mode) {
+    FrameDescription f;
+    f.camera.fit(glm::dvec3(0), 16.0);
+    f.camera.azimuthDeg = 0;
+    f.camera.elevationDeg = 0;
+    f.size = {48, 48};
+    f.shading = mode;
+    f.dos.coneAngleDeg = 45;
+    f.lights = {Light{{0.0, 0.0, 1.0}, glm::dvec3(1.0), true}};
+    return f;
+}
+
+TransferFunction whiteTransferFunction(double slabAlpha, double denseAlpha) {
+    TransferFunction tf;
+    tf.color = {{0, glm::dvec3(1.0)}};
+    tf.opacity = {{0, 0.0}, {50, 0.0}, {60, slabAlpha}, {200, slabAlpha}, {250, denseAlpha}};
+    return tf;
+}
+
+// Geometry to volume (Fig. 2 c): a tube in front of a uniform slab darkens a disc of the slab behind it,
+// and only there.
+TEST(Tubes, TubeDarkensTheVolumeBehindItAndOnlyThere) {
+    glContext();
+    glm::ivec3 dims(32);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
+                                         [](glm::dvec3 p) { return p.y < -4.0 ? 60.0 : 0.0; });
+    Renderer renderer(glContext(), volume, whiteTransferFunction(0.15, 0.15));
+    FrameDescription frame = frontFrame(ShadingMode::Dos);
+    renderer.setTubes(straightTube(glm::dvec3(0, 6, 0), glm::dvec3(0, 0, 1), 4.0, 1.5, glm::vec4(1)), TubeShading{});
+    renderer.render(frame);
+    Image with = renderer.readImage();
+    std::vector<float> depth = renderer.gbuffer().readDepth();
+    renderer.clearTubes();
+    renderer.render(frame);
+    Image without = renderer.readImage();
+    int darkened = 0, far = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 48; ++x) {
+            std::size_t i = static_cast<std::size_t>(y * 48 + x);
+            if (depth[i] > 0) continue;  // the tube itself
+            double r = glm::length(glm::dvec2(x + 0.5 - 24, y + 0.5 - 24));
+            float a = without.at(x, y).r, b = with.at(x, y).r;
+            if (r > 18) {
+                ASSERT_NEAR(a, b, 1e-6) << "the slab far from the tube is untouched";
+                ++far;
+            } else if (b < a - 1e-3f) {
+                ++darkened;
+            }
+        }
+    EXPECT_GT(far, 200);
+    EXPECT_GT(darkened, 10) << "the tube's shadow must darken the slab around it";
+}
+
+// Volume to geometry (Fig. 2 d): a dense layer in front of a tube darkens it (its partial occlusion);
+// removing the layer with a clip mesh restores exactly what the tube receives without the layer (a curved
+// tube also occludes part of its own cone near its silhouette, so that is not 1).
+TEST(Tubes, DenseLayerInFrontDarkensTheTubeAndClippingItRestores) {
+    glContext();
+    glm::ivec3 dims(32);
+    // A broad dense layer at y in [4, 6] (between the eye and the tube at y = -2), a little off the tube's
+    // line of sight so its shadow, not its own colour, is what the tube receives.
+    auto layer = [](bool present) {
+        return [present](glm::dvec3 p) { return present && std::abs(p.y - 5.0) < 1.0 && p.x > 1.0 ? 250.0 : 0.0; };
+    };
+    FrameDescription frame = frontFrame(ShadingMode::Dos);
+    frame.dos.coneAngleDeg = 60;
+    TubeVertices tube = straightTube(glm::dvec3(0, -2, 0), glm::dvec3(0, 0, 1), 12.0, 2.0, glm::vec4(1));
+    auto partialAtTube = [&](Renderer& renderer) {
+        renderer.render(frame);
+        std::vector<float> depth = renderer.gbuffer().readDepth();
+        std::vector<float> partial(depth.size());
+        glGetTextureImage(renderer.gbuffer().partialOcclusion(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(partial.size() * 4), partial.data());
+        double sum = 0;
+        int n = 0;
+        for (std::size_t i = 0; i < depth.size(); ++i)
+            if (depth[i] > 0) sum += partial[i], ++n;
+        return n ? sum / n : -1.0;
+    };
+    VolumeData empty = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, layer(false));
+    Renderer withoutLayer(glContext(), empty, whiteTransferFunction(0.0, 0.9));
+    withoutLayer.setTubes(tube, TubeShading{});
+    double unshadowed = partialAtTube(withoutLayer);
+
+    VolumeData dense = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, layer(true));
+    Renderer renderer(glContext(), dense, whiteTransferFunction(0.0, 0.9));
+    renderer.setTubes(tube, TubeShading{});
+    double shadowed = partialAtTube(renderer);
+    // A box that removes the layer entirely.
+    clip::ClipMeshSet& clip = renderer.clipMeshes();
+    clip.add(std::make_shared<const clip::TriangleMesh>(clip::makeBox(glm::dvec3(40, 4, 40))), glm::dvec3(1),
+             clip::RigidPose{glm::dvec3(0, 5, 0), {}}, "remove layer");
+    double restored = partialAtTube(renderer);
+    EXPECT_LT(shadowed, unshadowed - 0.02) << "the layer must shadow the tube";
+    EXPECT_NEAR(restored, unshadowed, 1e-6) << "with the layer clipped away the tube receives what it does without it";
+}
+
+// Geometry to geometry (Fig. 2 b): a tube crossing in front of another darkens it nearby (vicinity term).
+TEST(Tubes, TubeInFrontDarkensTheTubeBehindNearby) {
+    glContext();
+    glm::ivec3 dims(16);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [](glm::dvec3) { return 0.0; });
+    Renderer renderer(glContext(), volume, whiteTransferFunction(0.0, 0.0));
+    FrameDescription frame = frontFrame(ShadingMode::Dos);
+    TubeShading shading;
+    shading.vicinityDistanceMm = 6.0;
+    TubeVertices back = straightTube(glm::dvec3(0, -3, 0), glm::dvec3(1, 0, 0), 60.0, 1.2, glm::vec4(1));
+    TubeVertices front = straightTube(glm::dvec3(0, 3, 0), glm::dvec3(0, 0, 1), 24.0, 1.2, glm::vec4(1));
+    renderer.setTubes(back, shading);
+    renderer.render(frame);
+    Image alone = renderer.readImage();
+    std::vector<float> depthAlone = renderer.gbuffer().readDepth();
+    renderer.setTubes(merge(back, front), shading);
+    renderer.render(frame);
+    Image crossed = renderer.readImage();
+    std::vector<float> depthCrossed = renderer.gbuffer().readDepth();
+    int darker = 0, farUnchanged = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 48; ++x) {
+            std::size_t i = static_cast<std::size_t>(y * 48 + x);
+            if (depthAlone[i] <= 0 || std::abs(depthCrossed[i] - depthAlone[i]) > 1e-4f) continue;  // back tube, still visible
+            double dx = std::abs(x + 0.5 - 24);
+            if (dx < 8 && crossed.at(x, y).r < alone.at(x, y).r - 1e-3f) ++darker;
+            if (dx > 20) {
+                EXPECT_NEAR(crossed.at(x, y).r, alone.at(x, y).r, 1e-5);
+                ++farUnchanged;
+            }
+        }
+    EXPECT_GT(darker, 4) << "the front tube must darken the back tube beside it";
+    EXPECT_GT(farUnchanged, 0);
+}
+
+// Clip meshes clip tubes only when set to.
+TEST(Tubes, ClipMeshCutsTubesOnlyWhenAskedTo) {
+    glContext();
+    glm::ivec3 dims(16);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [](glm::dvec3) { return 0.0; });
+    Renderer renderer(glContext(), volume, whiteTransferFunction(0.0, 0.0));
+    FrameDescription frame = frontFrame(ShadingMode::Phong);
+    renderer.setTubes(straightTube(glm::dvec3(0), glm::dvec3(1, 0, 0), 24.0, 1.5, glm::vec4(1)), TubeShading{});
+    auto tubePixels = [&]() {
+        renderer.render(frame);
+        int n = 0;
+        for (float d : renderer.gbuffer().readDepth()) n += d > 0;
+        return n;
+    };
+    int full = tubePixels();
+    clip::ClipMeshSet& clip = renderer.clipMeshes();
+    clip.add(std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 3)), glm::dvec3(1), {}, "sphere");
+    EXPECT_EQ(tubePixels(), full) << "a mesh that does not clip tubes leaves them whole";
+    clip.setClipsTubes(0, true);
+    int cut = tubePixels();
+    EXPECT_LT(cut, full - 20);
+    EXPECT_GT(cut, full / 3);
+}
+
+}  // namespace
+}  // namespace curette
