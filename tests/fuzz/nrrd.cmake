@@ -1,0 +1,1 @@
+curette_fuzzer(nrrd ${R}/app/io/nrrd.cpp ${R}/app/io/gzip.cpp)

@@ -1,0 +1,1 @@
+curette_fuzzer(vp ${R}/app/io/transfer_function_file.cpp)
