@@ -21,6 +21,11 @@ nlohmann::json parseJson(std::string_view text, const std::string& file) {
         if (auto colon = reason.rfind(": "); colon != std::string::npos) reason = reason.substr(colon + 2);
         throw InputError(file, "line " + std::to_string(line) + ", column " + std::to_string(column), "valid JSON",
                          reason);
+    } catch (const nlohmann::json::exception& e) {
+        // Other parser failures (e.g. a number too large for any numeric type) carry no position.
+        std::string reason = e.what();
+        if (auto colon = reason.rfind(": "); colon != std::string::npos) reason = reason.substr(colon + 2);
+        throw InputError(file, "(document)", "valid JSON", reason);
     }
 }
 

@@ -143,8 +143,8 @@ ParsedHeader parseHeader(std::span<const std::uint8_t> bytes, const std::string&
         throw InputError(source, sformCode > 0 ? "srow" : "pixdim", "an invertible index-to-world transform", "a singular one");
 
     double offset = h.f32(108);
-    if (!std::isfinite(offset) || offset < 0)
-        throw InputError(source, "vox_offset", "a non-negative byte offset", std::to_string(offset));
+    if (!std::isfinite(offset) || offset < 0 || offset > 1e15)
+        throw InputError(source, "vox_offset", "a byte offset in [0, 1e15]", std::to_string(offset));
     p.dataOffset = static_cast<std::uint64_t>(offset);
     if (!p.pair && p.dataOffset < kSingleFileMinOffset) {
         // The MNI templates of mricron-data store 0; the data still starts after header and extension flag.

@@ -38,6 +38,14 @@ double parseNumber(const std::string& text, const std::string& source, const std
     return v;
 }
 
+// An integer field in [min, max] (checked before any conversion, so absurd values are errors, not UB).
+long parseInteger(const std::string& text, const std::string& source, const std::string& field, long min, long max) {
+    double v = parseNumber(text, source, field);
+    if (!(v >= static_cast<double>(min) && v <= static_cast<double>(max)) || v != std::floor(v))
+        throw InputError(source, field, "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]", "\"" + trim(text) + "\"");
+    return static_cast<long>(v);
+}
+
 std::vector<std::string> words(const std::string& text) {
     std::istringstream in(text);
     std::vector<std::string> list;
@@ -174,16 +182,12 @@ VolumeData readWithHeader(const Header& h, std::span<const std::uint8_t> fileByt
         return *v;
     };
     ScalarType type = parseType(require("type", "a scalar type"), source);
-    int dimension = static_cast<int>(parseNumber(require("dimension", "3"), source, "dimension"));
+    int dimension = static_cast<int>(parseInteger(require("dimension", "3"), source, "dimension", 1, 16));
     std::vector<std::string> sizeWords = words(require("sizes", "one size per axis"));
     if (dimension != static_cast<int>(sizeWords.size()))
         throw InputError(source, "sizes", std::to_string(dimension) + " sizes (dimension)", std::to_string(sizeWords.size()));
     std::vector<long> sizes;
-    for (const std::string& w : sizeWords) {
-        double v = parseNumber(w, source, "sizes");
-        if (v < 1 || v != std::floor(v) || v > 1e9) throw InputError(source, "sizes", "positive integers", "\"" + w + "\"");
-        sizes.push_back(static_cast<long>(v));
-    }
+    for (const std::string& w : sizeWords) sizes.push_back(parseInteger(w, source, "sizes", 1, 1L << 30));
     // A leading axis of size 1 (a 4-D NRRD of one component) is accepted.
     int skipAxis = 0;
     if (dimension == 4 && sizes[0] == 1) skipAxis = 1;
@@ -226,10 +230,9 @@ VolumeData readWithHeader(const Header& h, std::span<const std::uint8_t> fileByt
     }
     // line skip, then (after decompression) byte skip.
     if (const std::string* ls = field("line skip")) {
-        double lines = parseNumber(*ls, source, "line skip");
-        if (lines < 0) throw InputError(source, "line skip", "a non-negative count", *ls);
+        long lines = parseInteger(*ls, source, "line skip", 0, 1L << 30);
         std::size_t pos = 0;
-        for (long n = 0; n < static_cast<long>(lines); ++n) {
+        for (long n = 0; n < lines; ++n) {
             while (pos < data.size() && data[pos] != '\n') ++pos;
             if (pos >= data.size()) throw InputError(dataSource, "line skip", "that many lines before the data", *ls);
             ++pos;
@@ -240,9 +243,7 @@ VolumeData readWithHeader(const Header& h, std::span<const std::uint8_t> fileByt
     const std::uint64_t expected = count * scalarTypeSize(type);
     long byteSkip = 0;
     if (const std::string* bs = field("byte skip")) {
-        double v = parseNumber(*bs, source, "byte skip");
-        if (v < -1 || v != std::floor(v)) throw InputError(source, "byte skip", "-1 or a non-negative integer", *bs);
-        byteSkip = static_cast<long>(v);
+        byteSkip = parseInteger(*bs, source, "byte skip", -1, 1L << 50);
         if (byteSkip == -1 && encoding != "raw") throw InputError(source, "byte skip", "-1 only with raw encoding", *bs);
     }
     std::vector<std::uint8_t> decoded;

@@ -70,11 +70,12 @@ std::vector<std::vector<double>> parseFunction(const std::string& line, int stri
     std::vector<double> v = parseNumbers(line, source, field);
     if (v.empty()) throw InputError(source, field, "a count followed by that many numbers", "an empty line");
     double count = v[0];
-    if (count < 0 || count != std::floor(count) || static_cast<std::size_t>(count) != v.size() - 1)
-        throw InputError(source, field, "a count equal to the numbers that follow it", std::to_string(static_cast<long long>(count)) +
-                                                                                          " announced, " + std::to_string(v.size() - 1) + " present");
-    if (static_cast<std::size_t>(count) % static_cast<std::size_t>(stride) != 0)
-        throw InputError(source, field, "a multiple of " + std::to_string(stride) + " numbers", std::to_string(static_cast<long long>(count)));
+    // Compared as doubles: the count is untrusted and may be far outside any integer type.
+    if (count != static_cast<double>(v.size() - 1))
+        throw InputError(source, field, "a count equal to the numbers that follow it",
+                         std::to_string(count) + " announced, " + std::to_string(v.size() - 1) + " present");
+    if ((v.size() - 1) % static_cast<std::size_t>(stride) != 0)
+        throw InputError(source, field, "a multiple of " + std::to_string(stride) + " numbers", std::to_string(v.size() - 1));
     std::vector<std::vector<double>> points;
     for (std::size_t i = 1; i + static_cast<std::size_t>(stride) <= v.size(); i += static_cast<std::size_t>(stride))
         points.emplace_back(v.begin() + static_cast<std::ptrdiff_t>(i), v.begin() + static_cast<std::ptrdiff_t>(i) + stride);
