@@ -1,6 +1,8 @@
 #include "app/loaded_scene.h"
 
+#include "app/io/tract_file.h"
 #include "base/error.h"
+#include "base/log.h"
 
 namespace curette {
 
@@ -16,10 +18,12 @@ LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath) {
                              "\"" + loaded.scene.volumePath.string() + "\", which does not exist");
         throw;
     }
+    for (const SceneTubes& t : loaded.scene.tubes) loaded.tracts.push_back(io::readTractogram(t.path));
     return loaded;
 }
 
-void configureRenderer(const Scene& scene, Renderer& renderer) {
+void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
+    const Scene& scene = loaded.scene;
     renderer.setLaoSettings(scene.lao);
     clip::ClipMeshSet& clip = renderer.clipMeshes();
     clip.clear();
@@ -27,6 +31,26 @@ void configureRenderer(const Scene& scene, Renderer& renderer) {
         int index = clip.add(mesh.geometry, mesh.scale, mesh.pose, mesh.name);
         clip.setClipsTubes(index, mesh.clipsTubes);
     }
+    if (scene.tubes.empty()) {
+        renderer.clearTubes();
+        return;
+    }
+    // All entries into one vertex set (tubes, or lines for the illuminated-lines mode).
+    TubeVertices all;
+    all.lines = scene.tubesAsLines;
+    for (std::size_t i = 0; i < scene.tubes.size(); ++i) {
+        TubeBuildStats stats;
+        TubeVertices v = scene.tubesAsLines ? buildIlluminatedLines(loaded.tracts[i], scene.tubes[i].settings, &stats)
+                                            : buildTubes(loaded.tracts[i], scene.tubes[i].settings, &stats);
+        if (stats.skippedSinglePoint)
+            log::info(scene.tubes[i].path.string() + ": " + std::to_string(stats.skippedSinglePoint) + " one-point streamlines skipped");
+        std::uint32_t base = static_cast<std::uint32_t>(all.positions.size());
+        all.positions.insert(all.positions.end(), v.positions.begin(), v.positions.end());
+        all.directions.insert(all.directions.end(), v.directions.begin(), v.directions.end());
+        all.colors.insert(all.colors.end(), v.colors.begin(), v.colors.end());
+        for (std::uint32_t index : v.indices) all.indices.push_back(base + index);
+    }
+    renderer.setTubes(all, scene.tubeShading);
 }
 
 ShadingMode parseShadingOption(const std::string& option, const std::string& text) {

@@ -3,6 +3,7 @@
 
 #include "app/scene.h"
 #include "render/renderer.h"
+#include "render/tractogram.h"
 #include "render/volume.h"
 
 namespace curette {
@@ -10,13 +11,14 @@ namespace curette {
 struct LoadedScene {
     Scene scene;
     VolumeData volume;
+    std::vector<Tractogram> tracts;   // one per scene.tubes entry
 };
 
 LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
 
 // Hands the scene's LAO settings and clip meshes to a renderer made for its volume (every command that
 // renders a scene goes through here, so they all render the same thing).
-void configureRenderer(const Scene& scene, Renderer& renderer);
+void configureRenderer(const LoadedScene& loaded, Renderer& renderer);
 
 // Applies the --size/--shading/--azimuth/--elevation overrides shared by render-like commands.
 struct FrameOverrides {

@@ -136,6 +136,63 @@ SceneClipMesh parseClipMesh(const JsonReader& r, const fs::path& sceneFile, std:
     return mesh;
 }
 
+SceneTubes parseTubes(const JsonReader& r, const fs::path& sceneFile) {
+    SceneTubes t;
+    t.path = resolvePath(sceneFile, r.at("path").string());
+    TubeSettings& s = t.settings;
+    if (auto v = r.find("radius_mm")) s.radiusMm = v->number(1e-3, 100);
+    if (auto v = r.find("sides")) s.sides = v->integer(3, 64);
+    if (auto v = r.find("caps")) s.caps = v->boolean();
+    if (auto v = r.find("smoothing")) s.smoothing = v->oneOf({"catmull-rom", "none"}) == "none" ? TubeSettings::Smoothing::None
+                                                                                                 : TubeSettings::Smoothing::CatmullRom;
+    if (auto v = r.find("step_mm")) s.stepMm = v->number(1e-2, 100);
+    if (auto c = r.find("color")) {
+        if (c->isArray()) {
+            s.coloring = TubeSettings::Coloring::Uniform;
+            s.uniformColor = c->vec3(0, 1);
+        } else {
+            s.coloring = c->oneOf({"direction", "scalar"}) == "scalar" ? TubeSettings::Coloring::Scalar : TubeSettings::Coloring::Direction;
+        }
+    }
+    if (auto v = r.find("scalar")) s.scalarName = v->string();
+    if (auto v = r.find("scalar_range")) {
+        glm::dvec2 range = v->vec2();
+        s.scalarMin = range.x, s.scalarMax = range.y;
+    }
+    if (s.coloring == TubeSettings::Coloring::Scalar && s.scalarName.empty())
+        throw InputError(sceneFile.string(), r.path() + ".scalar", "the name of a per-point scalar for \"color\": \"scalar\"", "nothing");
+    r.finish();
+    return t;
+}
+
+void parseTubeRendering(const JsonReader& r, Scene& scene) {
+    TubeShading& t = scene.tubeShading;
+    if (auto v = r.find("mode")) scene.tubesAsLines = v->oneOf({"tubes", "lines"}) == "lines";
+    if (auto v = r.find("geometry_opacity")) t.geometryOpacity = v->number(0, 1);
+    if (auto v = r.find("vicinity_distance_mm")) t.vicinityDistanceMm = v->number(0, 1000);
+    if (auto v = r.find("vicinity_samples")) t.vicinitySamples = v->integer(1, 256);
+    if (auto v = r.find("depth_bias_mm")) t.depthBiasMm = v->number(0, 100);
+    if (auto v = r.find("line_diffuse_exponent")) t.lineDiffuseExponent = v->number(0.1, 20);
+    if (auto m = r.find("material")) {
+        if (auto a = m->find("ambient")) t.material.ambient = a->number(0, 10);
+        if (auto d = m->find("diffuse")) t.material.diffuse = d->number(0, 10);
+        if (auto s = m->find("specular")) t.material.specular = s->number(0, 10);
+        if (auto p = m->find("specular_power")) t.material.specularPower = p->number(0, 1000);
+        m->finish();
+    }
+    r.finish();
+}
+
+DosSettings parseDos(const JsonReader& r) {
+    DosSettings d;
+    if (auto v = r.find("cone_angle_deg")) d.coneAngleDeg = v->number(0, 89.9);
+    if (auto v = r.find("grid")) d.gridSize = v->integer(1, 16);
+    if (auto v = r.find("slice_distance_mm")) d.sliceDistanceMm = v->number(0, 100);
+    if (auto v = r.find("ambient")) d.ambientRadiance = v->number(0, 100);
+    r.finish();
+    return d;
+}
+
 }  // namespace
 
 Scene parseScene(std::string_view text, const fs::path& path) {
@@ -187,8 +244,10 @@ Scene parseScene(std::string_view text, const fs::path& path) {
         std::vector<JsonReader> list = meshes->elements(0, clip::ClipMeshSet::maxMeshes);
         for (std::size_t i = 0; i < list.size(); ++i) scene.clipMeshes.push_back(parseClipMesh(list[i], path, i));
     }
-    // Reserved for the tubes issue: accepted only empty until it lands.
-    if (auto r = root.find("tubes"); r && r->size() != 0) r->fail("an empty array (tubes are not supported yet)");
+    if (auto tubes = root.find("tubes"))
+        for (const JsonReader& t : tubes->elements(0, 64)) scene.tubes.push_back(parseTubes(t, path));
+    if (auto r = root.find("tube_rendering")) parseTubeRendering(*r, scene);
+    if (auto d = root.find("dos")) scene.dos = parseDos(*d);
     root.finish();
     return scene;
 }
@@ -220,6 +279,7 @@ FrameDescription initialFrame(const Scene& scene, const VolumeGeometry& geometry
     frame.shading = scene.shading;
     frame.lights = scene.lights;
     frame.raycast = scene.raycast;
+    frame.dos = scene.dos;
     return frame;
 }
 

@@ -21,12 +21,20 @@
 //   "clip_meshes": [{"name": "probe", "mesh": {see clip/mesh_description.h}, "position_mm": [x,y,z],
 //                    "rotation_deg": [about x, about y, about z] (applied x, then y, then z),
 //                    "scale": 1.0 | [sx,sy,sz], "clips_tubes": false}]       (at most 16)
+//   "tubes": [{"path": "AF_L.trk" | "x.tck", "radius_mm": 0.5, "sides": 8, "caps": true,
+//              "smoothing": "catmull-rom" | "none", "step_mm": 0.5,
+//              "color": "direction" | "scalar" | [r,g,b], "scalar": "FA", "scalar_range": [lo, hi]}],
+//   "tube_rendering": {"mode": "tubes" | "lines", "geometry_opacity": 0.9, "vicinity_distance_mm": 3,
+//                      "vicinity_samples": 64, "depth_bias_mm": 0.5, "line_diffuse_exponent": 2,
+//                      "material": {"ambient": .25, "diffuse": .75, "specular": .35, "specular_power": 32}},
+//   "dos": {"cone_angle_deg": 60, "grid": 3, "slice_distance_mm": 0 (auto), "ambient": 1.0}
 // }
 
 #include "app/io/volume_file.h"
 #include "clip/rigid_pose.h"
 #include "clip/triangle_mesh.h"
 #include "render/ambient_occlusion.h"
+#include "render/tube_geometry.h"
 #include "render/frame.h"
 #include "render/transfer_function.h"
 #include "render/volume_geometry.h"
@@ -51,6 +59,11 @@ struct SceneClipMesh {
     bool clipsTubes = false;
 };
 
+struct SceneTubes {
+    std::filesystem::path path;
+    TubeSettings settings;
+};
+
 struct Scene {
     std::filesystem::path file;
     std::filesystem::path volumePath;
@@ -65,6 +78,10 @@ struct Scene {
     RaycastSettings raycast;
     LaoSettings lao;
     std::vector<SceneClipMesh> clipMeshes;
+    std::vector<SceneTubes> tubes;
+    bool tubesAsLines = false;
+    TubeShading tubeShading;
+    DosSettings dos;
 };
 
 // Reads and validates a scene file (and the TF file it names); throws InputError naming the key.

@@ -76,7 +76,7 @@ int benchCao(const CommandLine& cl) {
 
     auto context = gl::createHeadlessContext();
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
-    configureRenderer(loaded.scene, renderer);
+    configureRenderer(loaded, renderer);
     const VolumeGeometry& g = renderer.geometry();
     FrameDescription base = initialFrame(loaded.scene, g);
     base.size = size;

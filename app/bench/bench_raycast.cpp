@@ -25,7 +25,7 @@ int benchRaycast(const CommandLine& cl) {
 
     auto context = gl::createHeadlessContext();
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
-    configureRenderer(loaded.scene, renderer);
+    configureRenderer(loaded, renderer);
     FrameDescription base = initialFrame(loaded.scene, renderer.geometry());
     base.size = size;
     const VolumeData& v = loaded.volume;

@@ -31,7 +31,7 @@ int render(const Arguments& args) {
     LoadedScene loaded = loadSceneWithVolume(cl.required("scene"));
     auto context = gl::createHeadlessContext();
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
-    configureRenderer(loaded.scene, renderer);
+    configureRenderer(loaded, renderer);
     FrameDescription frame = initialFrame(loaded.scene, renderer.geometry());
     applyOverrides(overrides, frame);
     auto start = std::chrono::steady_clock::now();

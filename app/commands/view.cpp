@@ -49,7 +49,7 @@ int view(const Arguments& args) {
 
     auto window = gl::createWindowContext("curette - " + scenePath, windowSize);
     Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
-    configureRenderer(loaded.scene, renderer);
+    configureRenderer(loaded, renderer);
     gl::Program present = gl::Program::graphics("present.vert", "present.frag");
     gl::VertexArray emptyVertexArray = gl::createVertexArray();
     clip::ClipMeshSet& meshes = renderer.clipMeshes();

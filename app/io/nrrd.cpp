@@ -146,6 +146,10 @@ Header parseHeader(std::span<const std::uint8_t> bytes, const std::string& sourc
 }
 
 std::vector<std::uint8_t> decodeAscii(std::span<const std::uint8_t> text, ScalarType type, std::uint64_t count, const std::string& source) {
+    // Every value takes at least one character and one separator: refuse before allocating what the header
+    // claims when the text cannot hold it.
+    if (text.size() + 1 < 2 * count)
+        throw InputError(source, "data", std::to_string(count) + " ascii values", "only " + std::to_string(text.size()) + " bytes of text");
     std::vector<std::uint8_t> out(count * scalarTypeSize(type));
     std::string_view s(reinterpret_cast<const char*>(text.data()), text.size());
     std::size_t i = 0;
@@ -193,6 +197,10 @@ VolumeData readWithHeader(const Header& h, std::span<const std::uint8_t> fileByt
     if (dimension == 4 && sizes[0] == 1) skipAxis = 1;
     else if (dimension != 3)
         throw InputError(source, "dimension", "3 (or 4 with a first axis of size 1)", std::to_string(dimension));
+    double voxels = 1;
+    for (int a = 0; a < 3; ++a) voxels *= static_cast<double>(sizes[static_cast<std::size_t>(skipAxis + a)]);
+    if (voxels > 68719476736.0)  // 2^36 voxels: far beyond any GPU, and the byte count must not overflow
+        throw InputError(source, "sizes", "at most 2^36 voxels", std::to_string(voxels));
     glm::ivec3 dims(static_cast<int>(sizes[static_cast<std::size_t>(skipAxis)]), static_cast<int>(sizes[static_cast<std::size_t>(skipAxis) + 1]),
                     static_cast<int>(sizes[static_cast<std::size_t>(skipAxis) + 2]));
 

@@ -1,0 +1,22 @@
+#pragma once
+// Tractography import: TrackVis .trk (versions 1 and 2) and MRtrix .tck, into world millimetres RAS.
+
+#include "render/tractogram.h"
+
+#include <filesystem>
+#include <span>
+
+namespace curette::io {
+
+Tractogram readTractogram(const std::filesystem::path& path);  // by extension
+// TrackVis (http://trackvis.org/docs/?subsect=fileformat): a 1000-byte header, then per track n_points,
+// n_points x (x, y, z, scalars...) and the track's properties. Points are in "voxmm" (voxel coordinates times
+// voxel size, origin at the corner of voxel 0); world = vox_to_ras . orient(voxmm / voxel_size - 0.5), the
+// mapping nibabel uses. Version 1 (and version 2 with an all-zero vox_to_ras) has no affine: points are
+// taken as millimetres, world = voxmm - voxel_size / 2.
+Tractogram readTrkBytes(std::span<const std::uint8_t> bytes, const std::string& source);
+// MRtrix (https://mrtrix.readthedocs.io, "Tracks file format"): a text header ending with END, then float32
+// or float64 triplets in scanner-space millimetres; a NaN triplet ends a streamline, an Inf triplet the file.
+Tractogram readTckBytes(std::span<const std::uint8_t> bytes, const std::string& source);
+
+}  // namespace curette::io

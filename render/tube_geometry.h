@@ -1,0 +1,54 @@
+#pragma once
+// Tubes and illuminated lines built from streamlines on the CPU (drawn by render/tube_set.h). Each polyline
+// is cleaned (duplicate points dropped), optionally smoothed and resampled (centripetal Catmull-Rom), then a
+// circle is swept along it with rotation-minimising frames (the double reflection method of Wang, Jüttler,
+// Zheng and Liu 2008: parallel transport, never Frenet, so no flips at inflections and no twist).
+
+#include "render/tractogram.h"
+#include "render/transfer_function.h"
+#include "render/tube_set.h"
+
+#include <string>
+
+namespace curette {
+
+struct TubeSettings {
+    enum class Smoothing { None, CatmullRom };
+    enum class Coloring { Direction, Scalar, Uniform };
+    double radiusMm = 0.5;
+    int sides = 8;
+    bool caps = true;
+    Smoothing smoothing = Smoothing::CatmullRom;
+    double stepMm = 0.5;                   // resampling step of the smoothed curve
+    Coloring coloring = Coloring::Direction;  // |tangent| as RGB, the DTI convention
+    std::string scalarName;                // for Coloring::Scalar
+    double scalarMin = 0, scalarMax = 0;   // colour-map range; equal: the data's range
+    glm::dvec3 uniformColor{0.9, 0.85, 0.3};
+};
+
+struct TubeBuildStats {
+    std::size_t streamlines = 0, skippedSinglePoint = 0, duplicatePointsRemoved = 0, rings = 0;
+};
+
+// Triangles with outward normals (TubeVertices::lines == false).
+TubeVertices buildTubes(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats = nullptr);
+// Line segments with tangents for illuminated-line shading (TubeVertices::lines == true).
+TubeVertices buildIlluminatedLines(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats = nullptr);
+
+// The cleaned (and smoothed/resampled) polyline of streamline `s`, its unit tangents and the rotation-
+// minimising normals: what the tube is swept along (exposed for tests).
+struct SweptCurve {
+    std::vector<glm::dvec3> points, tangents, normals;
+};
+SweptCurve sweepCurve(const Tractogram& tracts, std::size_t s, const TubeSettings& settings, std::size_t* duplicatesRemoved = nullptr);
+
+// Seed 004 eq. 3.12-3.15: the colour of a line with unit tangent `tangent`, lit from `toLight` and seen from
+// `toViewer` (unit vectors), with material ka, kd, ks, shininess and the diffuse exponent p of eq. 3.15.
+// The CPU oracle of shaders/illuminated_lines.glsl (there the albedo multiplies ambient and diffuse only).
+glm::dvec3 illuminatedLineColor(glm::dvec3 albedo, glm::dvec3 tangent, glm::dvec3 toLight, glm::dvec3 toViewer,
+                                const TransferFunction::Material& material, double diffuseExponent);
+
+// A perceptually ordered colour map (viridis-like, by piecewise-linear stops) for scalar colouring.
+glm::dvec3 colorMap(double t);
+
+}  // namespace curette

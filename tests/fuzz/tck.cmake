@@ -1,0 +1,1 @@
+curette_fuzzer(tck ${R}/app/io/tract_file.cpp ${R}/render/tractogram.cpp)
