@@ -79,8 +79,11 @@ TriangleMesh fromModel(const tinygltf::Model& model, const std::string& source, 
                 float xyz[3];
                 std::memcpy(xyz, pv.data + i * pv.stride, sizeof xyz);
                 glm::dvec3 world = glm::dvec3(transform * glm::dvec4(xyz[0], xyz[1], xyz[2], 1.0)) * unitsToMm;
-                if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z))
-                    throw InputError(source, where + ".attributes.POSITION", "finite coordinates");
+                // Finite and within a kilometre: a clip mesh works at the scale of a body, and the welding grid
+                // below must not overflow.
+                if (!(std::abs(world.x) <= 1e6 && std::abs(world.y) <= 1e6 && std::abs(world.z) <= 1e6))
+                    throw InputError(source, where + ".attributes.POSITION", "finite coordinates within +-1e6 mm after the node transforms",
+                                     std::to_string(world.x) + ", " + std::to_string(world.y) + ", " + std::to_string(world.z));
                 mesh.positions.emplace_back(glm::vec3(world));
             }
             std::vector<std::uint32_t> indices;

@@ -39,6 +39,10 @@ double TriangleMesh::surfaceArea() const {
 }
 
 void weldVertices(TriangleMesh& mesh, double tolerance) {
+    if (!(tolerance > 0) || !std::isfinite(tolerance)) throw InputError(mesh.source, "mesh", "a positive welding tolerance");
+    for (const glm::vec3& p : mesh.positions)
+        if (!(std::abs(p.x) / tolerance < 9e15 && std::abs(p.y) / tolerance < 9e15 && std::abs(p.z) / tolerance < 9e15))
+            throw InputError(mesh.source, "mesh", "coordinates within 9e15 welding tolerances of the origin");
     // Grid hashing on cells of size `tolerance`, checking the neighbouring cells.
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
     auto cellOf = [&](glm::dvec3 p) { return glm::i64vec3(glm::floor(p / tolerance)); };

@@ -48,6 +48,7 @@ public:
     void setTubeShading(const TubeShading& shading) { tubeShading_ = shading; }
     void clearTubes();
     bool hasTubes() const { return tubes_ != nullptr; }
+    std::size_t tubeTriangleCount() const { return tubes_ ? tubes_->triangleCount() : 0; }
     const GBuffer& gbuffer() const { return gbuffer_; }
     // Whether the last frame ran steps IV and V (they run only when something they read changed).
     bool lastFrameUpdatedAmbient() const { return lastFrameUpdatedAmbient_; }

@@ -1,6 +1,7 @@
 // curette bench <what> --scene S: speed (and error next to it) of one part of the pipeline. Tests assert
 // results; benches report numbers, as a table and as JSON.
 #include "app/bench/bench_cao.h"
+#include "app/bench/bench_dos.h"
 #include "app/bench/bench_raycast.h"
 #include "app/command_line.h"
 #include "app/commands/commands.h"
@@ -10,7 +11,7 @@ namespace curette::commands {
 
 int bench(const Arguments& args) {
     if (args.empty())
-        throw InputError("<command line>", "bench", "what to measure: raycast or cao (curette bench raycast --scene S)",
+        throw InputError("<command line>", "bench", "what to measure: raycast, cao or dos (curette bench raycast --scene S)",
                          "nothing");
     std::string what = args[0];
     Arguments rest(args.begin() + 1, args.end());
@@ -33,7 +34,16 @@ int bench(const Arguments& args) {
                               {"json", true, "JSON output file (default bench-cao.json)"}});
         return bench::benchCao(cl);
     }
-    throw InputError("<command line>", "bench " + what, "one of: raycast, cao", "\"" + what + "\"");
+    if (what == "dos") {
+        CommandLine cl(rest, {{"scene", true, "scene file with tubes (e.g. assets/scenes/fibers.json)"},
+                              {"size", true, "image size (default 384x384)"},
+                              {"frames", true, "frames per configuration (default 3)"},
+                              {"reference-pixels", true, "pixels checked against the Monte-Carlo reference (default 24)"},
+                              {"reference-directions", true, "cone directions of the reference (default 48)"},
+                              {"json", true, "JSON output file (default bench-dos.json)"}});
+        return bench::benchDos(cl);
+    }
+    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos", "\"" + what + "\"");
 }
 
 }  // namespace curette::commands

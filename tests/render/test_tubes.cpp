@@ -3,6 +3,8 @@
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
 #include "clip/primitives.h"
+#include "render/lighting.h"
+#include "render/tube_geometry.h"
 
 #include <gtest/gtest.h>
 
@@ -216,6 +218,131 @@ TEST(Tubes, ClipMeshCutsTubesOnlyWhenAskedTo) {
     int cut = tubePixels();
     EXPECT_LT(cut, full - 20);
     EXPECT_GT(cut, full / 3);
+}
+
+// The illuminated-lines shader (shaders/illuminated_lines.glsl via the compositor) mirrors its CPU oracle,
+// seed 004 eq. 3.12-3.15 (render/tube_geometry.cpp), at every pixel a line covers.
+TEST(Tubes, IlluminatedLinesMatchTheirCpuOracle) {
+    glContext();
+    glm::ivec3 dims(16);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [](glm::dvec3) { return 0.0; });
+    Renderer renderer(glContext(), volume, whiteTransferFunction(0.0, 0.0));
+    FrameDescription frame = frontFrame(ShadingMode::Phong);  // no occlusion terms: the pure line lighting
+    frame.lights = {Light{{0.5, 0.3, 0.8}, glm::dvec3(1.0), true}};
+    Tractogram t;
+    t.points = {{-12, 0, -6}, {12, 0, 6}, {-8, 2, 9}, {9, -1, -8}};
+    t.offsets = {0, 2, 4};
+    TubeSettings settings;
+    settings.smoothing = TubeSettings::Smoothing::None;
+    settings.coloring = TubeSettings::Coloring::Uniform;
+    settings.uniformColor = glm::dvec3(0.8, 0.6, 0.4);
+    TubeShading shading;
+    renderer.setTubes(buildIlluminatedLines(t, settings), shading);
+    renderer.render(frame);
+    Image image = renderer.readImage();
+    std::vector<float> depth = renderer.gbuffer().readDepth();
+    glm::dvec3 toLight = worldLightDirection(frame.lights[0], frame.camera);
+    glm::dmat4 inverseViewProjection = glm::inverse(frame.camera.projection(1.0) * frame.camera.view());
+    int checked = 0;
+    double worst = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 48; ++x) {
+            if (depth[static_cast<std::size_t>(y * 48 + x)] <= 0) continue;
+            glm::dvec2 ndc = (glm::dvec2(x, y) + 0.5) / 48.0 * 2.0 - 1.0;
+            ndc.y = -ndc.y;
+            glm::dvec4 far = inverseViewProjection * glm::dvec4(ndc, 1, 1);
+            glm::dvec3 toViewer = -glm::normalize(glm::dvec3(far) / far.w - frame.camera.position());
+            // Which line covers the pixel: the one whose direction the G-buffer stores is unknown here, so
+            // accept the closer of the two oracle values.
+            double best = 1e9;
+            for (int line = 0; line < 2; ++line) {
+                glm::dvec3 tangent = glm::normalize(glm::dvec3(t.points[static_cast<std::size_t>(2 * line + 1)] - t.points[static_cast<std::size_t>(2 * line)]));
+                glm::dvec3 expected = illuminatedLineColor(settings.uniformColor, tangent, toLight, toViewer, shading.material, shading.lineDiffuseExponent);
+                best = std::min(best, glm::length(glm::dvec3(image.at(x, y)) - expected));
+            }
+            worst = std::max(worst, best);
+            ++checked;
+        }
+    // The G-buffer stores colour and tangent as half floats (11-bit mantissa): ~1e-3 per channel.
+    EXPECT_GT(checked, 30);
+    EXPECT_LT(worst, 5e-3);
+}
+
+// In cao shading with tubes the volume's own occlusion is V_AO and the tubes' shadows come from the
+// geometry channel: a tube in front of the slab still darkens it (geometry to volume), only around it.
+TEST(Tubes, TubesShadowTheVolumeInCaoShadingToo) {
+    glContext();
+    glm::ivec3 dims(24);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
+                                         [](glm::dvec3 p) { return p.y < -2.0 ? 60.0 : 0.0; });
+    Renderer renderer(glContext(), volume, whiteTransferFunction(0.15, 0.15));
+    LaoSettings lao;
+    parseLaoPattern("6", lao.directions);
+    lao.samples = 4;
+    renderer.setLaoSettings(lao);
+    FrameDescription frame = frontFrame(ShadingMode::Cao);
+    frame.camera.fit(glm::dvec3(0), 12.0);
+    renderer.setTubes(straightTube(glm::dvec3(0, 5, 0), glm::dvec3(0, 0, 1), 4.0, 1.2, glm::vec4(1)), TubeShading{});
+    renderer.render(frame);
+    Image with = renderer.readImage();
+    std::vector<float> depth = renderer.gbuffer().readDepth();
+    // The same frame with a tube far away (off screen), so both go through the slab pass.
+    renderer.setTubes(straightTube(glm::dvec3(0, 5, 400), glm::dvec3(0, 0, 1), 4.0, 1.2, glm::vec4(1)), TubeShading{});
+    renderer.render(frame);
+    Image without = renderer.readImage();
+    int darkened = 0, far = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 48; ++x) {
+            if (depth[static_cast<std::size_t>(y * 48 + x)] > 0) continue;
+            double r = glm::length(glm::dvec2(x + 0.5 - 24, y + 0.5 - 24));
+            // The blur repeated slice after slice leaves a geometrically decaying tail: far away it must be
+            // invisible (below a fortieth of an 8-bit step).
+            if (r > 18) {
+                ASSERT_NEAR(with.at(x, y).r, without.at(x, y).r, 1e-4);
+                ++far;
+            } else if (with.at(x, y).r < without.at(x, y).r - 1e-3f) {
+                ++darkened;
+            }
+        }
+    EXPECT_GT(far, 100);
+    EXPECT_GT(darkened, 10);
+}
+
+// A scene allocates only what it uses: no AO volumes, G-buffer or slab buffers for phong without tubes;
+// AO volumes only once lao/cao runs; the G-buffer and slab buffers only with tubes or dos.
+TEST(Tubes, AScenesAllocatesOnlyWhatItUses) {
+    glContext();
+    glm::ivec3 dims(16);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [](glm::dvec3 p) { return p.x > 0 ? 100.0 : 0.0; });
+    auto names = [](const Renderer& r) {
+        std::string all;
+        for (const GpuAllocation& a : r.gpuAllocations()) all += a.name + ";";
+        return all;
+    };
+    Renderer renderer(glContext(), volume, whiteTransferFunction(0.2, 0.2));
+    FrameDescription frame = frontFrame(ShadingMode::Phong);
+    renderer.render(frame);
+    std::string phong = names(renderer);
+    EXPECT_EQ(phong.find("V_AO"), std::string::npos) << phong;
+    EXPECT_EQ(phong.find("G-buffer"), std::string::npos);
+    EXPECT_EQ(phong.find("DOS"), std::string::npos);
+    EXPECT_EQ(phong.find("clip maps"), std::string::npos) << "no clip meshes, no maps";
+    frame.shading = ShadingMode::Cao;
+    renderer.render(frame);
+    std::string cao = names(renderer);
+    EXPECT_NE(cao.find("V_AO"), std::string::npos);
+    EXPECT_NE(cao.find("V_PAO"), std::string::npos);
+    EXPECT_EQ(cao.find("G-buffer"), std::string::npos);
+    Renderer dos(glContext(), volume, whiteTransferFunction(0.2, 0.2));
+    frame.shading = ShadingMode::Dos;
+    dos.render(frame);
+    std::string dosNames = names(dos);
+    EXPECT_NE(dosNames.find("DOS occlusion"), std::string::npos);
+    EXPECT_EQ(dosNames.find("V_AO"), std::string::npos);
+    EXPECT_EQ(dosNames.find("G-buffer"), std::string::npos);
+    dos.setTubes(straightTube(glm::dvec3(0), glm::dvec3(0, 0, 1), 4.0, 1.0, glm::vec4(1)), TubeShading{});
+    dos.render(frame);
+    EXPECT_NE(names(dos).find("G-buffer"), std::string::npos);
 }
 
 }  // namespace
