@@ -9,11 +9,54 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 
 namespace curette::clip {
 
 namespace {
+
+// File access for external buffers and images. TinyGLTF's defaults expand shell words in URIs and trust
+// the stream size of whatever they open (a directory reports 2^63 bytes); ours read regular files only,
+// up to a size no clip mesh needs, and never write.
+constexpr std::uintmax_t kMaxExternalBufferBytes = std::uintmax_t(1) << 30;
+
+bool regularFileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(path, ec);
+}
+
+std::string pathAsIs(const std::string& path, void*) { return path; }
+
+bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void*) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        if (error) *error += "external buffer \"" + path + "\" is not a regular file\n";
+        return false;
+    }
+    std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec || size > kMaxExternalBufferBytes) {
+        if (error) *error += "external buffer \"" + path + "\" is larger than 1 GiB or unreadable\n";
+        return false;
+    }
+    std::ifstream in(path, std::ios::binary);
+    out->resize(static_cast<std::size_t>(size));
+    if (size > 0 && !in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size))) {
+        if (error) *error += "could not read external buffer \"" + path + "\"\n";
+        return false;
+    }
+    return true;
+}
+
+bool refuseWrite(std::string* error, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (error) *error += "curette never writes glTF files\n";
+    return false;
+}
+
+void useSafeFileAccess(tinygltf::TinyGLTF& loader) {
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{&regularFileExists, &pathAsIs, &readRegularFile, &refuseWrite, nullptr});
+}
 
 glm::dmat4 nodeTransform(const tinygltf::Node& node) {
     if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());  // column-major, as glTF
@@ -138,6 +181,7 @@ TriangleMesh fromModel(const tinygltf::Model& model, const std::string& source, 
 
 TriangleMesh loadGltfFromMemory(std::span<const std::uint8_t> bytes, const std::string& source, double unitsToMm) {
     tinygltf::TinyGLTF loader;
+    useSafeFileAccess(loader);
     tinygltf::Model model;
     std::string error, warning;
     bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
@@ -153,6 +197,7 @@ TriangleMesh loadGltf(const std::filesystem::path& path, double unitsToMm) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) throw InputError(source, "", "an existing glTF file (.gltf or .glb)", "no such file");
     tinygltf::TinyGLTF loader;
+    useSafeFileAccess(loader);
     tinygltf::Model model;
     std::string error, warning;
     bool glb = path.extension() == ".glb";
