@@ -1,0 +1,13 @@
+#pragma once
+// Which VID/PID pairs curette drives, and with which parser (hid.md sections 3-7).
+
+#include "input/device_state.h"
+
+#include <cstdint>
+#include <optional>
+
+namespace curette::input {
+
+std::optional<DeviceFamily> familyOf(std::uint16_t vendorId, std::uint16_t productId);
+
+}  // namespace curette::input

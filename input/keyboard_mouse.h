@@ -1,0 +1,47 @@
+#pragma once
+// Keyboard and mouse, the fallback with the same actions as the devices: the app fills a plain state from
+// GLFW each frame (and records it), and this turns it into actions for the selected mesh. Fixed keys:
+// W/S forward/back, A/D left/right, Q/E down/up (camera frame); Up/Down pitch, Left/Right yaw,
+// PageUp/PageDown roll; right-drag moves in the view plane; Tab next mesh; R reset; Insert add; Delete
+// remove; 1-5 solid/phong/lao/cao/dos; C cycle shading; F9 recording; P or F12 screenshot.
+
+#include "input/actions.h"
+
+#include <cstdint>
+
+namespace curette::input {
+
+enum class Key : int {
+    W, A, S, D, Q, E, Up, Down, Left, Right, PageUp, PageDown, Tab, R, Insert, Delete, Digit1, Digit2, Digit3, Digit4,
+    Digit5, C, F9, P, F12, Count
+};
+
+struct KeyboardMouseState {
+    std::uint32_t keys = 0;          // bit per Key
+    glm::dvec2 rightDragPixels{0.0}; // mouse motion this frame while the right button is held
+    bool down(Key k) const { return (keys >> static_cast<int>(k)) & 1u; }
+    bool operator==(const KeyboardMouseState&) const = default;
+};
+
+struct KeyboardMapperState {
+    std::uint32_t previousKeys = 0;
+    int selectedMesh = 0;
+    bool operator==(const KeyboardMapperState&) const = default;
+};
+
+class KeyboardMapper {
+public:
+    KeyboardMapper(double translationMmPerSecond = 40.0, double rotationDegPerSecond = 60.0)
+        : translationSpeed_(translationMmPerSecond), rotationSpeed_(rotationDegPerSecond) {}
+    std::vector<Action> update(const KeyboardMouseState& state, double dt, int meshCount);
+    int selectedMesh() const { return selected_; }
+    KeyboardMapperState state() const { return {previous_, selected_}; }
+    void restore(const KeyboardMapperState& state) { previous_ = state.previousKeys, selected_ = state.selectedMesh; }
+
+private:
+    double translationSpeed_, rotationSpeed_;
+    std::uint32_t previous_ = 0;
+    int selected_ = 0;
+};
+
+}  // namespace curette::input

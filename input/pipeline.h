@@ -1,0 +1,43 @@
+#pragma once
+// Raw reports in, actions out: the parse-and-map step shared by the live viewer (reports from hidapi) and by
+// replays re-deriving poses from recorded reports, so both compute exactly the same thing. Devices come and go
+// by id; each report is parsed with its device's family parser into that device's state, then the mapping and
+// the keyboard produce the frame's actions.
+
+#include "input/devices/parsers.h"
+#include "input/hid/device_manager.h"
+#include "input/keyboard_mouse.h"
+#include "input/mapping.h"
+
+#include <map>
+
+namespace curette::input {
+
+// Everything an InputPipeline carries from frame to frame; a session started mid-run records it in its header
+// so that re-deriving poses from its reports starts where the live pipeline was.
+struct InputPipelineState {
+    std::map<int, DeviceSnapshot> devices;
+    MapperState mapper;
+    KeyboardMapperState keyboard;
+};
+
+class InputPipeline {
+public:
+    InputPipeline(MappingConfig mapping, double keyboardMmPerSecond, double keyboardDegPerSecond);
+    void addDevice(int id, DeviceFamily family);
+    void removeDevice(int id);
+    // One frame: reports in arrival order (unknown device ids are ignored), then mapping and keyboard.
+    std::vector<Action> step(const std::vector<RawReport>& reports, const KeyboardMouseState& keys, double dt, int meshCount);
+    const Mapper& mapper() const { return mapper_; }
+    int keyboardSelection() const { return keyboard_.selectedMesh(); }
+    const std::map<int, DeviceSnapshot>& devices() const { return devices_; }
+    InputPipelineState state() const { return {devices_, mapper_.state(), keyboard_.state()}; }
+    void restore(const InputPipelineState& state);
+
+private:
+    Mapper mapper_;
+    KeyboardMapper keyboard_;
+    std::map<int, DeviceSnapshot> devices_;  // ascending id, as the mapper expects
+};
+
+}  // namespace curette::input

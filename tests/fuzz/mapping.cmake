@@ -1,0 +1,1 @@
+curette_fuzzer(mapping ${R}/input/mapping.cpp ${R}/input/device_state.cpp)
