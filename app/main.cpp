@@ -40,6 +40,8 @@ int main(int argc, char** argv) {
         if (command == "render") return curette::commands::render(args);
         if (command == "view") return curette::commands::view(args);
         if (command == "bench") return curette::commands::bench(args);
+        if (command == "record") return curette::commands::record(args);
+        if (command == "replay") return curette::commands::replay(args);
         std::fprintf(stderr, "curette: unknown command \"%s\"\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const curette::InputError& e) {

@@ -6,6 +6,16 @@
 
 namespace curette {
 
+namespace {
+
+// "camera" + "target" -> "camera.target"; a root path ending in ':' ("line 3:") reads as a prefix.
+std::string joinKey(const std::string& path, const std::string& key) {
+    if (path.empty()) return key;
+    return path.back() == ':' ? path + " " + key : path + "." + key;
+}
+
+}  // namespace
+
 nlohmann::json parseJson(std::string_view text, const std::string& file) {
     try {
         return nlohmann::json::parse(text.begin(), text.end());
@@ -53,9 +63,9 @@ JsonReader JsonReader::at(const std::string& key) const {
     if (!value_->is_object()) fail("an object");
     auto it = value_->find(key);
     if (it == value_->end())
-        throw InputError(file_, path_.empty() ? key : path_ + "." + key, "a value (this key is required)", "nothing");
+        throw InputError(file_, joinKey(path_, key), "a value (this key is required)", "nothing");
     read_->insert(key);
-    return child(*it, path_.empty() ? key : path_ + "." + key);
+    return child(*it, joinKey(path_, key));
 }
 
 std::optional<JsonReader> JsonReader::find(const std::string& key) const {
@@ -63,7 +73,7 @@ std::optional<JsonReader> JsonReader::find(const std::string& key) const {
     read_->insert(key);
     auto it = value_->find(key);
     if (it == value_->end()) return std::nullopt;
-    return child(*it, path_.empty() ? key : path_ + "." + key);
+    return child(*it, joinKey(path_, key));
 }
 
 bool JsonReader::has(const std::string& key) const { return value_->is_object() && value_->contains(key); }
@@ -74,7 +84,7 @@ void JsonReader::finish() const {
         if (!read_->count(it.key())) {
             std::string known;
             for (const std::string& k : *read_) known += (known.empty() ? "" : ", ") + k;
-            throw InputError(file_, path_.empty() ? it.key() : path_ + "." + it.key(),
+            throw InputError(file_, joinKey(path_, it.key()),
                              "one of the known keys (" + known + ")", "an unknown key");
         }
 }

@@ -259,4 +259,11 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
     return list;
 }
 
+double Renderer::ambientOcclusionMs(const std::vector<std::pair<std::string, double>>& timings) {
+    double ms = 0;
+    for (const auto& [pass, passMs] : timings)
+        if (pass.rfind("I ", 0) == 0 || pass.rfind("IV ", 0) == 0 || pass.rfind("V ", 0) == 0) ms += passMs;
+    return ms;
+}
+
 }  // namespace curette

@@ -67,6 +67,8 @@ public:
 
     // GPU time per pass of the frames rendered since the last call (milliseconds).
     std::vector<std::pair<std::string, double>> collectTimings() { return timers_.collectMilliseconds(); }
+    // The ambient-occlusion share of a frame's timings (steps I, IV and V).
+    static double ambientOcclusionMs(const std::vector<std::pair<std::string, double>>& timings);
     std::vector<GpuAllocation> gpuAllocations() const;
 
 private:

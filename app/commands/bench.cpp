@@ -2,6 +2,7 @@
 // results; benches report numbers, as a table and as JSON.
 #include "app/bench/bench_cao.h"
 #include "app/bench/bench_dos.h"
+#include "app/bench/bench_input.h"
 #include "app/bench/bench_raycast.h"
 #include "app/command_line.h"
 #include "app/commands/commands.h"
@@ -11,7 +12,7 @@ namespace curette::commands {
 
 int bench(const Arguments& args) {
     if (args.empty())
-        throw InputError("<command line>", "bench", "what to measure: raycast, cao or dos (curette bench raycast --scene S)",
+        throw InputError("<command line>", "bench", "what to measure: raycast, cao, dos or input (curette bench raycast --scene S)",
                          "nothing");
     std::string what = args[0];
     Arguments rest(args.begin() + 1, args.end());
@@ -43,7 +44,13 @@ int bench(const Arguments& args) {
                               {"json", true, "JSON output file (default bench-dos.json)"}});
         return bench::benchDos(cl);
     }
-    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos", "\"" + what + "\"");
+    if (what == "input") {
+        CommandLine cl(rest, {{"reports", true, "random reports per device family (default 20000)"},
+                              {"frames", true, "frames of the latency measurement (default 20000)"},
+                              {"json", true, "JSON output file (default bench-input.json)"}});
+        return bench::benchInput(cl);
+    }
+    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos, input", "\"" + what + "\"");
 }
 
 }  // namespace curette::commands

@@ -12,6 +12,8 @@ using Arguments = std::vector<std::string>;
 int info(const Arguments& args);     // curette info FILE
 int render(const Arguments& args);   // curette render --scene S --out F.png
 int view(const Arguments& args);     // curette view --scene S
-int bench(const Arguments& args);    // curette bench raycast|... --scene S
+int bench(const Arguments& args);    // curette bench raycast|cao|dos|input --scene S
+int record(const Arguments& args);   // curette record --scene S --out F.jsonl --synthetic FAMILIES
+int replay(const Arguments& args);   // curette replay F.jsonl [--check] [--from-reports]
 
 }  // namespace curette::commands

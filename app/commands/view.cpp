@@ -1,12 +1,16 @@
-// curette view --scene S: the interactive viewer. Left drag orbits, the wheel zooms; the selected clip mesh
-// moves with W/A/S/D/Q/E (camera frame), rotates with the arrow keys and PgUp/PgDn, and follows a right
-// drag in the view plane; Tab selects the next mesh; 1-5 pick the shading; P saves a screenshot. The frame
-// is re-rendered only when something it depends on changed, at reduced resolution while dragging
-// (llvmpipe renders on the CPU).
+// curette view --scene S: the interactive viewer. Devices (hidapi: gamepads, SpaceMice) and the keyboard and
+// mouse drive the clip meshes through the mapping (input/mapping.h); left drag orbits the camera and the wheel
+// zooms. F9 (or a mapped button) starts and stops recording a session; P or F12 saves a screenshot. The overlay
+// shows which device holds which mesh, the shading, frame time and AO time. The frame is re-rendered only when
+// something it depends on changed, at reduced resolution while the camera moves (llvmpipe renders on the CPU).
 #include "app/command_line.h"
 #include "app/commands/commands.h"
+#include "app/interaction.h"
+#include "app/live_input.h"
 #include "app/loaded_scene.h"
 #include "base/error.h"
+#include "base/log.h"
+#include "input/hid/fake_backend.h"
 #include "render/gl/program.h"
 #include "render/renderer.h"
 
@@ -16,35 +20,63 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
-#include <glm/gtc/quaternion.hpp>
-
 #include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <deque>
 
 namespace curette::commands {
 
 namespace {
 
-struct ViewerState {
-    FrameDescription frame;
-    bool orbiting = false, dragging = false;
-    glm::dvec2 lastCursor{0};
-    double renderScale = 1.0;   // resolution while idle
-    double dragScale = 0.5;     // resolution while the mouse drags
-    bool dirty = true;
-    int screenshots = 0;
-    int selectedMesh = 0;
-    double translationMmPerSecond = 40.0, rotationDegPerSecond = 60.0;
-};
+// GLFW key for each input::Key (keyboard_mouse.h).
+constexpr int kGlfwKeys[] = {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E, GLFW_KEY_UP, GLFW_KEY_DOWN,
+                             GLFW_KEY_LEFT, GLFW_KEY_RIGHT, GLFW_KEY_PAGE_UP, GLFW_KEY_PAGE_DOWN, GLFW_KEY_TAB, GLFW_KEY_R,
+                             GLFW_KEY_INSERT, GLFW_KEY_DELETE, GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5,
+                             GLFW_KEY_C, GLFW_KEY_F9, GLFW_KEY_P, GLFW_KEY_F12};
+static_assert(std::size(kGlfwKeys) == static_cast<std::size_t>(input::Key::Count));
 
-const ShadingMode kModes[] = {ShadingMode::Solid, ShadingMode::Phong, ShadingMode::Lao, ShadingMode::Cao, ShadingMode::Dos};
+// Presses latched between frames: a key pressed and released while a slow frame renders still counts.
+std::uint32_t latchedKeys = 0;
+void latchKey(GLFWwindow*, int key, int, int action, int) {
+    if (action != GLFW_PRESS) return;
+    for (int k = 0; k < static_cast<int>(input::Key::Count); ++k)
+        if (kGlfwKeys[k] == key) latchedKeys |= 1u << k;
+}
+
+std::unique_ptr<input::HidBackend> openHid(bool wanted) {
+    if (wanted) {
+        try {
+            return input::createHidapiBackend();
+        } catch (const SystemError& e) {
+            log::warn(std::string("no HID devices: ") + e.what() + "; keyboard and mouse only");
+        }
+    }
+    return std::make_unique<input::FakeHidBackend>(std::make_shared<input::FakeHidBackend::Ports>());  // no devices
+}
+
+// Ctrl-C or a terminal closing ends the loop like closing the window, so a recording is finished and kept.
+volatile std::sig_atomic_t quitRequested = 0;
+void requestQuit(int) { quitRequested = 1; }
+
+std::string sessionFileName() {
+    std::string stamp = currentTimeIso8601();
+    for (char& c : stamp)
+        if (c == ':') c = '-';
+    return "curette-session-" + stamp + ".jsonl";
+}
 
 }  // namespace
 
 int view(const Arguments& args) {
-    CommandLine cl(args, {{"scene", true, "scene file (JSON)"}, {"size", true, "window size WxH (default 1024x768)"}});
+    CommandLine cl(args, {{"scene", true, "scene file (JSON)"},
+                          {"size", true, "window size WxH (default 1024x768)"},
+                          {"mapping", true, "device mapping JSON (default: the shipped assets/input/default_mapping.json)"},
+                          {"record", true, "record a session to this file from the start (F9 toggles recording too)"},
+                          {"no-devices", false, "keyboard and mouse only (do not open HID devices)"}});
     glm::ivec2 windowSize = CommandLine::parseSize("size", cl.valueOr("size", "1024x768"));
     std::string scenePath = cl.required("scene");
+    input::MappingConfig mapping = cl.value("mapping") ? input::loadMapping(*cl.value("mapping")) : input::defaultMapping();
     LoadedScene loaded = loadSceneWithVolume(scenePath);
 
     auto window = gl::createWindowContext("curette - " + scenePath, windowSize);
@@ -52,119 +84,152 @@ int view(const Arguments& args) {
     configureRenderer(loaded, renderer);
     gl::Program present = gl::Program::graphics("present.vert", "present.frag");
     gl::VertexArray emptyVertexArray = gl::createVertexArray();
-    clip::ClipMeshSet& meshes = renderer.clipMeshes();
 
-    ViewerState state;
-    state.frame = initialFrame(loaded.scene, renderer.geometry());
+    FrameDescription frame = initialFrame(loaded.scene, renderer.geometry());
+    InteractionState state = InteractionState::fromScene(loaded.scene);
+    LiveInput live(openHid(!cl.flag("no-devices")), mapping, 40.0, 60.0);
+    std::unique_ptr<LiveRecording> recording;
+    auto startRecording = [&](const std::filesystem::path& path, double now) {
+        recording = std::make_unique<LiveRecording>(path, std::filesystem::absolute(scenePath).string(), state, live, now);
+        std::printf("recording %s\n", path.c_str());
+    };
+    auto stopRecording = [&] {
+        recording->finish();
+        std::printf("wrote %s (%zu frames)\n", recording->path().c_str(), recording->frames());
+        recording.reset();
+    };
+    if (auto path = cl.value("record")) startRecording(*path, glfwGetTime());
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;
+    glfwSetKeyCallback(window->window(), latchKey);   // ImGui chains to it
     ImGui_ImplGlfw_InitForOpenGL(window->window(), true);
     ImGui_ImplOpenGL3_Init("#version 450");
 
-    double lastFrameMs = 0, lastAmbientMs = 0;
-    auto previous = std::chrono::steady_clock::now();
-    while (!window->shouldClose()) {
+    double renderScale = 1.0, movingScale = 0.5;  // resolution when idle, while the camera moves
+    bool dirty = true, orbiting = false, dragging = false, wasMoving = false;
+    glm::dvec2 lastCursor{0.0};
+    int screenshots = 0;
+    double lastFrameMs = 0, lastAmbientMs = 0, previous = glfwGetTime();
+    std::deque<std::string> messages;
+    std::signal(SIGINT, requestQuit);
+    std::signal(SIGTERM, requestQuit);
+    while (!window->shouldClose() && !quitRequested) {
         glfwPollEvents();
-        auto now = std::chrono::steady_clock::now();
-        double dt = std::min(0.1, std::chrono::duration<double>(now - previous).count());
+        double now = glfwGetTime();
+        double dt = std::min(0.1, now - previous);
         previous = now;
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
         ImGuiIO& io = ImGui::GetIO();
         GLFWwindow* w = window->window();
+        glm::ivec2 framebuffer = window->framebufferSize();
+        glm::ivec2 windowPoints;
+        glfwGetWindowSize(w, &windowPoints.x, &windowPoints.y);
+        double pixelsPerPoint = windowPoints.y > 0 ? static_cast<double>(framebuffer.y) / windowPoints.y : 1.0;
 
-        // Mouse: left drag orbits, right drag moves the selected mesh in the view plane, the wheel zooms.
+        // The camera: left drag orbits, the wheel zooms. It changes before input is applied, and the recorded
+        // frame holds the camera the input was applied with.
         glm::dvec2 cursor;
         glfwGetCursorPos(w, &cursor.x, &cursor.y);
-        glm::dvec2 delta = cursor - state.lastCursor;
-        state.lastCursor = cursor;
+        glm::dvec2 delta = (cursor - lastCursor) * pixelsPerPoint;
+        lastCursor = cursor;
         bool left = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
         bool right = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-        if (left && state.orbiting && delta != glm::dvec2(0)) {
-            state.frame.camera.orbit(-0.4 * delta.x, 0.4 * delta.y);
-            state.dirty = true;
-        }
-        bool hasMesh = meshes.count() > 0;
-        state.selectedMesh = hasMesh ? state.selectedMesh % meshes.count() : 0;
-        clip::RigidPose pose = hasMesh ? meshes.pose(state.selectedMesh) : clip::RigidPose{};
-        const OrbitCamera& camera = state.frame.camera;
-        if (right && state.dragging && hasMesh && delta != glm::dvec2(0)) {
-            double mmPerPixel = 2.0 * camera.distanceMm * std::tan(glm::radians(camera.fovYDeg) / 2.0) / std::max(1, window->framebufferSize().y);
-            pose.position += mmPerPixel * (delta.x * camera.right() - delta.y * camera.up());
-        }
-        if ((state.orbiting || state.dragging) && !left && !right) state.dirty = true;  // back to full resolution
-        state.orbiting = left;
-        state.dragging = right;
-        if (!io.WantCaptureMouse && io.MouseWheel != 0) {
-            state.frame.camera.zoom(std::pow(0.9, io.MouseWheel));
-            state.dirty = true;
-        }
+        OrbitCamera cameraBefore = frame.camera;
+        if (left && orbiting) frame.camera.orbit(-0.4 * delta.x / pixelsPerPoint, 0.4 * delta.y / pixelsPerPoint);
+        if (!io.WantCaptureMouse && io.MouseWheel != 0) frame.camera.zoom(std::pow(0.9, io.MouseWheel));
 
-        // Keys: the selected mesh moves in the camera frame at a set speed.
-        bool screenshot = false;
+        // Keyboard and mouse as the input pipeline sees them.
+        input::KeyboardMouseState keys;
         if (!io.WantCaptureKeyboard) {
-            auto held = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0 : 0.0; };
-            glm::dvec3 move = (held(GLFW_KEY_D) - held(GLFW_KEY_A)) * camera.right() + (held(GLFW_KEY_E) - held(GLFW_KEY_Q)) * camera.up() +
-                              (held(GLFW_KEY_W) - held(GLFW_KEY_S)) * camera.forward();
-            glm::dvec3 spin = (held(GLFW_KEY_UP) - held(GLFW_KEY_DOWN)) * camera.right() +
-                              (held(GLFW_KEY_RIGHT) - held(GLFW_KEY_LEFT)) * camera.up() +
-                              (held(GLFW_KEY_PAGE_UP) - held(GLFW_KEY_PAGE_DOWN)) * camera.forward();
-            if (hasMesh) {
-                pose.position += move * state.translationMmPerSecond * dt;
-                if (glm::length(spin) > 0)
-                    pose.orientation = glm::normalize(glm::angleAxis(glm::radians(state.rotationDegPerSecond * dt), glm::normalize(spin)) * pose.orientation);
-            }
-            if (ImGui::IsKeyPressed(GLFW_KEY_TAB) && hasMesh) state.selectedMesh = (state.selectedMesh + 1) % meshes.count();
-            for (int m = 0; m < 5; ++m)
-                if (ImGui::IsKeyPressed(GLFW_KEY_1 + m) && state.frame.shading != kModes[m]) state.frame.shading = kModes[m], state.dirty = true;
-            screenshot = ImGui::IsKeyPressed(GLFW_KEY_P);
+            keys.keys = latchedKeys;
+            for (int k = 0; k < static_cast<int>(input::Key::Count); ++k)
+                if (glfwGetKey(w, kGlfwKeys[k]) == GLFW_PRESS) keys.keys |= 1u << k;
         }
-        if (hasMesh && !(pose == meshes.pose(state.selectedMesh))) {
-            meshes.setPose(state.selectedMesh, pose);
-            state.dirty = true;
-        }
+        latchedKeys = 0;
+        if (right && dragging) keys.rightDragPixels = delta;
+        orbiting = left;
+        dragging = right;
 
-        // Overlay: frame time, AO time, the shading and the selected mesh.
+        // Devices and keys -> actions -> the scene.
+        std::vector<SessionMesh> posesBefore = state.sessionPoses();
+        ShadingMode shadingBefore = state.shading;
+        InputFrame input = live.step(now, keys, dt, static_cast<int>(state.meshes.size()));
+        state.addedMeshIds.clear();
+        state.removedMeshIds.clear();
+        state.apply(input.actions, frame.camera, framebuffer.y);
+        for (std::string& m : live.takeMessages()) {
+            messages.push_back(std::move(m));
+            if (messages.size() > 6) messages.pop_front();
+        }
+        std::vector<SessionMesh> posesAfter = state.sessionPoses();
+        bool posesChanged = posesAfter.size() != posesBefore.size();
+        for (std::size_t i = 0; !posesChanged && i < posesAfter.size(); ++i)
+            posesChanged = posesAfter[i].id != posesBefore[i].id || posesAfter[i].position != posesBefore[i].position ||
+                           posesAfter[i].orientation != posesBefore[i].orientation;
+        bool cameraMoving = !(frame.camera.target == cameraBefore.target && frame.camera.distanceMm == cameraBefore.distanceMm &&
+                              frame.camera.azimuthDeg == cameraBefore.azimuthDeg && frame.camera.elevationDeg == cameraBefore.elevationDeg);
+        if (posesChanged || cameraMoving || state.shading != shadingBefore || wasMoving != cameraMoving) dirty = true;
+        wasMoving = cameraMoving;
+        frame.shading = state.shading;
+
+        if (recording) {
+            if (state.toggleRecording) stopRecording();
+            else recording->addFrame(now, dt, framebuffer, frame.camera, state, keys, input);
+        } else if (state.toggleRecording) {
+            startRecording(sessionFileName(), now);
+        }
+        state.toggleRecording = false;
+
+        // Overlay: timings, shading, who holds which mesh, recording, device messages.
         ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
         ImGui::Begin("curette", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
-        ImGui::Text("frame %.1f ms (AO %.1f ms) | %s | %dx%d", lastFrameMs, lastAmbientMs, shadingModeName(state.frame.shading),
+        // Shading changes only through input (1-5, C, mapped buttons), so a session replays it from its reports.
+        ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-5, C) | %dx%d", lastFrameMs, lastAmbientMs, shadingModeName(frame.shading),
                     renderer.outputSize().x, renderer.outputSize().y);
-        int mode = 0;
-        for (int m = 0; m < 5; ++m)
-            if (kModes[m] == state.frame.shading) mode = m;
-        const char* names[] = {"solid", "phong", "lao", "cao", "dos"};
-        if (ImGui::Combo("shading (1-5)", &mode, names, 5)) state.frame.shading = kModes[mode], state.dirty = true;
-        if (hasMesh) {
-            ImGui::Text("mesh %d/%d \"%s\" at (%.0f, %.0f, %.0f) mm (Tab: next)", state.selectedMesh + 1, meshes.count(),
-                        meshes.name(state.selectedMesh).c_str(), pose.position.x, pose.position.y, pose.position.z);
+        auto meshLabel = [&](int index) {
+            return index >= 0 && index < static_cast<int>(state.meshes.size()) ? "mesh " + std::to_string(index) + " \"" + state.meshes[static_cast<std::size_t>(index)].name + "\""
+                                                                              : std::string("no mesh");
+        };
+        const input::Mapper& mapper = live.pipeline().mapper();
+        for (std::size_t b = 0; b < mapper.config().bindings.size(); ++b) {
+            const input::DeviceBinding& binding = mapper.config().bindings[b];
+            int device = mapper.boundDevice(static_cast<int>(b));
+            if (device < 0) continue;
+            std::string product;
+            for (const auto& d : live.devices().devices())
+                if (d->info.id == device) product = d->info.product;
+            ImGui::Text("%s #%d (device %d, %s) -> %s", binding.family.c_str(), binding.index, device, product.c_str(),
+                        meshLabel(mapper.heldMesh(static_cast<int>(b))).c_str());
         }
-        float scale = static_cast<float>(state.renderScale);
-        if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) state.renderScale = scale, state.dirty = true;
-        ImGui::TextUnformatted("left drag: orbit  wheel: zoom  right drag / WASDQE / arrows: move mesh  P: screenshot");
+        ImGui::Text("keyboard -> %s (Tab: next)", meshLabel(live.pipeline().keyboardSelection()).c_str());
+        if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %s: %zu frames (F9 stops)", recording->path().c_str(), recording->frames());
+        for (const std::string& m : messages) ImGui::TextWrapped("%s", m.c_str());
+        float scale = static_cast<float>(renderScale);
+        if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) renderScale = scale, dirty = true;
+        ImGui::TextUnformatted("left drag: orbit  wheel: zoom  WASDQE, arrows, PgUp/PgDn, right drag: move mesh\n"
+                               "Tab: next mesh  R: reset  Ins/Del: add/remove  F9: record  P: screenshot");
         ImGui::End();
         ImGui::Render();
 
-        glm::ivec2 framebuffer = window->framebufferSize();
         if (framebuffer.x > 0 && framebuffer.y > 0) {
-            bool interacting = state.orbiting || state.dragging;
-            double scaleNow = interacting ? std::min(state.dragScale, state.renderScale) : state.renderScale;
+            syncClipMeshes(state, renderer.clipMeshes());
+            double scaleNow = cameraMoving ? std::min(movingScale, renderScale) : renderScale;
             glm::ivec2 renderSize = glm::max(glm::ivec2(glm::dvec2(framebuffer) * scaleNow), glm::ivec2(1));
-            if (renderSize != state.frame.size) state.frame.size = renderSize, state.dirty = true;
-            if (state.dirty) {
+            if (renderSize != frame.size) frame.size = renderSize, dirty = true;
+            if (dirty) {
                 auto start = std::chrono::steady_clock::now();
-                renderer.render(state.frame);
+                renderer.render(frame);
                 glFinish();
                 lastFrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-                lastAmbientMs = 0;
-                for (const auto& [pass, ms] : renderer.collectTimings())
-                    if (pass.rfind("IV", 0) == 0 || pass.rfind("V ", 0) == 0 || pass.rfind("I ", 0) == 0) lastAmbientMs += ms;
-                state.dirty = false;
+                lastAmbientMs = Renderer::ambientOcclusionMs(renderer.collectTimings());
+                dirty = false;
             }
-            if (screenshot) {
-                std::string name = "curette-screenshot-" + std::to_string(++state.screenshots) + ".png";
+            if (state.screenshot) {
+                std::string name = "curette-screenshot-" + std::to_string(++screenshots) + ".png";
                 writePng(name, renderer.readImage(), glm::vec4(loaded.scene.background));
                 std::printf("saved %s\n", name.c_str());
             }
@@ -177,9 +242,14 @@ int view(const Arguments& args) {
             glBindVertexArray(emptyVertexArray.name());
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
+        state.screenshot = false;
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         window->swapBuffers();
+        // At most 120 frames a second when idle: devices are drained each frame, and nothing spins.
+        double spare = 1.0 / 120.0 - (glfwGetTime() - now);
+        if (spare > 0) glfwWaitEventsTimeout(spare);
     }
+    if (recording) stopRecording();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

@@ -1,0 +1,152 @@
+#include "app/interaction.h"
+
+#include "base/error.h"
+#include "base/json_reader.h"
+#include "clip/clip_mesh_set.h"
+#include "clip/mesh_description.h"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <cmath>
+
+namespace curette {
+
+const char* InteractionState::addedMeshDescription() { return R"({"shape": "sphere", "radius_mm": 15})"; }
+
+std::shared_ptr<const clip::TriangleMesh> meshFromDescription(const std::string& json, const std::string& source,
+                                                              const std::filesystem::path& baseDirectory) {
+    nlohmann::json parsed = parseJson(json, source);
+    return std::make_shared<const clip::TriangleMesh>(clip::meshFromJson(JsonReader(parsed, source), baseDirectory));
+}
+
+InteractionState InteractionState::fromScene(const Scene& scene) {
+    InteractionState s;
+    s.shading = scene.shading;
+    for (const SceneClipMesh& m : scene.clipMeshes) {
+        MeshState mesh;
+        mesh.id = s.nextMeshId++;
+        mesh.name = m.name;
+        mesh.geometry = m.geometry;
+        mesh.pose = mesh.initialPose = m.pose;
+        mesh.scale = m.scale;
+        s.meshes.push_back(mesh);
+    }
+    return s;
+}
+
+InteractionState InteractionState::fromSessionStart(const SessionHeader& header, const Scene& scene,
+                                                    const std::filesystem::path& sceneDirectory, const std::string& source) {
+    InteractionState s;
+    s.shading = header.shading;
+    s.nextMeshId = header.nextMeshId;
+    for (const SessionMeshStart& start : header.meshes) {
+        MeshState m;
+        m.id = start.id;
+        m.name = start.name;
+        m.description = start.description;
+        if (!start.description.empty()) {
+            m.geometry = meshFromDescription(start.description, source + " line 1: meshes[id " + std::to_string(start.id) + "].mesh", sceneDirectory);
+        } else if (start.id < static_cast<int>(scene.clipMeshes.size())) {
+            m.geometry = scene.clipMeshes[static_cast<std::size_t>(start.id)].geometry;
+        } else {
+            throw InputError(source, "line 1: meshes[id " + std::to_string(start.id) + "]",
+                             "a scene mesh index (the scene has " + std::to_string(scene.clipMeshes.size()) + ") or a \"mesh\" description");
+        }
+        m.pose = start.pose;
+        m.initialPose = start.initialPose;
+        m.scale = start.scale;
+        s.meshes.push_back(std::move(m));
+    }
+    return s;
+}
+
+std::vector<SessionMeshStart> InteractionState::sessionMeshes() const {
+    std::vector<SessionMeshStart> out;
+    for (const MeshState& m : meshes) out.push_back({m.id, m.name, m.description, m.pose, m.initialPose, m.scale});
+    return out;
+}
+
+std::vector<SessionMesh> InteractionState::sessionPoses() const {
+    std::vector<SessionMesh> out;
+    for (const MeshState& m : meshes) out.push_back({m.id, m.pose.position, m.pose.orientation, m.scale});
+    return out;
+}
+
+int InteractionState::indexOf(int meshId) const {
+    for (std::size_t i = 0; i < meshes.size(); ++i)
+        if (meshes[i].id == meshId) return static_cast<int>(i);
+    return -1;
+}
+
+void InteractionState::apply(const std::vector<input::Action>& actions, const OrbitCamera& camera, int viewportHeight) {
+    const glm::dvec3 right = camera.right(), up = camera.up(), forward = camera.forward();
+    auto toWorld = [&](glm::dvec3 v, input::MotionFrame frame) {
+        return frame == input::MotionFrame::World ? v : v.x * right + v.y * up + v.z * forward;
+    };
+    // Actions name meshes by index in the current list (what the mapper sees as "mesh count").
+    auto mesh = [&](int index) -> MeshState* {
+        return index >= 0 && index < static_cast<int>(meshes.size()) ? &meshes[static_cast<std::size_t>(index)] : nullptr;
+    };
+    static const ShadingMode cycle[] = {ShadingMode::Solid, ShadingMode::Phong, ShadingMode::Lao, ShadingMode::Cao, ShadingMode::Dos};
+    for (const input::Action& action : actions) {
+        if (auto* a = std::get_if<input::MoveMesh>(&action)) {
+            if (MeshState* m = mesh(a->mesh)) {
+                m->pose.position += toWorld(a->translationMm, a->frame);
+                glm::dvec3 axis = toWorld(a->rotationRad, a->frame);
+                double angle = glm::length(axis);
+                if (angle > 0) m->pose.orientation = glm::normalize(glm::angleAxis(angle, axis / angle) * m->pose.orientation);
+            }
+        } else if (auto* d = std::get_if<input::DragMesh>(&action)) {
+            if (MeshState* m = mesh(d->mesh)) {
+                // The view plane through the mesh: a pixel there spans 2 depth tan(fov/2) / height millimetres.
+                double depth = std::max(1.0, glm::dot(m->pose.position - camera.position(), forward));
+                double mmPerPixel = 2.0 * depth * std::tan(glm::radians(camera.fovYDeg) / 2.0) / std::max(viewportHeight, 1);
+                m->pose.position += mmPerPixel * (d->pixels.x * right - d->pixels.y * up);
+            }
+        } else if (auto* s = std::get_if<input::SetShading>(&action)) {
+            if (auto mode = parseShadingMode(s->mode)) shading = *mode;
+        } else if (std::holds_alternative<input::CycleShading>(action)) {
+            int i = 0;
+            for (int k = 0; k < 5; ++k)
+                if (cycle[k] == shading) i = k;
+            shading = cycle[(i + 1) % 5];
+        } else if (auto* r = std::get_if<input::ResetPose>(&action)) {
+            if (MeshState* m = mesh(r->mesh)) m->pose = m->initialPose;
+        } else if (std::holds_alternative<input::AddMesh>(action)) {
+            if (static_cast<int>(meshes.size()) >= clip::ClipMeshSet::maxMeshes) continue;  // at the limit: nothing
+            MeshState m;
+            m.id = nextMeshId++;
+            m.name = "added " + std::to_string(m.id);
+            m.description = addedMeshDescription();
+            m.geometry = meshFromDescription(m.description, "<added mesh>", ".");
+            m.pose.position = m.initialPose.position = camera.target;
+            meshes.push_back(m);
+            addedMeshIds.push_back(m.id);
+        } else if (auto* rm = std::get_if<input::RemoveMesh>(&action)) {
+            if (MeshState* m = mesh(rm->mesh)) {
+                removedMeshIds.push_back(m->id);
+                meshes.erase(meshes.begin() + rm->mesh);
+            }
+        } else if (std::holds_alternative<input::ToggleRecording>(action)) {
+            toggleRecording = true;
+        } else if (std::holds_alternative<input::Screenshot>(action)) {
+            screenshot = true;
+        }
+    }
+}
+
+void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set) {
+    bool same = set.count() == static_cast<int>(state.meshes.size());
+    for (std::size_t i = 0; same && i < state.meshes.size(); ++i) same = set.name(static_cast<int>(i)) == state.meshes[i].name;
+    if (!same) {
+        set.clear();
+        for (const MeshState& m : state.meshes) set.add(m.geometry, m.scale, m.pose, m.name);
+        return;
+    }
+    for (std::size_t i = 0; i < state.meshes.size(); ++i) {
+        set.setPose(static_cast<int>(i), state.meshes[i].pose);
+        set.setScale(static_cast<int>(i), state.meshes[i].scale);
+    }
+}
+
+}  // namespace curette

@@ -1,0 +1,57 @@
+#pragma once
+// Applying input actions to the scene: the one place where device or keyboard motion becomes clip-mesh
+// poses. The live viewer, `curette record` and `curette replay --from-reports` all go through
+// InteractionState::apply, so poses re-derived from recorded reports equal the recorded ones bit for bit.
+
+#include "app/scene.h"
+#include "app/session.h"
+#include "input/actions.h"
+#include "clip/clip_mesh_set.h"
+#include "render/camera.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace curette {
+
+struct MeshState {
+    int id = 0;                  // stable for the session (meshes can be added and removed); scene meshes: scene index
+    std::string name;
+    std::string description;     // JSON of the mesh (as in a scene) for added meshes, so a replay can rebuild it;
+                                 // empty for scene meshes
+    std::shared_ptr<const clip::TriangleMesh> geometry;
+    clip::RigidPose pose, initialPose;
+    glm::dvec3 scale{1.0};
+};
+
+struct InteractionState {
+    std::vector<MeshState> meshes;
+    ShadingMode shading = ShadingMode::Phong;
+    int nextMeshId = 0;
+    // One-shot requests the frame loop handles (and clears).
+    bool toggleRecording = false, screenshot = false;
+    std::vector<int> addedMeshIds, removedMeshIds;   // this frame's, for the session's mesh events
+
+    static InteractionState fromScene(const Scene& scene);
+    // The state a session starts from (its header), with geometry from the scene or the meshes' descriptions.
+    static InteractionState fromSessionStart(const SessionHeader& header, const Scene& scene,
+                                             const std::filesystem::path& sceneDirectory, const std::string& source);
+    std::vector<SessionMeshStart> sessionMeshes() const;   // for a session header
+    std::vector<SessionMesh> sessionPoses() const;         // for a session frame
+    int indexOf(int meshId) const;  // -1 when absent
+    // Applies `actions` for a frame seen through `camera` at `viewportHeight` pixels (for drags).
+    void apply(const std::vector<input::Action>& actions, const OrbitCamera& camera, int viewportHeight);
+    // The mesh AddMesh creates: a 15 mm sphere at the camera's target.
+    static const char* addedMeshDescription();
+};
+
+// A clip mesh's geometry from its scene JSON (clip/mesh_description.h); `source` names it in errors.
+std::shared_ptr<const clip::TriangleMesh> meshFromDescription(const std::string& json, const std::string& source,
+                                                              const std::filesystem::path& baseDirectory);
+
+// Makes the renderer's clip meshes match `state` (index i = state.meshes[i]): poses and scales are set (cheap:
+// a rigid motion only changes the camera matrix); meshes are re-added only when the list itself changed.
+void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set);
+
+}  // namespace curette

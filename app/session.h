@@ -1,0 +1,124 @@
+#pragma once
+// Sessions: JSON Lines, written atomically. Line 1 is the header (format, version, scene, devices, mapping,
+// and the state at the start: shading, meshes, input pipeline, so a recording may start mid-run); every further line is one frame: time, dt, image size, camera, shading, every clip
+// mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, and the raw HID
+// reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
+// back to the same doubles.
+
+#include "clip/rigid_pose.h"
+#include "input/pipeline.h"
+#include "render/camera.h"
+#include "render/shading_mode.h"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace curette {
+
+inline constexpr int kSessionVersion = 1;
+
+struct SessionDevice {
+    int id = 0;
+    std::string family, path, product, bus;
+    int vendorId = 0, productId = 0;
+};
+
+struct SessionReport {
+    int device = 0;
+    double time = 0;
+    std::vector<std::uint8_t> bytes;
+};
+
+struct SessionMesh {
+    int id = 0;
+    glm::dvec3 position{0.0};
+    glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
+    glm::dvec3 scale{1.0};
+};
+
+struct SessionAddedMesh {
+    int id = 0;
+    std::string name;
+    std::string description;  // the mesh as a scene describes it (JSON)
+};
+
+struct SessionFrame {
+    std::size_t index = 0;
+    double time = 0, dt = 0;
+    glm::ivec2 size{0};
+    OrbitCamera camera;
+    ShadingMode shading = ShadingMode::Phong;
+    std::vector<SessionMesh> meshes;
+    std::uint32_t keys = 0;
+    glm::dvec2 drag{0.0};
+    std::vector<SessionDevice> devicesAdded;
+    std::vector<int> devicesRemoved;
+    std::vector<SessionAddedMesh> meshesAdded;
+    std::vector<int> meshesRemoved;
+    std::vector<SessionReport> reports;
+};
+
+// A clip mesh present when recording started. Scene meshes have their scene index as id and no description;
+// meshes added during the run carry their description (a scene's mesh JSON) so a replay can rebuild them.
+struct SessionMeshStart {
+    int id = 0;
+    std::string name;
+    std::string description;
+    clip::RigidPose pose, initialPose;   // initialPose: where reset_pose puts it
+    glm::dvec3 scale{1.0};
+};
+
+struct SessionHeader {
+    int version = kSessionVersion;
+    std::string scene;            // as given when recording; relative paths are relative to the session file
+    std::string created;          // ISO 8601 UTC
+    std::vector<SessionDevice> devices;
+    std::string mappingJson;      // the mapping in effect (input/mapping.h format), validated on reading
+    ShadingMode shading = ShadingMode::Phong;     // at the start
+    std::vector<SessionMeshStart> meshes;         // at the start
+    int nextMeshId = 0;                           // the id the next added mesh takes
+    input::InputPipelineState inputState;         // at the start: device states, held meshes, previous buttons
+    double keyboardMmPerSecond = 40.0, keyboardDegPerSecond = 60.0;
+};
+
+struct Session {
+    std::filesystem::path file;
+    SessionHeader header;
+    std::vector<SessionFrame> frames;
+    std::string warning;          // set when lenient reading dropped a bad tail
+};
+
+std::string sessionHeaderLine(const SessionHeader& header);
+std::string sessionFrameLine(const SessionFrame& frame);
+
+// Strict: any bad line is an InputError naming "line N" and the key. Lenient: a bad line ends the session
+// there (the valid prefix is kept, `warning` says why); a bad header is always an error.
+Session readSession(const std::filesystem::path& path, bool lenient);
+Session parseSession(std::string_view text, const std::filesystem::path& path, bool lenient);
+
+// Keeps the frames in memory and writes the whole session atomically at every checkpoint (each
+// `checkpointSeconds` of session time) and at finish(): a crash loses at most the last interval, and the file
+// on disk is always a complete session.
+class SessionRecorder {
+public:
+    SessionRecorder(std::filesystem::path path, SessionHeader header, double checkpointSeconds = 5.0);
+    ~SessionRecorder();
+    void add(const SessionFrame& frame);
+    void finish();
+    std::size_t frames() const { return lines_.size(); }
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    void write();
+    std::filesystem::path path_;
+    std::string header_;
+    std::vector<std::string> lines_;
+    double checkpointSeconds_, lastCheckpoint_ = 0;
+    bool finished_ = false;
+};
+
+}  // namespace curette

@@ -1,0 +1,133 @@
+// Actions applied to the scene (app/interaction.h), and a recording started mid-run from live input: the
+// header carries the state at its start, so poses re-derived from its reports match from the first frame.
+#include "app/interaction.h"
+#include "app/live_input.h"
+#include "input/devices/encoders.h"
+#include "input/hid/fake_backend.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sys/wait.h>
+
+namespace curette {
+namespace {
+
+InteractionState twoSpheres() {
+    InteractionState s;
+    for (int i = 0; i < 2; ++i) {
+        MeshState m;
+        m.id = s.nextMeshId++;
+        m.name = "sphere " + std::to_string(i);
+        m.geometry = meshFromDescription(R"({"shape": "sphere", "radius_mm": 10})", "test", ".");
+        m.pose.position = m.initialPose.position = {10.0 * i, 0, 0};
+        s.meshes.push_back(m);
+    }
+    return s;
+}
+
+TEST(Interaction, CameraFrameMotionDragsResetAddRemoveAndShading) {
+    InteractionState s = twoSpheres();
+    OrbitCamera camera;
+    camera.azimuthDeg = 90;  // looking along another axis: camera right is not world x
+    s.apply({input::MoveMesh{1, input::MotionFrame::Camera, {5, 0, 0}, {0, 0, 0}}}, camera, 100);
+    glm::dvec3 moved = s.meshes[1].pose.position - s.meshes[1].initialPose.position;
+    EXPECT_NEAR(glm::length(moved - 5.0 * camera.right()), 0.0, 1e-12);
+    s.apply({input::MoveMesh{0, input::MotionFrame::World, {0, 0, 2}, {0, 0, 0.5}}}, camera, 100);
+    EXPECT_EQ(s.meshes[0].pose.position, glm::dvec3(0, 0, 2));
+    EXPECT_NEAR(glm::angle(s.meshes[0].pose.orientation), 0.5, 1e-12);
+    EXPECT_NEAR(std::abs(glm::axis(s.meshes[0].pose.orientation).z), 1.0, 1e-12);
+
+    // A drag of the full viewport height spans the view's height at the mesh's depth.
+    InteractionState d = twoSpheres();
+    camera = OrbitCamera{};
+    d.apply({input::DragMesh{0, {0, -100}}}, camera, 100);
+    double depth = glm::dot(d.meshes[0].initialPose.position - camera.position(), camera.forward());
+    EXPECT_NEAR(glm::dot(d.meshes[0].pose.position - d.meshes[0].initialPose.position, camera.up()),
+                2 * depth * std::tan(glm::radians(camera.fovYDeg) / 2), 1e-9);
+
+    s.apply({input::ResetPose{1}, input::CycleShading{}}, camera, 100);
+    EXPECT_EQ(s.meshes[1].pose, s.meshes[1].initialPose);
+    EXPECT_EQ(s.shading, ShadingMode::Lao) << "phong -> lao";
+    s.apply({input::SetShading{"dos"}, input::SetShading{"toon"}}, camera, 100);
+    EXPECT_EQ(s.shading, ShadingMode::Dos) << "an unknown mode changes nothing";
+
+    s.apply({input::AddMesh{}}, camera, 100);
+    ASSERT_EQ(s.meshes.size(), 3u);
+    EXPECT_EQ(s.meshes[2].id, 2);
+    EXPECT_EQ(s.meshes[2].pose.position, camera.target);
+    EXPECT_EQ(s.addedMeshIds, std::vector<int>{2});
+    s.apply({input::RemoveMesh{0}, input::MoveMesh{7, input::MotionFrame::World, {1, 1, 1}, {}}}, camera, 100);
+    ASSERT_EQ(s.meshes.size(), 2u);
+    EXPECT_EQ(s.meshes[0].id, 1) << "ids stay with their meshes";
+    EXPECT_EQ(s.removedMeshIds, std::vector<int>{0});
+    for (int i = 0; i < 40; ++i) s.apply({input::AddMesh{}}, camera, 100);
+    EXPECT_EQ(static_cast<int>(s.meshes.size()), clip::ClipMeshSet::maxMeshes) << "adding stops at the limit";
+}
+
+struct Invocation {
+    int exitCode;
+    std::string output;
+};
+
+Invocation run(const std::string& arguments) {
+    FILE* pipe = popen((std::string(CURETTE_BINARY) + " " + arguments + " 2>&1").c_str(), "r");
+    std::string output;
+    char buffer[4096];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+    int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+TEST(Interaction, ARecordingStartedMidRunReplaysFromItsReports) {
+    auto dir = std::filesystem::temp_directory_path() / ("curette-midrun-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "scene.json") << R"({"volume": {"path": "/usr/share/mricron/templates/ch2.nii.gz"}, "transfer_function": ")"
+                                      << CURETTE_SOURCE_DIR << R"(/assets/tf/mri_t1.json",
+        "clip_meshes": [{"name": "a", "mesh": {"shape": "sphere", "radius_mm": 20}}, {"name": "b", "mesh": {"shape": "box", "size_mm": [10, 10, 10]}}]})";
+    Scene scene = loadScene(dir / "scene.json");
+    InteractionState state = InteractionState::fromScene(scene);
+
+    auto ports = std::make_shared<input::FakeHidBackend::Ports>();
+    input::HidDeviceDescription pad;
+    pad.path = "/dev/hidraw-test", pad.vendorId = 0x054c, pad.productId = 0x0ce6, pad.bus = input::Bus::Usb;
+    input::FakeHidBackend::plug(*ports, pad);
+    LiveInput live(std::make_unique<input::FakeHidBackend>(ports), input::defaultMapping(), 40.0, 60.0);
+    OrbitCamera camera;
+    std::unique_ptr<LiveRecording> recording;
+    for (int f = 0; f < 60; ++f) {
+        input::DeviceState s;
+        s.axes[input::LeftX] = 0.8f * std::sin(static_cast<float>(f) * 0.2f);
+        s.axes[input::RightY] = 0.6f;
+        if (f == 5) s.buttons = 1u << input::South;       // cycle_mesh: the pad now holds mesh 0
+        if (f == 12) s.buttons = 1u << input::DpadUp;     // add_mesh
+        if (f == 29) s.buttons = 1u << input::North;      // cycle_shading: held while recording starts...
+        if (f == 30) s.buttons = 1u << input::North;      // ...so no second press on the first recorded frame
+        if (f == 45) s.buttons = 1u << input::DpadDown;   // remove_mesh
+        input::FakeHidBackend::queue(*ports, pad.path, input::encodeDualSenseUsb(s));
+        input::KeyboardMouseState keys;
+        if (f == 35) keys.keys = 1u << static_cast<int>(input::Key::Tab);
+        if (f >= 36 && f < 40) keys.keys = 1u << static_cast<int>(input::Key::W);
+        double now = f / 30.0;
+        InputFrame in = live.step(now, keys, 1 / 30.0, static_cast<int>(state.meshes.size()));
+        state.addedMeshIds.clear();
+        state.removedMeshIds.clear();
+        state.apply(in.actions, camera, 480);
+        if (recording) recording->addFrame(now, 1 / 30.0, {640, 480}, camera, state, keys, in);
+        if (f == 29) recording = std::make_unique<LiveRecording>(dir / "midrun.jsonl", (dir / "scene.json").string(), state, live, now);
+    }
+    recording->finish();
+    Session session = readSession(dir / "midrun.jsonl", false);
+    ASSERT_EQ(session.frames.size(), 30u);
+    EXPECT_EQ(session.header.meshes.size(), 3u) << "the added mesh is in the header, with its description";
+    EXPECT_FALSE(session.header.meshes[2].description.empty());
+    EXPECT_EQ(session.header.inputState.mapper.heldMeshes[1], 0);
+    Invocation r = run("replay " + (dir / "midrun.jsonl").string() + " --from-reports --no-render");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("identical"), std::string::npos) << r.output;
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace curette
