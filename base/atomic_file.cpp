@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <random>
+#include <string>
 #include <unistd.h>
 
 namespace curette {
@@ -16,7 +17,12 @@ namespace fs = std::filesystem;
 void writeFileAtomically(const fs::path& path, std::span<const std::uint8_t> bytes) {
     fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
     std::random_device entropy;
-    fs::path temporary = directory / ("." + path.filename().string() + ".tmp" + std::to_string(entropy() % 1000000));
+    // Hidden sibling in the same directory, so the final rename cannot cross file systems.
+    std::string temporaryName = ".";
+    temporaryName += path.filename().string();
+    temporaryName += ".tmp";
+    temporaryName += std::to_string(entropy() % 1000000);
+    fs::path temporary = directory / temporaryName;
     int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) throw SystemError(path.string() + ": cannot create a file there (" + std::strerror(errno) + ")");
     std::size_t written = 0;
