@@ -49,24 +49,12 @@ void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, c
     const OrbitCamera& camera = frame.camera;
     glm::dvec3 eye = camera.position(), forward = camera.forward();
 
-    // The slices cover the volume's depth range along the view axis, on a lattice of multiples of d from the
-    // eye (so orbiting does not make the slices swim through the data).
-    double d = resolveSliceDistanceMm(settings, volume);
-    double zMin = 1e300, zMax = -1e300;
-    for (const glm::dvec3& c : g.worldCorners()) {
-        double z = glm::dot(c - eye, forward);
-        zMin = std::min(zMin, z), zMax = std::max(zMax, z);
-    }
-    zMin = std::max(zMin, camera.nearMm);
-    long first = static_cast<long>(std::ceil(zMin / d)), last = static_cast<long>(std::floor(zMax / d));
-    if (last - first + 1 > maxSlices) {
-        double wanted = d;
-        d = (zMax - zMin) / (maxSlices - 1);
-        log::warn("slab pass: slice distance " + std::to_string(wanted) + " mm needs more than " + std::to_string(maxSlices) +
-                  " slices; using " + std::to_string(d) + " mm");
-        first = static_cast<long>(std::ceil(zMin / d));
-        last = static_cast<long>(std::floor(zMax / d));
-    }
+    SliceLattice lattice = sliceLattice(g, camera, resolveSliceDistanceMm(settings, volume));
+    if (lattice.widened)
+        log::warn("slab pass: slice distance " + std::to_string(resolveSliceDistanceMm(settings, volume)) + " mm needs more than " +
+                  std::to_string(maxSlices) + " slices; using " + std::to_string(lattice.distanceMm) + " mm");
+    const double d = lattice.distanceMm;
+    const long first = lattice.first, last = lattice.last;
 
     // Start: an empty eye buffer, and full visibility in both occlusion channels.
     const float clearEye[4] = {0, 0, 0, 0}, clearOcclusion[2] = {1, 1};

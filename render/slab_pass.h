@@ -7,6 +7,7 @@
 #include "render/frame.h"
 #include "render/gl/program.h"
 #include "render/gpu_volume.h"
+#include "render/slice_lattice.h"
 #include "render/transfer_function_texture.h"
 #include "render/tube_set.h"
 
@@ -16,7 +17,7 @@ namespace curette {
 
 class SlabPass {
 public:
-    static constexpr int maxSlices = 8192;
+    static constexpr long maxSlices = kMaxSlabSlices;
 
     // Renders the volume into `eyeBuffer` (RGBA32F, `frame.size`). `ambient` is V_AO for cao/lao shading
     // (0 otherwise). With `tubes` (a filled G-buffer) the tubes take part in the occlusion and the partial

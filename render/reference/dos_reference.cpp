@@ -1,5 +1,6 @@
 #include "render/reference/dos_reference.h"
 
+#include "render/slice_lattice.h"
 #include "render/volume_geometry.h"
 
 #include <cmath>
@@ -83,13 +84,9 @@ glm::dvec4 dosPixel(const VolumeData& volume, const TransferFunction& tf, const 
     };
 
     // Eq. 7-8 along the primary ray at the slab pass's sample positions (plane crossings z_k = k d).
-    double zMin = 1e300, zMax = -1e300;
-    for (const glm::dvec3& c : g.worldCorners()) {
-        double z = glm::dot(c - eye, forward);
-        zMin = std::min(zMin, z), zMax = std::max(zMax, z);
-    }
-    zMin = std::max(zMin, camera.nearMm);
-    long first = static_cast<long>(std::ceil(zMin / d)), last = static_cast<long>(std::floor(zMax / d));
+    SliceLattice lattice = sliceLattice(g, camera, d);
+    d = lattice.distanceMm;
+    const long first = lattice.first, last = lattice.last;
     glm::dvec4 acc(0.0);
     for (long k = first; k <= last && acc.a < frame.raycast.earlyTerminationAlpha; ++k) {
         double t = double(k) * d / cosine;
