@@ -1,5 +1,7 @@
 // The `curette` executable: exit codes, one clear error line, PNGs written atomically (nothing left behind on
 // failure), `info` on the real head.
+#include "tests/app/run_curette.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -11,20 +13,8 @@
 
 namespace {
 
-struct Invocation {
-    int exitCode;
-    std::string output;  // stdout and stderr
-};
-
-Invocation run(const std::string& arguments) {
-    std::string command = std::string(CURETTE_BINARY) + " " + arguments + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    std::string output;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-    int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using curette::testing::Invocation;
+Invocation run(const std::string& arguments) { return curette::testing::runCurette(arguments); }
 
 const std::string kSource = CURETTE_SOURCE_DIR;
 

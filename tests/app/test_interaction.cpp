@@ -5,6 +5,8 @@
 #include "input/devices/encoders.h"
 #include "input/hid/fake_backend.h"
 
+#include "tests/app/run_curette.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -66,19 +68,8 @@ TEST(Interaction, CameraFrameMotionDragsResetAddRemoveAndShading) {
     EXPECT_EQ(static_cast<int>(s.meshes.size()), clip::ClipMeshSet::maxMeshes) << "adding stops at the limit";
 }
 
-struct Invocation {
-    int exitCode;
-    std::string output;
-};
-
-Invocation run(const std::string& arguments) {
-    FILE* pipe = popen((std::string(CURETTE_BINARY) + " " + arguments + " 2>&1").c_str(), "r");
-    std::string output;
-    char buffer[4096];
-    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
-    int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using curette::testing::Invocation;
+Invocation run(const std::string& arguments) { return curette::testing::runCurette(arguments); }
 
 TEST(Interaction, ARecordingStartedMidRunReplaysFromItsReports) {
     auto dir = std::filesystem::temp_directory_path() / ("curette-midrun-" + std::to_string(::getpid()));

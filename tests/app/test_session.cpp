@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/app/run_curette.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -21,20 +23,8 @@
 namespace curette {
 namespace {
 
-struct Invocation {
-    int exitCode;
-    std::string output;
-};
-
-Invocation run(const std::string& arguments) {
-    std::string command = std::string(CURETTE_BINARY) + " " + arguments + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    std::string output;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-    int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using curette::testing::Invocation;
+Invocation run(const std::string& arguments) { return curette::testing::runCurette(arguments); }
 
 std::filesystem::path scratch(const std::string& name) {
     auto dir = std::filesystem::temp_directory_path() / ("curette-session-" + std::to_string(::getpid())) / name;
