@@ -17,14 +17,20 @@ const char* kUsage =
     "  info FILE                        what a volume file holds: dimensions, spacing, affine, type,\n"
     "                                   value range, histogram\n"
     "  render --scene S --out F.png     render one frame headless (EGL) and write a PNG\n"
-    "         [--size WxH] [--shading MODE] [--azimuth DEG] [--elevation DEG]\n"
-    "  view --scene S                   interactive viewer window (needs a display)\n"
-    "  bench raycast --scene S          ray-casting speed: ms per frame and samples per second\n"
-    "         [--size WxH] [--frames N] [--json FILE]\n"
+    "         [--size WxH] [--shading MODE] [--azimuth DEG] [--elevation DEG] [--timings]\n"
+    "  view --scene S                   interactive viewer: devices, keyboard, F9 records a session\n"
+    "         [--mapping F.json] [--record F.jsonl] [--no-devices]\n"
+    "  record --scene S --out F.jsonl --synthetic DEVICES\n"
+    "                                   record a session headless from scripted devices\n"
+    "         [--frames N] [--fps F] [--report-hz F] [--seed N] [--mapping F] [--unplug FRAME]\n"
+    "  replay F.jsonl                   re-render a session headless, frame by frame\n"
+    "         [--out DIR] [--every N] [--check] [--from-reports] [--no-render] [--lenient] [--size WxH]\n"
+    "  bench raycast|cao|dos --scene S  speed with the error against the CPU reference next to it\n"
+    "  bench input                      report parsing throughput and report-to-pose latency\n"
     "\n"
-    "shading modes: solid, phong (and, as they land, lao, cao, dos)\n"
+    "shading modes: solid, phong, lao, cao, dos\n"
     "exit codes: 0 success, 2 bad input (the message names file, field and expected form),\n"
-    "            3 system problem (GL driver, disk), 1 anything else\n";
+    "            3 system problem (GL driver, disk), 1 a failed check or anything else\n";
 
 }  // namespace
 
