@@ -173,13 +173,7 @@ void parseTubeRendering(const JsonReader& r, Scene& scene) {
     if (auto v = r.find("vicinity_samples")) t.vicinitySamples = v->integer(1, 256);
     if (auto v = r.find("depth_bias_mm")) t.depthBiasMm = v->number(0, 100);
     if (auto v = r.find("line_diffuse_exponent")) t.lineDiffuseExponent = v->number(0.1, 20);
-    if (auto m = r.find("material")) {
-        if (auto a = m->find("ambient")) t.material.ambient = a->number(0, 10);
-        if (auto d = m->find("diffuse")) t.material.diffuse = d->number(0, 10);
-        if (auto s = m->find("specular")) t.material.specular = s->number(0, 10);
-        if (auto p = m->find("specular_power")) t.material.specularPower = p->number(0, 1000);
-        m->finish();
-    }
+    if (auto m = r.find("material")) io::readMaterial(*m, t.material);
     r.finish();
 }
 

@@ -32,7 +32,8 @@ struct LaoSettings {
     // colour (the reference implementation also doubles LAO). Not part of V_AO, so not of the contract.
     double ambientScale = 2.0;
     // Step V: a full-grid dispatch that decides per voxel (early exit), or a compacted list of the voxels to
-    // recompute (atomic append + indirect dispatch). `curette bench cao` measures both; see README.
+    // recompute (atomic append + indirect dispatch). `curette bench cao` measures both (its "Step V dispatch"
+    // table): on the head at K = 26 the compacted list took 803 ms against 1645 ms for the full grid.
     enum class Dispatch { Compacted, FullGrid } dispatch = Dispatch::Compacted;
 
     bool operator==(const LaoSettings& o) const {

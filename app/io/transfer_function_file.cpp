@@ -33,13 +33,7 @@ TransferFunction parseTransferFunctionJson(const nlohmann::json& json, const std
             if (v[0] < 0 || v[1] < 0 || v[1] > 1) p.fail("[gradient magnitude >= 0, factor in [0, 1]]");
             tf.gradientOpacity.push_back({v[0], v[1]});
         }
-    if (auto m = r.find("material")) {
-        if (auto a = m->find("ambient")) tf.material.ambient = a->number(0, 10);
-        if (auto d = m->find("diffuse")) tf.material.diffuse = d->number(0, 10);
-        if (auto s = m->find("specular")) tf.material.specular = s->number(0, 10);
-        if (auto p = m->find("specular_power")) tf.material.specularPower = p->number(0, 1000);
-        m->finish();
-    }
+    if (auto m = r.find("material")) readMaterial(*m, tf.material);
     r.finish();
     tf.validate(source);
     return tf;
@@ -122,6 +116,14 @@ TransferFunction readTransferFunction(const std::filesystem::path& path) {
     if (extension == ".json") return parseTransferFunctionJsonText(text, path.string());
     if (extension == ".vp") return parseSlicerVolumeProperty(text, path.string());
     throw InputError(path.string(), "extension", ".json (curette) or .vp (3D Slicer volume property)", "\"" + extension + "\"");
+}
+
+void readMaterial(const JsonReader& object, TransferFunction::Material& material) {
+    if (auto a = object.find("ambient")) material.ambient = a->number(0, 10);
+    if (auto d = object.find("diffuse")) material.diffuse = d->number(0, 10);
+    if (auto s = object.find("specular")) material.specular = s->number(0, 10);
+    if (auto p = object.find("specular_power")) material.specularPower = p->number(0, 1000);
+    object.finish();
 }
 
 std::string writeTransferFunctionJson(const TransferFunction& tf) {

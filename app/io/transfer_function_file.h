@@ -20,6 +20,10 @@
 #include <string>
 #include <string_view>
 
+namespace curette {
+class JsonReader;
+}
+
 namespace curette::io {
 
 TransferFunction readTransferFunction(const std::filesystem::path& path);
@@ -28,5 +32,7 @@ TransferFunction parseTransferFunctionJson(const nlohmann::json& json, const std
 TransferFunction parseTransferFunctionJsonText(std::string_view text, const std::string& source);
 TransferFunction parseSlicerVolumeProperty(std::string_view text, const std::string& source);
 std::string writeTransferFunctionJson(const TransferFunction& tf);
+// The "material" object of a TF file or a scene's tubes: keys it names override `material`'s fields.
+void readMaterial(const JsonReader& object, TransferFunction::Material& material);
 
 }  // namespace curette::io
