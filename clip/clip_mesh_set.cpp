@@ -289,6 +289,26 @@ void ClipMeshSet::dilateMaps(int index) {
     }
 }
 
+void ClipMeshSet::mapBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const {
+    const ClippingCamera& c = camera(index);
+    lo = glm::dvec3(c.mapOrigin, c.localMin.z - c.marginMm);
+    hi = glm::dvec3(c.mapOrigin + c.mapSizeMm, c.localMax.z + c.marginMm);
+}
+
+ClipMeshSet::WorldBox ClipMeshSet::mapBoxWorldBounds(int index) const {
+    glm::dvec3 lo, hi;
+    mapBoxLocal(index, lo, hi);
+    glm::dmat4 toWorld = pose(index).matrix();
+    WorldBox box{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
+    for (int corner = 0; corner < 8; ++corner) {
+        glm::dvec3 local((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+        glm::dvec3 world(toWorld * glm::dvec4(local, 1.0));
+        box.min = glm::min(box.min, world);
+        box.max = glm::max(box.max, world);
+    }
+    return box;
+}
+
 void ClipMeshSet::uploadCameras() {
     std::vector<CameraGpu> cameras(meshes_.size());
     for (std::size_t i = 0; i < meshes_.size(); ++i) {
@@ -300,8 +320,8 @@ void ClipMeshSet::uploadCameras() {
         cameras[i].info[3] = meshes_[i].clipsTubes ? 1 : 0;
         // A sphere around the camera's map box (x, y across the map, z over the depth range plus margin),
         // slightly enlarged so float rounding never excludes a point the maps could call inside.
-        const ClippingCamera& c = meshes_[i].camera;
-        glm::dvec3 lo(c.mapOrigin, c.localMin.z - c.marginMm), hi(c.mapOrigin + c.mapSizeMm, c.localMax.z + c.marginMm);
+        glm::dvec3 lo, hi;
+        mapBoxLocal(static_cast<int>(i), lo, hi);
         glm::dvec3 centre = glm::dvec3(meshes_[i].pose.matrix() * glm::dvec4(0.5 * (lo + hi), 1.0));
         double radius = 0.5 * glm::length(hi - lo) * 1.001 + 1e-3;
         cameras[i].bounds[0] = static_cast<float>(centre.x);

@@ -59,6 +59,13 @@ public:
     // The radius the dilation kernel uses for mesh `index`: R plus sqrt(2) map pixels plus a rounding margin.
     double kernelRadiusMm(int index) const;
 
+    // The world-space axis-aligned box around mesh `index`'s map box (its clipping camera's x, y extent over
+    // the depth range plus margin): no clip or dilation lookup of a point outside it can answer "inside".
+    struct WorldBox {
+        glm::dvec3 min, max;
+    };
+    WorldBox mapBoxWorldBounds(int index) const;
+
     // Changes whenever the clipped region may have changed (a pose, a scale, a mesh added or removed).
     std::uint64_t version() const { return version_; }
     // How many times step II/III ran for a mesh (tests check rigid motion does not redraw).
@@ -93,6 +100,8 @@ private:
     void renderMaps(int index);
     void dilateMaps(int index);
     void uploadCameras();
+    // Mesh `index`'s map box in its pose's local frame (x, y: the map; z: the depth range plus margin).
+    void mapBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
 
     ClipMapSettings settings_;
     std::vector<Mesh> meshes_;

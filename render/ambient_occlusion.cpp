@@ -7,6 +7,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <limits>
+
 namespace curette {
 
 namespace {
@@ -111,7 +113,32 @@ void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
     p.set("laoOpacityExponent", opacityExponent);
 }
 
-void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation) {
+AmbientOcclusion::VoxelRegion AmbientOcclusion::meshRegion(const clip::ClipMeshSet& clip) const {
+    const VolumeGeometry& g = volume_.geometry();
+    glm::dmat4 worldToIndex = g.worldToIndex();
+    // A voxel is a or b only if one of its clip samples (within a cell diagonal) or its centre falls in a map
+    // box; 1 mm and two voxels more absorb rounding of the map transforms.
+    double padMm = g.cellDiagonalMm() + 1.0;
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (int i = 0; i < clip.count(); ++i) {
+        clip::ClipMeshSet::WorldBox box = clip.mapBoxWorldBounds(i);
+        for (int corner = 0; corner < 8; ++corner) {
+            glm::dvec3 world((corner & 1) ? box.max.x + padMm : box.min.x - padMm, (corner & 2) ? box.max.y + padMm : box.min.y - padMm,
+                             (corner & 4) ? box.max.z + padMm : box.min.z - padMm);
+            glm::dvec3 index(worldToIndex * glm::dvec4(world, 1.0));
+            lo = glm::min(lo, index);
+            hi = glm::max(hi, index);
+        }
+    }
+    if (clip.count() == 0 || !glm::all(glm::lessThanEqual(lo, hi))) return {};
+    glm::dvec3 dims(g.dims);
+    glm::dvec3 first = glm::clamp(glm::floor(lo) - 2.0, glm::dvec3(0.0), dims);
+    glm::dvec3 end = glm::clamp(glm::ceil(hi) + 3.0, glm::dvec3(0.0), dims);
+    return {glm::ivec3(first), glm::max(glm::ivec3(end) - glm::ivec3(first), glm::ivec3(0))};
+}
+
+void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
+                                        const VoxelRegion& region) {
     gl::Program& p = clipProgram_;
     const VolumeGeometry& g = volume_.geometry();
     tf.setUniforms(p);
@@ -129,13 +156,14 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboAntiAliasing, antiAliasing_.name());
     glBindImageTexture(binding::imageOpacity, opacity_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
     glBindImageTexture(binding::imageMask, mask_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8UI);
-    p.dispatchCovering(glm::uvec3(g.dims));
+    p.set("regionOrigin", region.origin);
+    p.set("regionSize", region.size);
+    p.dispatchCovering(glm::uvec3(region.size));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExponent) {
-    glm::ivec3 dims = volume_.geometry().dims;
-    std::uint64_t voxels = static_cast<std::uint64_t>(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
+void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExponent, const VoxelRegion& region) {
+    std::uint64_t voxels = region.voxels();
     const std::uint32_t zero[2] = {0, 0};
     glNamedBufferSubData(list_.name(), 0, 8, zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboRecomputeList, list_.name());
@@ -152,12 +180,16 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
     };
     glm::uvec2 grid = groupsFor(voxels);
     setLaoUniforms(laoProgram_, opacityExponent);
+    laoProgram_.set("regionOrigin", region.origin);
+    laoProgram_.set("regionSize", region.size);
     if (!compacted) {
         laoProgram_.set("laoMode", 0);
         laoProgram_.use();
         glDispatchCompute(grid.x, grid.y, 1);
     } else {
         setLaoUniforms(compactProgram_, opacityExponent);
+        compactProgram_.set("regionOrigin", region.origin);
+        compactProgram_.set("regionSize", region.size);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
         compactProgram_.set("prepareDispatch", 0);
         compactProgram_.use();
@@ -175,7 +207,6 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     std::uint32_t counts[2] = {0, 0};
     glGetNamedBufferSubData(list_.name(), 0, 8, counts);
-    stats_.voxels = voxels;
     stats_.recomputed = counts[1];
 }
 
@@ -184,24 +215,47 @@ void AmbientOcclusion::precompute(const TransferFunctionTexture& tf, gl::TimerSe
     // LAO of every voxel, written to V_PAO.
     Progress progress("LAO precompute (step I)", 2);
     if (timers) timers->begin("I  LAO precompute");
-    runVoxelClipping(tf, nullptr, false);
+    runVoxelClipping(tf, nullptr, false, wholeVolume());
     progress.update(1);
-    runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
+    runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()), wholeVolume());
     if (timers) timers->end();
     progress.finish();
     precomputed_valid_ = true;
+    lastMeshRegion_.reset();
 }
 
 void AmbientOcclusion::update(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode,
                               gl::TimerSet* timers) {
     if (!precomputed_valid_) precompute(tf, timers);
     bool cao = mode == ShadingMode::Cao;
+    // Full LAO (the baseline) and the first update after step I visit every voxel. A CAO update visits the
+    // bounding box of this frame's mesh region and the last update's: outside both, every voxel is category
+    // c now and was outside every map box last time, so V_o (unclipped) and V_AO (= V_PAO) already hold what
+    // a whole-grid pass would write.
+    VoxelRegion current = meshRegion(clip);
+    VoxelRegion visit = wholeVolume();
+    if (cao && lastMeshRegion_) {
+        const VoxelRegion& last = *lastMeshRegion_;
+        if (current.empty()) visit = last;
+        else if (last.empty()) visit = current;
+        else {
+            glm::ivec3 first = glm::min(current.origin, last.origin);
+            glm::ivec3 end = glm::max(current.origin + current.size, last.origin + last.size);
+            visit = {first, end - first};
+        }
+    }
+    lastMeshRegion_ = current;
+    glm::ivec3 dims = volume_.geometry().dims;
+    stats_.voxels = std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
+    stats_.dispatched = visit.voxels();
+    stats_.recomputed = 0;
+    if (visit.empty()) return;
     if (timers) timers->begin("IV voxel clipping");
-    runVoxelClipping(tf, &clip, cao);
+    runVoxelClipping(tf, &clip, cao, visit);
     if (timers) timers->end();
     if (timers) timers->begin("V  LAO recompute");
     runLao(ambient_.name(), settings_.dispatch == LaoSettings::Dispatch::Compacted,
-           static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
+           static_cast<float>(settings_.stepMm / tf.unitLengthMm()), visit);
     if (timers) timers->end();
 }
 

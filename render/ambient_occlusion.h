@@ -3,6 +3,10 @@
 //   I   precompute(): LAO of every voxel without clipping -> V_PAO
 //   IV  update():     anti-aliased voxel clipping -> V_o (clipped opacity) and V_m (categories a/b/c)
 //   V   update():     V_AO: category c copies V_PAO, b (and a voxels next to a visible one) recompute LAO
+// A CAO update visits only the voxels whose category can differ from c now or could at the previous update
+// (the bounding box of both frames' mesh regions); everywhere else V_o, V_AO are what a whole-grid pass would
+// write again. V_m outside that box may still say b from an earlier `lao` update: only step V reads it, and
+// only inside the box.
 // Shading `lao` is the baseline CAO is measured against: the same passes without the dilation test, so every
 // visible voxel recomputes. Both produce bit-identical V_AO (the exactness contract, tested).
 //
@@ -17,6 +21,7 @@
 #include "render/shading_mode.h"
 #include "render/transfer_function_texture.h"
 
+#include <optional>
 #include <vector>
 
 namespace curette {
@@ -51,6 +56,7 @@ std::vector<glm::dvec3> antiAliasingOffsets(int count);
 
 struct AmbientOcclusionStats {
     std::uint64_t voxels = 0;
+    std::uint64_t dispatched = 0;      // voxels steps IV and V visited (the dispatch region, below)
     std::uint64_t recomputed = 0;      // voxels whose LAO ray ran in step V
     double recomputedFraction() const { return voxels ? double(recomputed) / double(voxels) : 0.0; }
 };
@@ -85,8 +91,18 @@ public:
     std::vector<std::uint8_t> readMask() const;
 
 private:
-    void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation);
-    void runLao(GLuint target, bool compacted, float opacityExponent);
+    // A box of voxels [origin, origin + size) that steps IV and V visit.
+    struct VoxelRegion {
+        glm::ivec3 origin{0}, size{0};
+        bool empty() const { return size.x <= 0 || size.y <= 0 || size.z <= 0; }
+        std::uint64_t voxels() const { return empty() ? 0 : std::uint64_t(size.x) * std::uint64_t(size.y) * std::uint64_t(size.z); }
+    };
+    VoxelRegion wholeVolume() const { return {glm::ivec3(0), volume_.geometry().dims}; }
+    // The voxels whose category can be a or b under the meshes' current poses (their map boxes, padded).
+    VoxelRegion meshRegion(const clip::ClipMeshSet& clip) const;
+    void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
+                          const VoxelRegion& region);
+    void runLao(GLuint target, bool compacted, float opacityExponent, const VoxelRegion& region);
     void setLaoUniforms(gl::Program& program, float opacityExponent);
 
     const GpuVolume& volume_;
@@ -96,6 +112,9 @@ private:
     gl::Program clipProgram_, laoProgram_, compactProgram_;
     AmbientOcclusionStats stats_;
     bool precomputed_valid_ = false;
+    // Outside this region (of the last update) V_o holds the unclipped opacity and V_AO equals V_PAO, so the
+    // next CAO update only visits it and its own mesh region. Unset after step I (V_AO not yet written).
+    std::optional<VoxelRegion> lastMeshRegion_;
 };
 
 }  // namespace curette

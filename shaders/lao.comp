@@ -1,7 +1,7 @@
 #version 450
 // Steps I and V: LAO per voxel (lao_ray.glsl). One program for both so V_PAO and V_AO agree bit for bit.
-//   mode GRID: one invocation per voxel; the decision (lao_common.glsl) is taken here, so skipped voxels cost
-//              a mask read and a copy ("full-grid dispatch with early exit").
+//   mode GRID: one invocation per voxel of the dispatch region; the decision (lao_common.glsl) is taken
+//              here, so skipped voxels cost a mask read and a copy ("full-grid dispatch with early exit").
 //   mode LIST: one invocation per entry of the recompute list built by lao_compact.comp (indirect dispatch).
 // Step I runs GRID over a mask that marks every voxel b, writing V_PAO.
 #include "bindings.glsl"
@@ -26,8 +26,7 @@ void main() {
         if (id >= listCount) return;
         v = voxelFromIndex(listVoxels[id], volumeSize);
     } else {
-        if (id >= uint(volumeSize.x * volumeSize.y * volumeSize.z)) return;
-        v = voxelFromIndex(id, volumeSize);
+        if (!regionVoxel(id, v)) return;
         uint decision = stepVDecision(v, volumeSize);
         if (decision == DECISION_COPY) {
             imageStore(ambientOut, v, texelFetch(precomputedAmbient, v, 0));

@@ -30,6 +30,18 @@ ivec3 voxelFromIndex(uint index, ivec3 size) {
     return ivec3(int(index % sx), int((index / sx) % sy), int(index / (sx * sy)));
 }
 
+uint indexFromVoxel(ivec3 v, ivec3 size) { return uint(v.x) + uint(size.x) * (uint(v.y) + uint(size.y) * uint(v.z)); }
+
+// The box of voxels a step V dispatch visits (render/ambient_occlusion.cpp); invocation `id` takes the voxel
+// numbered `id` inside it. Step I and full LAO visit the whole volume.
+uniform ivec3 regionOrigin;
+uniform ivec3 regionSize;
+bool regionVoxel(uint id, out ivec3 v) {
+    if (id >= uint(regionSize.x * regionSize.y * regionSize.z)) return false;
+    v = regionOrigin + voxelFromIndex(id, regionSize);
+    return true;
+}
+
 // Invocation id of a 1-D job spread over a 2-D dispatch of groups of 64 (work-group counts are limited per
 // dimension; render/ambient_occlusion.cpp sizes the grid).
 #define LAO_GROUP_SIZE 64u

@@ -22,15 +22,14 @@ void main() {
         dispatchSize = uvec3(max(x, 1u), x == 0u ? 0u : (groups + x - 1u) / x, 1u);
         return;
     }
-    uint id = linearInvocation();
-    if (id >= uint(volumeSize.x * volumeSize.y * volumeSize.z)) return;
-    ivec3 v = voxelFromIndex(id, volumeSize);
+    ivec3 v;
+    if (!regionVoxel(linearInvocation(), v)) return;
     uint decision = stepVDecision(v, volumeSize);
     if (decision == DECISION_COPY) {
         imageStore(ambientOut, v, texelFetch(precomputedAmbient, v, 0));
     } else if (decision == DECISION_UNREACHABLE) {
         imageStore(ambientOut, v, vec4(1.0));
     } else {
-        listVoxels[atomicAdd(listCount, 1u)] = id;
+        listVoxels[atomicAdd(listCount, 1u)] = indexFromVoxel(v, volumeSize);
     }
 }

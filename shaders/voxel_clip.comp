@@ -1,5 +1,5 @@
 #version 450
-// Step IV: anti-aliased shadow-test clipping of every voxel (CAO Algorithm 2), writing the clipped opacity
+// Step IV: anti-aliased shadow-test clipping of every voxel in a box (CAO Algorithm 2), writing the clipped opacity
 // V_o and the category mask V_m. Nine samples (the centre and the eight corners one voxel step away along
 // the diagonals); where they disagree, N more at fixed offsets in [-1, 1]^3 and V_o is scaled by the visible
 // fraction (line 10). Category: a (clipped) when no sample is visible; otherwise b (affected) when the
@@ -17,6 +17,8 @@ layout(std430, binding = SSBO_ANTIALIASING) readonly buffer AntiAliasing { vec4 
 
 uniform mat4 indexToWorld;
 uniform ivec3 volumeSize;
+uniform ivec3 regionOrigin;        // the box of voxels this dispatch visits (render/ambient_occlusion.cpp)
+uniform ivec3 regionSize;
 uniform int antiAliasingSamples;   // N
 uniform bool testDilation;
 uniform mat3 gradientToWorld;      // index gradient -> world gradient (value per mm)
@@ -39,8 +41,8 @@ float voxelOpacity(ivec3 v) {
 bool visibleAt(vec3 index) { return !insideAnyClipMesh((indexToWorld * vec4(index, 1.0)).xyz); }
 
 void main() {
-    ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(v, volumeSize))) return;
+    if (any(greaterThanEqual(ivec3(gl_GlobalInvocationID), regionSize))) return;
+    ivec3 v = regionOrigin + ivec3(gl_GlobalInvocationID);
     vec3 centre = vec3(v);
 
     int visible = 0;

@@ -134,6 +134,47 @@ TEST(Cao, EqualsFullLaoBitForBitOverRandomPoses) {
     }
 }
 
+// A CAO update visits only the box around this frame's and the last frame's meshes. Over a path a user could
+// drive (small steps, jumps, leaving the volume and coming back, a second mesh added and removed), a renderer
+// that only ever runs CAO must match one that recomputes full LAO every frame, bit for bit; and the box must
+// really be smaller than the volume, or this test would not exercise it.
+TEST(Cao, VisitingOnlyTheMeshRegionsStaysEqualToFullLao) {
+    CaoScene caoOnly(glm::ivec3(64)), laoOnly(glm::ivec3(64));
+    auto sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(4.0, 3));
+    auto box = std::make_shared<const clip::TriangleMesh>(clip::makeBox(glm::dvec3(6, 5, 4)));
+    for (CaoScene* s : {&caoOnly, &laoOnly}) s->renderer->clipMeshes().add(sphere, glm::dvec3(1.0), {}, "sphere");
+    std::mt19937 random(21);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    clip::RigidPose pose;
+    pose.position = {-10, 0, 0};
+    int smallerThanTheVolume = 0;
+    const int frames = 32;
+    for (int frame = 0; frame < frames; ++frame) {
+        if (frame == 10) pose.position = {12, 8, -6};      // a jump
+        else if (frame == 15) pose.position = {80, 0, 0};  // out of the volume...
+        else if (frame == 17) pose.position = {0, -8, 4};  // ...and back
+        else pose.position += 1.5 * glm::dvec3(u(random), u(random), u(random));
+        // Mostly upright (the box around a turned map box is larger), now and then turned.
+        pose.orientation = frame % 6 == 3 ? randomPose(random, 1.0).orientation : glm::dquat(1.0, 0.0, 0.0, 0.0);
+        for (CaoScene* s : {&caoOnly, &laoOnly}) {
+            clip::ClipMeshSet& set = s->renderer->clipMeshes();
+            if (frame == 20) set.add(box, glm::dvec3(1.0), {}, "box");
+            if (frame == 27) set.remove(1);
+            set.setPose(0, pose);
+            if (set.count() > 1) set.setPose(1, {pose.position + glm::dvec3(-12, 5, 0), pose.orientation});
+        }
+        CaoScene::Result cao = caoOnly.render(ShadingMode::Cao);
+        CaoScene::Result lao = laoOnly.render(ShadingMode::Lao);
+        std::string what = "frame ";
+        what += std::to_string(frame);
+        expectBitIdentical(lao, cao, what);
+        if (HasFailure()) return;
+        const AmbientOcclusionStats& stats = caoOnly.renderer->ambientOcclusion()->lastStats();
+        smallerThanTheVolume += stats.dispatched < stats.voxels / 2;
+    }
+    EXPECT_GT(smallerThanTheVolume, frames / 2) << "most CAO updates should visit less than half the volume";
+}
+
 // Dilation is conservative: every voxel whose LAO changes when the mesh moves lies in the dilated region.
 // Full LAO (no dilation test) is the judge: a voxel CAO calls unaffected (category c) must have, under full
 // LAO recompute, exactly its unclipped value, before and after the move.
