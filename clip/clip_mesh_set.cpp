@@ -15,10 +15,10 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-struct CameraGpu {  // std430 layout of ClipMeshGpu in shaders/clip_test.glsl
+struct CameraGpu {  // std140 layout of ClipMeshGpu in shaders/clip_test.glsl
     float worldToMap[16];
     std::int32_t info[4];
-    float bounds[4];
+    float mapBox[4];
 };
 static_assert(sizeof(CameraGpu) == 96);
 
@@ -318,23 +318,22 @@ void ClipMeshSet::uploadCameras() {
         cameras[i].info[1] = meshes_[i].intervals;
         cameras[i].info[2] = resolution_;
         cameras[i].info[3] = meshes_[i].clipsTubes ? 1 : 0;
-        // A sphere around the camera's map box (x, y across the map, z over the depth range plus margin),
-        // slightly enlarged so float rounding never excludes a point the maps could call inside.
+        // The map box (x, y across the map, z over the depth range plus margin) and a slack of a thousandth of
+        // its size, far above float rounding of the map transform, so no point a map could call inside is
+        // ever taken for far.
         glm::dvec3 lo, hi;
         mapBoxLocal(static_cast<int>(i), lo, hi);
-        glm::dvec3 centre = glm::dvec3(meshes_[i].pose.matrix() * glm::dvec4(0.5 * (lo + hi), 1.0));
-        double radius = 0.5 * glm::length(hi - lo) * 1.001 + 1e-3;
-        cameras[i].bounds[0] = static_cast<float>(centre.x);
-        cameras[i].bounds[1] = static_cast<float>(centre.y);
-        cameras[i].bounds[2] = static_cast<float>(centre.z);
-        cameras[i].bounds[3] = static_cast<float>(radius);
+        cameras[i].mapBox[0] = static_cast<float>(meshes_[i].camera.mapSizeMm);
+        cameras[i].mapBox[1] = static_cast<float>(lo.z);
+        cameras[i].mapBox[2] = static_cast<float>(hi.z);
+        cameras[i].mapBox[3] = static_cast<float>(1e-3 * glm::length(hi - lo) + 1e-3);
     }
     if (!cameras.empty())
         glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());
 }
 
 void ClipMeshSet::bind() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboClipMeshes, cameraBuffer_.name());
+    glBindBufferBase(GL_UNIFORM_BUFFER, binding::uboClipMeshes, cameraBuffer_.name());
     glBindTextureUnit(binding::clipDepth, depthMaps_.name());
     glBindTextureUnit(binding::clipDilated, dilatedAllocated_ ? dilatedMaps_.name() : depthMaps_.name());
 }

@@ -30,11 +30,12 @@ inline constexpr unsigned imagePartialOcclusion = 6;
 
 inline constexpr unsigned ssboSampleCounter = 0;
 inline constexpr unsigned ssboLaoDirections = 1;
-inline constexpr unsigned ssboClipMeshes = 2;
 inline constexpr unsigned ssboRecomputeList = 3;
 inline constexpr unsigned ssboDispatch = 4;
 inline constexpr unsigned ssboAntiAliasing = 5;
 inline constexpr unsigned ssboPoissonDisk = 8;
+
+inline constexpr unsigned uboClipMeshes = 0;
 
 // V_m categories (CAO Fig. 5).
 inline constexpr unsigned categoryClipped = 0;

@@ -26,11 +26,12 @@
 
 #define SSBO_SAMPLE_COUNTER 0       // uint: samples taken (bench only)
 #define SSBO_LAO_DIRECTIONS 1       // vec4[]: LAO step in texture space, weight / (K * M)
-#define SSBO_CLIP_MESHES 2          // ClipMeshGpu[]: per-mesh clipping camera
 #define SSBO_RECOMPUTE_LIST 3       // uint count, uint voxels[]: category-b voxels (step V, compacted)
 #define SSBO_DISPATCH 4             // uvec3: indirect dispatch size of the compacted step V
 #define SSBO_ANTIALIASING 5         // vec4[]: the N extra anti-aliasing offsets of step IV
 #define SSBO_POISSON_DISK 8         // vec2[]: vicinity-occlusion samples in the unit disk
+
+#define UBO_CLIP_MESHES 0           // ClipMeshGpu[MAX_CLIP_MESHES]: per-mesh clipping camera
 
 // G-buffer kinds (normal.w).
 #define SURFACE_NONE 0.0

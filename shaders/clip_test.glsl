@@ -13,11 +13,14 @@ struct ClipMeshGpu {
     mat4 worldToMap;   // world mm -> (map x, map y in [0,1], depth along the camera in mm)
     ivec4 info;        // x: first layer in the map arrays, y: intervals (1 or 2), z: map resolution,
                        // w: 1 when the mesh also clips tubes
-    vec4 bounds;       // world centre and radius of a sphere holding the camera's whole map box: outside
-                       // it no map can answer "inside", so the lookups are skipped (same answer, cheaper)
+    vec4 mapBox;       // the camera's map box in its own frame: x the map side in mm, y and z the depth
+                       // range (local z, mm) holding every finite map value, w a slack for float rounding.
+                       // Outside the box no map answers "inside".
 };
 
-layout(std430, binding = SSBO_CLIP_MESHES) readonly buffer ClipMeshes { ClipMeshGpu clipMeshes[]; };
+// A uniform block, not a storage buffer: the array is small and every invocation reads the same entries,
+// which llvmpipe then loads once per SIMD group instead of gathering per lane.
+layout(std140, binding = UBO_CLIP_MESHES) uniform ClipMeshes { ClipMeshGpu clipMeshes[MAX_CLIP_MESHES]; };
 layout(binding = BINDING_CLIP_DEPTH) uniform sampler2DArray clipDepthMaps;
 layout(binding = BINDING_CLIP_DILATED) uniform sampler2DArray clipDilatedMaps;
 uniform int clipMeshCount;
@@ -25,8 +28,6 @@ uniform int clipMeshCount;
 // Point `world` inside the interval(s) of mesh `i` in maps `maps` (depth or dilated).
 bool insideMeshMaps(int i, vec3 world, bool dilated) {
     ClipMeshGpu mesh = clipMeshes[i];
-    vec3 offset = world - mesh.bounds.xyz;
-    if (dot(offset, offset) > mesh.bounds.w * mesh.bounds.w) return false;
     vec3 m = (mesh.worldToMap * vec4(world, 1.0)).xyz;
     if (any(lessThan(m.xy, vec2(0.0))) || any(greaterThanEqual(m.xy, vec2(1.0)))) return false;
     ivec2 pixel = ivec2(m.xy * float(mesh.info.z));
@@ -42,12 +43,16 @@ bool insideMeshMaps(int i, vec3 world, bool dilated) {
 }
 
 // Whether any mesh's map box comes within `margin` of `world`: if not, every clip and dilation test of
-// points within `margin` is false (step IV uses it to skip voxels far from all meshes).
+// points within `margin` is false (step IV uses it to skip voxels far from all meshes). The distance to the
+// box is measured in the camera's frame, which is rigid, so it is the world distance in mm.
 bool nearAnyClipMesh(vec3 world, float margin) {
     for (int i = 0; i < clipMeshCount; ++i) {
-        vec3 offset = world - clipMeshes[i].bounds.xyz;
-        float reach = clipMeshes[i].bounds.w + margin;
-        if (dot(offset, offset) <= reach * reach) return true;
+        ClipMeshGpu mesh = clipMeshes[i];
+        vec3 m = (mesh.worldToMap * vec4(world, 1.0)).xyz;
+        vec3 outside = vec3(max(max(-m.xy, m.xy - 1.0), 0.0) * mesh.mapBox.x,
+                            max(max(mesh.mapBox.y - m.z, m.z - mesh.mapBox.z), 0.0));
+        float reach = margin + mesh.mapBox.w;
+        if (dot(outside, outside) <= reach * reach) return true;
     }
     return false;
 }

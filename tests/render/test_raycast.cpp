@@ -310,10 +310,10 @@ TEST(Raycast, BindingsMatchGlsl) {
     EXPECT_EQ(glsl.at("SSBO_POISSON_DISK"), binding::ssboPoissonDisk);
     EXPECT_EQ(glsl.at("SSBO_SAMPLE_COUNTER"), binding::ssboSampleCounter);
     EXPECT_EQ(glsl.at("SSBO_LAO_DIRECTIONS"), binding::ssboLaoDirections);
-    EXPECT_EQ(glsl.at("SSBO_CLIP_MESHES"), binding::ssboClipMeshes);
     EXPECT_EQ(glsl.at("SSBO_RECOMPUTE_LIST"), binding::ssboRecomputeList);
     EXPECT_EQ(glsl.at("SSBO_DISPATCH"), binding::ssboDispatch);
     EXPECT_EQ(glsl.at("SSBO_ANTIALIASING"), binding::ssboAntiAliasing);
+    EXPECT_EQ(glsl.at("UBO_CLIP_MESHES"), binding::uboClipMeshes);
 }
 
 }  // namespace
