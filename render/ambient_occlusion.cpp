@@ -81,7 +81,6 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
         list_ = gl::createBuffer();  // holds only the counters in the full-grid variant
         glNamedBufferStorage(list_.name(), 8, nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
-    clipProgram_ = gl::Program::compute("voxel_clip.comp");
     laoProgram_ = gl::Program::compute("lao.comp");
     compactProgram_ = gl::Program::compute("lao_compact.comp");
 }
@@ -139,7 +138,9 @@ AmbientOcclusion::VoxelRegion AmbientOcclusion::meshRegion(const clip::ClipMeshS
 
 void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
                                         const VoxelRegion& region) {
-    gl::Program& p = clipProgram_;
+    gl::Defines defines;
+    tf.addDefines(defines);
+    gl::Program& p = clipPrograms_.get(defines);
     const VolumeGeometry& g = volume_.geometry();
     tf.setUniforms(p);
     tf.bind();

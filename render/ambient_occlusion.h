@@ -110,7 +110,8 @@ private:
     LaoSettings settings_;
     gl::Texture opacity_, mask_, precomputed_, ambient_;
     gl::Buffer directions_, antiAliasing_, list_, dispatch_;
-    gl::Program clipProgram_, laoProgram_, compactProgram_;
+    gl::ComputeVariants clipPrograms_{"voxel_clip.comp"};
+    gl::Program laoProgram_, compactProgram_;
     AmbientOcclusionStats stats_;
     bool precomputed_valid_ = false;
     // Outside this region (of the last update) V_o holds the unclipped opacity and V_AO equals V_PAO, so the

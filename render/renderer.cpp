@@ -88,12 +88,10 @@ void Renderer::ensureOutput(glm::ivec2 size) {
 }
 
 gl::Program& Renderer::raycastProgram(ShadingMode mode) {
-    auto key = std::make_pair(mode, countSamples_);
-    auto found = raycastPrograms_.find(key);
-    if (found != raycastPrograms_.end()) return found->second;
     gl::Defines defines{{"SHADING", std::to_string(static_cast<int>(mode))}};
     if (countSamples_) defines.emplace_back("COUNT_SAMPLES", "1");
-    return raycastPrograms_.emplace(key, gl::Program::compute("raycast.comp", defines)).first->second;
+    tf_->addDefines(defines);
+    return raycastPrograms_.get(defines);
 }
 
 void Renderer::render(const FrameDescription& frame) {

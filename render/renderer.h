@@ -14,9 +14,9 @@
 #include "render/tube_set.h"
 #include "render/transfer_function_texture.h"
 
-#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace curette {
@@ -94,7 +94,7 @@ private:
     glm::ivec2 outputSize_{0};
     gl::Buffer sampleCounter_;
     bool countSamples_ = false;
-    std::map<std::pair<ShadingMode, bool>, gl::Program> raycastPrograms_;
+    gl::ComputeVariants raycastPrograms_{"raycast.comp"};
     gl::TimerSet timers_;
     SlabPass slab_;
     bool slabUsed_ = false;

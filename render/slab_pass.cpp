@@ -10,13 +10,11 @@
 
 namespace curette {
 
-gl::Program& SlabPass::program(ShadingMode mode, bool tubes) {
-    auto key = std::make_pair(mode, tubes);
-    auto found = programs_.find(key);
-    if (found != programs_.end()) return found->second;
+gl::Program& SlabPass::program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf) {
     gl::Defines defines{{"SHADING", std::to_string(static_cast<int>(mode))}};
     if (tubes) defines.emplace_back("HAS_TUBES", "1");
-    return programs_.emplace(key, gl::Program::compute("dos_slice.comp", defines)).first->second;
+    tf.addDefines(defines);
+    return programs_.get(defines);
 }
 
 void SlabPass::ensureBuffers(glm::ivec2 size) {
@@ -61,7 +59,7 @@ void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, c
     glClearTexImage(eyeBuffer, 0, GL_RGBA, GL_FLOAT, clearEye);
     glClearTexImage(occlusion_[0].name(), 0, GL_RG, GL_FLOAT, clearOcclusion);
 
-    gl::Program& p = program(frame.shading, tubes != nullptr);
+    gl::Program& p = program(frame.shading, tubes != nullptr, tf);
     if (tubes) {
         // Surfaces in front of the first slice keep full visibility.
         const float one = 1.0f;

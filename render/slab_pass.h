@@ -11,7 +11,6 @@
 #include "render/transfer_function_texture.h"
 #include "render/tube_set.h"
 
-#include <map>
 
 namespace curette {
 
@@ -33,10 +32,10 @@ public:
     std::size_t gpuBytes() const;
 
 private:
-    gl::Program& program(ShadingMode mode, bool tubes);
+    gl::Program& program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf);
     void ensureBuffers(glm::ivec2 size);
 
-    std::map<std::pair<ShadingMode, bool>, gl::Program> programs_;
+    gl::ComputeVariants programs_{"dos_slice.comp"};
     gl::Texture occlusion_[2];
     glm::ivec2 size_{0};
     int slices_ = 0;

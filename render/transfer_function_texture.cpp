@@ -74,11 +74,14 @@ float TransferFunctionTexture::maxOpacity(float texelLo, float texelHi) const {
     return std::max(row[static_cast<std::size_t>(lo)], row[static_cast<std::size_t>(hi - (1 << level) + 1)]);
 }
 
+void TransferFunctionTexture::addDefines(gl::Defines& defines) const {
+    if (useGradientOpacity_) defines.emplace_back("GRADIENT_OPACITY", "1");
+}
+
 void TransferFunctionTexture::setUniforms(gl::Program& p) const {
     p.set("texelToTf", texelToTf_);
     p.set("gradientToTf", gradientToTf_);
     p.set("tfUnitLengthMm", unitLengthMm_);
-    p.set("useGradientOpacity", useGradientOpacity_ ? 1 : 0);
 }
 
 void TransferFunctionTexture::bind() const {

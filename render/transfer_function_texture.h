@@ -29,7 +29,9 @@ public:
     const TransferFunction::Material& material() const { return material_; }
     const std::vector<glm::vec4>& table() const { return table_; }
 
-    // Sets the uniforms of shaders/transfer_function.glsl on `program` and binds the tables to their units.
+    // Adds the defines shaders/transfer_function.glsl needs (GRADIENT_OPACITY when the TF has one) to
+    // `defines`; sets its uniforms on a program compiled with them and binds the tables to their units.
+    void addDefines(gl::Defines& defines) const;
     void setUniforms(gl::Program& program) const;
     void bind() const;
 

@@ -7,7 +7,13 @@ layout(binding = BINDING_GRADIENT_OPACITY) uniform sampler1D gradientOpacity;
 uniform vec2 texelToTf;             // tf coordinate = texel * texelToTf.x + texelToTf.y
 uniform vec2 gradientToTf;          // gradient-opacity coordinate = |gradient| * x + y
 uniform float tfUnitLengthMm;       // opacity in the TF is that of a slab this thick
-uniform bool useGradientOpacity;
+// Compiled in or out (TransferFunctionTexture::addDefines), not a uniform: on llvmpipe a uniform switch would
+// still pay for the six gradient fetches of every sample (render/gl/program.h, ComputeVariants).
+#ifdef GRADIENT_OPACITY
+const bool useGradientOpacity = true;
+#else
+const bool useGradientOpacity = false;
+#endif
 
 // rgb and opacity per unit length at a stored texel value.
 vec4 classify(float texel) { return texture(transferFunction, texel * texelToTf.x + texelToTf.y); }

@@ -144,6 +144,12 @@ Program Program::compute(const std::string& name, const Defines& defines) {
     return p;
 }
 
+Program& ComputeVariants::get(const Defines& defines) {
+    auto found = programs_.find(defines);
+    if (found != programs_.end()) return found->second;
+    return programs_.emplace(defines, Program::compute(shader_, defines)).first->second;
+}
+
 Program Program::graphics(const std::string& vertex, const std::string& fragment, const Defines& defines) {
     Program p;
     ShaderName vs = compileStage(GL_VERTEX_SHADER, vertex, defines);

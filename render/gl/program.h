@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <map>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -57,6 +58,19 @@ private:
     ProgramName program_;
     std::string label_;
     std::unordered_map<std::string, GLint> locations_;
+};
+
+// The variants of one compute shader, each compiled on first use for its set of defines (shading mode, TF
+// features, bench counters). Passes compile features in or out rather than branch on uniforms: llvmpipe runs
+// both sides of a branch under a lane mask, so a feature switched off by a uniform still costs its work.
+class ComputeVariants {
+public:
+    explicit ComputeVariants(std::string shader) : shader_(std::move(shader)) {}
+    Program& get(const Defines& defines);
+
+private:
+    std::string shader_;
+    std::map<Defines, Program> programs_;
 };
 
 }  // namespace curette::gl

@@ -104,6 +104,32 @@ TEST(Raycast, MatchesCpuReferenceFloatVolumeSolidAndPhong) {
     }
 }
 
+// Gradient opacity is compiled into the ray caster only for a TF that has one (GRADIENT_OPACITY): the
+// variant must agree with the reference as closely as the plain one (the 256-entry gradient table is exact
+// for this piecewise-linear ramp, whose only kink is its last point), and it must change the picture.
+TEST(Raycast, GradientOpacityMatchesCpuReference) {
+    glContext();
+    glm::ivec3 dims(40);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::Float32, blobs);
+    TransferFunction withGradient = blobTransferFunction();
+    withGradient.gradientOpacity = {{0, 0.0}, {40, 1.0}};
+    ASSERT_TRUE(withGradient.hasGradientOpacity());
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong}) {
+        FrameDescription frame = frameLookingAt(glm::dvec3(0), 90, 30, 20, {96, 96}, mode);
+        Comparison c = compareWithReference(volume, withGradient, frame, 300, 17);
+        EXPECT_GT(c.nonEmpty, 100);
+        EXPECT_LT(c.maxError, 5e-4) << shadingModeName(mode) << " rms " << c.rmsError;
+
+        Renderer plain(glContext(), volume, blobTransferFunction()), gradient(glContext(), volume, withGradient);
+        plain.render(frame);
+        gradient.render(frame);
+        Image a = plain.readImage(), b = gradient.readImage();
+        double largest = 0;
+        for (std::size_t i = 0; i < a.pixels.size(); ++i) largest = std::max(largest, double(std::abs(a.pixels[i].a - b.pixels[i].a)));
+        EXPECT_GT(largest, 0.05) << "gradient opacity must thin out the flat interiors";
+    }
+}
+
 // UInt8 storage: llvmpipe filters R8 textures in 8-bit fixed point (weights and results quantised to
 // 1/256 of a texel step, and the result to 1/255), so an interpolated value may differ from the exact one by
 // up to ~1 value unit of 255. Through a TF slope of at most 0.35/80 per unit and Phong gradients built from
