@@ -126,5 +126,30 @@ TEST(Lao, UnclippedOpacityIsTheTransferFunction) {
     EXPECT_EQ(ao.lastStats().recomputed, f.volume.voxelCount());
 }
 
+// A TF with gradient opacity compiles step IV's GRADIENT_OPACITY variant: V_o is then the TF opacity times
+// the gradient factor of the voxel's central differences, as the CPU twin computes it. The gradient table
+// (256 entries, linear between them) is exact for this ramp, whose only kink is its last point; float
+// differences of 8-bit texels are exact, so the bound stays the TF table's 1e-4.
+TEST(Lao, UnclippedOpacityWithGradientOpacityMatchesTheTwin) {
+    glm::ivec3 dims(20, 18, 16);
+    AoFixture f(dims, test::centredAffine(dims, {0.9, 1.1, 1.3}));
+    f.tf.gradientOpacity = {{0, 0.2}, {25, 1.0}};
+    f.tfTexture = std::make_unique<TransferFunctionTexture>(f.tf, f.volume.valueScale, f.volume.valueOffset);
+    AmbientOcclusion ao(*f.gpu, LaoSettings{});
+    ao.precompute(*f.tfTexture);
+    std::vector<std::uint16_t> gpuOpacity = ao.readOpacity();
+    auto nowhere = [](glm::dvec3) { return false; };
+    reference::VoxelClipping twin = reference::clipVoxels(f.volume, f.tf, nowhere, nowhere, {});
+    double maxError = 0, largestEffect = 0;
+    for (std::size_t i = 0; i < gpuOpacity.size(); ++i) {
+        maxError = std::max(maxError, std::abs(gpuOpacity[i] / 65535.0 - twin.opacity.values[i]));
+        double plain = f.tf.evaluateOpacity(f.volume.valueScale * f.volume.normalized(i) + f.volume.valueOffset);
+        largestEffect = std::max(largestEffect, plain - twin.opacity.values[i]);
+    }
+    std::printf("[ gradient opacity ] max %.2e, largest effect %.3f\n", maxError, largestEffect);
+    EXPECT_LT(maxError, 1e-4);
+    EXPECT_GT(largestEffect, 0.05) << "the gradient factor must matter here";
+}
+
 }  // namespace
 }  // namespace curette
