@@ -6,12 +6,13 @@
 
 layout(local_size_x = 64) in;
 layout(std430, binding = 6) readonly buffer Points { vec4 points[]; };
-layout(std430, binding = 7) writeonly buffer Results { uint results[]; };  // bit 0 inside, bit 1 dilated
+layout(std430, binding = 7) writeonly buffer Results { uint results[]; };  // bit 0 inside, bit 1 dilated, bit 2 near
 uniform uint pointCount;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= pointCount) return;
     vec3 p = points[i].xyz;
-    results[i] = (insideAnyClipMesh(p) ? 1u : 0u) | (insideAnyDilatedMesh(p) ? 2u : 0u);
+    results[i] = (insideAnyClipMesh(p) ? 1u : 0u) | (insideAnyDilatedMesh(p) ? 2u : 0u) |
+                 (nearAnyClipMesh(p, 0.0) ? 4u : 0u);
 }

@@ -200,8 +200,9 @@ TEST(Cao, NoVoxelOutsideTheDilatedRegionChangesItsAmbientOcclusion) {
 }
 
 // The shader's clip test (nearest map pixel) agrees with the analytic inside test for every point farther
-// than one voxel plus one map pixel from the surface; and the dilated test holds every point within the
-// dilation radius of the mesh.
+// than one voxel plus one map pixel from the surface; the dilated test holds every point within the
+// dilation radius of the mesh; and step IV's "near any mesh" pre-test is conservative: every point either
+// map test calls inside is near (and points far enough away are not, or the pre-test would skip nothing).
 TEST(Cao, ShaderClipTestAgreesWithAnalyticSphereAndBox) {
     CaoScene scene;
     clip::ClipMeshSet& set = scene.renderer->clipMeshes();
@@ -242,9 +243,13 @@ TEST(Cao, ShaderClipTestAgreesWithAnalyticSphereAndBox) {
         std::vector<std::uint32_t> results(points.size());
         glGetNamedBufferSubData(out.name(), 0, static_cast<GLsizeiptr>(results.size() * 4), results.data());
         double band = 1.0 + set.camera(0).pixelMm() * std::sqrt(2.0);
-        int checked = 0, dilatedChecked = 0;
+        int checked = 0, dilatedChecked = 0, far = 0;
         for (std::size_t i = 0; i < points.size(); ++i) {
             double d = signedDistance(glm::dvec3(points[i]));
+            if (results[i] & 3u) {
+                ASSERT_TRUE(results[i] & 4u) << "point " << i << " is inside a map but not near its box";
+            }
+            far += (results[i] & 4u) == 0;
             if (std::abs(d) > band) {
                 ++checked;
                 ASSERT_EQ((results[i] & 1u) != 0, d < 0) << (shape ? "box" : "sphere") << " point " << i << " at distance " << d;
@@ -256,6 +261,8 @@ TEST(Cao, ShaderClipTestAgreesWithAnalyticSphereAndBox) {
         }
         EXPECT_GT(checked, 15000);
         EXPECT_GT(dilatedChecked, 1000);
+        EXPECT_GT(far, 500) << "the near test must reject points well outside the map box";
+        std::printf("[ clip probe ] %s: %d of %zu points far from the map box\n", shape ? "box" : "sphere", far, points.size());
     }
 }
 
