@@ -11,7 +11,6 @@
 #include "render/transfer_function_texture.h"
 #include "render/tube_set.h"
 
-
 namespace curette {
 
 class SlabPass {
