@@ -2,7 +2,6 @@
 
 #include "base/error.h"
 #include "base/json_reader.h"
-#include "clip/clip_mesh_set.h"
 #include "clip/mesh_description.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -29,6 +28,7 @@ InteractionState InteractionState::fromScene(const Scene& scene) {
         mesh.geometry = m.geometry;
         mesh.pose = mesh.initialPose = m.pose;
         mesh.scale = m.scale;
+        mesh.clipsTubes = m.clipsTubes;
         s.meshes.push_back(mesh);
     }
     return s;
@@ -48,6 +48,7 @@ InteractionState InteractionState::fromSessionStart(const SessionHeader& header,
             m.geometry = meshFromDescription(start.description, source + " line 1: meshes[id " + std::to_string(start.id) + "].mesh", sceneDirectory);
         } else if (start.id < static_cast<int>(scene.clipMeshes.size())) {
             m.geometry = scene.clipMeshes[static_cast<std::size_t>(start.id)].geometry;
+            m.clipsTubes = scene.clipMeshes[static_cast<std::size_t>(start.id)].clipsTubes;
         } else {
             throw InputError(source, "line 1: meshes[id " + std::to_string(start.id) + "]",
                              "a scene mesh index (the scene has " + std::to_string(scene.clipMeshes.size()) + ") or a \"mesh\" description");
@@ -87,7 +88,6 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
     auto mesh = [&](int index) -> MeshState* {
         return index >= 0 && index < static_cast<int>(meshes.size()) ? &meshes[static_cast<std::size_t>(index)] : nullptr;
     };
-    static const ShadingMode cycle[] = {ShadingMode::Solid, ShadingMode::Phong, ShadingMode::Lao, ShadingMode::Cao, ShadingMode::Dos};
     for (const input::Action& action : actions) {
         if (auto* a = std::get_if<input::MoveMesh>(&action)) {
             if (MeshState* m = mesh(a->mesh)) {
@@ -106,14 +106,11 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
         } else if (auto* s = std::get_if<input::SetShading>(&action)) {
             if (auto mode = parseShadingMode(s->mode)) shading = *mode;
         } else if (std::holds_alternative<input::CycleShading>(action)) {
-            int i = 0;
-            for (int k = 0; k < 5; ++k)
-                if (cycle[k] == shading) i = k;
-            shading = cycle[(i + 1) % 5];
+            shading = nextShadingMode(shading);
         } else if (auto* r = std::get_if<input::ResetPose>(&action)) {
             if (MeshState* m = mesh(r->mesh)) m->pose = m->initialPose;
         } else if (std::holds_alternative<input::AddMesh>(action)) {
-            if (static_cast<int>(meshes.size()) >= clip::ClipMeshSet::maxMeshes) continue;  // at the limit: nothing
+            if (static_cast<int>(meshes.size()) >= clip::kMaxClipMeshes) continue;  // at the limit: nothing
             MeshState m;
             m.id = nextMeshId++;
             m.name = "added " + std::to_string(m.id);
@@ -132,20 +129,6 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
         } else if (std::holds_alternative<input::Screenshot>(action)) {
             screenshot = true;
         }
-    }
-}
-
-void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set) {
-    bool same = set.count() == static_cast<int>(state.meshes.size());
-    for (std::size_t i = 0; same && i < state.meshes.size(); ++i) same = set.name(static_cast<int>(i)) == state.meshes[i].name;
-    if (!same) {
-        set.clear();
-        for (const MeshState& m : state.meshes) set.add(m.geometry, m.scale, m.pose, m.name);
-        return;
-    }
-    for (std::size_t i = 0; i < state.meshes.size(); ++i) {
-        set.setPose(static_cast<int>(i), state.meshes[i].pose);
-        set.setScale(static_cast<int>(i), state.meshes[i].scale);
     }
 }
 

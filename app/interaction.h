@@ -1,12 +1,15 @@
 #pragma once
 // Applying input actions to the scene: the one place where device or keyboard motion becomes clip-mesh
-// poses. The live viewer, `curette record` and `curette replay --from-reports` all go through
-// InteractionState::apply, so poses re-derived from recorded reports equal the recorded ones bit for bit.
+// poses. Plain data, no GL: the session step (app/session_step.h) runs it for the live viewer, `curette
+// record`, `curette replay` and the benches, so poses re-derived from recorded reports equal the recorded
+// ones bit for bit.
 
 #include "app/scene.h"
 #include "app/session.h"
+#include "clip/limits.h"
+#include "clip/rigid_pose.h"
+#include "clip/triangle_mesh.h"
 #include "input/actions.h"
-#include "clip/clip_mesh_set.h"
 #include "render/camera.h"
 
 #include <memory>
@@ -23,6 +26,7 @@ struct MeshState {
     std::shared_ptr<const clip::TriangleMesh> geometry;
     clip::RigidPose pose, initialPose;
     glm::dvec3 scale{1.0};
+    bool clipsTubes = false;     // the mesh also cuts tubes (scene key clips_tubes)
 };
 
 struct InteractionState {
@@ -49,9 +53,5 @@ struct InteractionState {
 // A clip mesh's geometry from its scene JSON (clip/mesh_description.h); `source` names it in errors.
 std::shared_ptr<const clip::TriangleMesh> meshFromDescription(const std::string& json, const std::string& source,
                                                               const std::filesystem::path& baseDirectory);
-
-// Makes the renderer's clip meshes match `state` (index i = state.meshes[i]): poses and scales are set (cheap:
-// a rigid motion only changes the camera matrix); meshes are re-added only when the list itself changed.
-void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set);
 
 }  // namespace curette

@@ -1,6 +1,7 @@
 #include "app/loaded_scene.h"
 
 #include "app/io/tract_file.h"
+#include "app/session_step.h"
 #include "base/error.h"
 #include "base/log.h"
 
@@ -25,12 +26,7 @@ LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath) {
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
     const Scene& scene = loaded.scene;
     renderer.setLaoSettings(scene.lao);
-    clip::ClipMeshSet& clip = renderer.clipMeshes();
-    clip.clear();
-    for (const SceneClipMesh& mesh : scene.clipMeshes) {
-        int index = clip.add(mesh.geometry, mesh.scale, mesh.pose, mesh.name);
-        clip.setClipsTubes(index, mesh.clipsTubes);
-    }
+    syncClipMeshes(InteractionState::fromScene(scene), renderer.clipMeshes());
     if (scene.tubes.empty()) {
         renderer.clearTubes();
         return;

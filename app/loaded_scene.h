@@ -3,8 +3,8 @@
 
 #include "app/scene.h"
 #include "render/renderer.h"
-#include "render/tractogram.h"
-#include "render/volume.h"
+#include "base/tractogram.h"
+#include "base/volume.h"
 
 namespace curette {
 
@@ -16,8 +16,9 @@ struct LoadedScene {
 
 LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
 
-// Hands the scene's LAO settings and clip meshes to a renderer made for its volume (every command that
-// renders a scene goes through here, so they all render the same thing).
+// Hands the scene's LAO settings, clip meshes (through the session step's one path, app/session_step.h) and
+// tubes to a renderer made for its volume: every command that renders a scene goes through here, so they all
+// render the same thing.
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer);
 
 // Applies the --size/--shading/--azimuth/--elevation overrides shared by render-like commands.

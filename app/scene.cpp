@@ -2,7 +2,7 @@
 
 #include "app/io/transfer_function_file.h"
 #include "clip/mesh_description.h"
-#include "clip/clip_mesh_set.h"
+#include "clip/limits.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "base/json_reader.h"
@@ -235,7 +235,7 @@ Scene parseScene(std::string_view text, const fs::path& path) {
     }
     if (auto lao = root.find("ambient_occlusion")) scene.lao = parseLao(*lao);
     if (auto meshes = root.find("clip_meshes")) {
-        std::vector<JsonReader> list = meshes->elements(0, clip::ClipMeshSet::maxMeshes);
+        std::vector<JsonReader> list = meshes->elements(0, clip::kMaxClipMeshes);
         for (std::size_t i = 0; i < list.size(); ++i) scene.clipMeshes.push_back(parseClipMesh(list[i], path, i));
     }
     if (auto tubes = root.find("tubes"))

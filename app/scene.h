@@ -33,10 +33,10 @@
 #include "app/io/volume_file.h"
 #include "clip/rigid_pose.h"
 #include "clip/triangle_mesh.h"
-#include "render/ambient_occlusion.h"
+#include "render/lao_settings.h"
 #include "render/tube_geometry.h"
 #include "render/frame.h"
-#include "render/transfer_function.h"
+#include "base/transfer_function.h"
 #include "render/volume_geometry.h"
 
 #include <filesystem>

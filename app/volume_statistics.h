@@ -1,7 +1,7 @@
 #pragma once
 // Summary statistics of a volume's physical values, for `curette info`.
 
-#include "render/volume.h"
+#include "base/volume.h"
 
 #include <array>
 #include <vector>

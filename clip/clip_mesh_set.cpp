@@ -2,7 +2,7 @@
 
 #include "base/error.h"
 #include "base/log.h"
-#include "render/bindings.h"
+#include "gl/bindings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -108,7 +108,8 @@ void ClipMeshSet::setDilatedMapsNeeded(bool needed) {
 }
 
 double ClipMeshSet::kernelRadiusMm(int index) const {
-    // Derivation (clip/README.md, "Dilation radius"): a point s inside the mesh and a voxel v within R of it
+    // Derivation (the map term of the dilation radius; the volume terms are derived in
+    // AmbientOcclusion::dilationRadiusMm, docs/architecture.md "The CAO exactness contract"): a point s inside the mesh and a voxel v within R of it
     // map to pixels at most |v - s|_xy + sqrt(2) px apart (each lies within sqrt(2)/2 px of its pixel centre),
     // so a kernel of radius R + sqrt(2) px over pixel centres covers every such pair; a small epsilon absorbs
     // float rounding of the map transforms and depth comparisons.
@@ -161,28 +162,48 @@ void ClipMeshSet::allocateArrays(int layers) {
         throw SystemError("clip depth-map framebuffer is incomplete");
 }
 
-void ClipMeshSet::update() {
-    if (!depthProgram_) {
-        depthProgram_ = gl::Program::graphics("clip_depth.vert", "clip_depth.frag");
-        dilationProgram_ = gl::Program::compute("dilation.comp");
-        vertexArray_ = gl::createVertexArray();
-        cameraBuffer_ = gl::createBuffer();
-        glNamedBufferStorage(cameraBuffer_.name(), maxMeshes * sizeof(CameraGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    }
-    if (meshes_.empty()) {
-        uploadCameras();
-        return;
-    }
+int ClipMeshSet::wantedResolution() const {
     // One resolution for all maps: enough for the largest mesh at the target pixel size.
     int wanted = settings_.minResolution;
     for (const Mesh& m : meshes_) {
         double extent = std::max(m.localMax.x - m.localMin.x, m.localMax.y - m.localMin.y) + 2.0 * dilationRadiusMm_;
         wanted = std::max(wanted, static_cast<int>(std::ceil(extent / settings_.pixelMm)) + 8);
     }
-    wanted = std::min(wanted, settings_.maxResolution);
+    return std::min(wanted, settings_.maxResolution);
+}
+
+bool ClipMeshSet::needsReallocation(int wanted, bool dilatedNeeded) const {
+    return resolution_ == 0 || wanted > resolution_ || wanted < resolution_ / 2 || allocatedLayers_ < layersPerMesh * count() ||
+           (dilatedNeeded && !dilatedAllocated_);
+}
+
+bool ClipMeshSet::mapsCurrent(bool dilatedNeeded) const {
+    if (meshes_.empty()) return true;
+    if (!depthProgram_ || needsReallocation(wantedResolution(), dilatedNeeded)) return false;
+    for (const Mesh& m : meshes_)
+        if (m.mapsDirty || (dilatedNeeded && m.dilatedDirty)) return false;
+    return true;
+}
+
+std::size_t ClipMeshSet::geometryBytes() const {
+    std::size_t bytes = 0;
+    for (const Mesh& m : meshes_) bytes += m.geometry->positions.size() * sizeof(glm::vec3) + m.geometry->triangles.size() * sizeof(glm::uvec3);
+    return bytes;
+}
+
+void ClipMeshSet::update() {
+    if (!depthProgram_) {
+        depthProgram_ = gl::Program::graphics("clip_depth.vert", "clip_depth.frag");
+        dilationProgram_ = gl::Program::compute("dilation.comp");
+        vertexArray_ = gl::createVertexArray();
+    }
+    if (meshes_.empty()) {
+        uploadCameras();
+        return;
+    }
+    int wanted = wantedResolution();
     // Grow in steps of 25% so a mesh that scales up a little does not reallocate every frame.
-    bool reallocate = resolution_ == 0 || wanted > resolution_ || wanted < resolution_ / 2 ||
-                      allocatedLayers_ < layersPerMesh * count() || (dilatedNeeded_ && !dilatedAllocated_);
+    bool reallocate = needsReallocation(wanted, dilatedNeeded_);
     if (reallocate) {
         if (resolution_ == 0 || wanted > resolution_ || wanted < resolution_ / 2)
             resolution_ = std::min(settings_.maxResolution, std::max(wanted, resolution_ == 0 ? wanted : wanted + wanted / 4));
@@ -310,6 +331,10 @@ ClipMeshSet::WorldBox ClipMeshSet::mapBoxWorldBounds(int index) const {
 }
 
 void ClipMeshSet::uploadCameras() {
+    if (!cameraBuffer_) {
+        cameraBuffer_ = gl::createBuffer();
+        glNamedBufferStorage(cameraBuffer_.name(), maxMeshes * sizeof(CameraGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
     std::vector<CameraGpu> cameras(meshes_.size());
     for (std::size_t i = 0; i < meshes_.size(); ++i) {
         glm::mat4 m(meshes_[i].camera.worldToMap(meshes_[i].pose));
@@ -332,7 +357,8 @@ void ClipMeshSet::uploadCameras() {
         glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());
 }
 
-void ClipMeshSet::bind() const {
+void ClipMeshSet::apply(gl::Program& program) const {
+    program.set("clipMeshCount", count());
     glBindBufferBase(GL_UNIFORM_BUFFER, binding::uboClipMeshes, cameraBuffer_.name());
     glBindTextureUnit(binding::clipDepth, depthMaps_.name());
     glBindTextureUnit(binding::clipDilated, dilatedAllocated_ ? dilatedMaps_.name() : depthMaps_.name());

@@ -2,14 +2,16 @@
 // The active clip meshes and their maps (CAO section 3.6: one clipping camera and map set per mesh). Owns
 // the GPU side of steps II and III: for each mesh, depth maps of one or two intervals (depth peeling for
 // concave meshes) and, when AO needs them, the dilated maps; all meshes' maps live in two 2-D array
-// textures sharing one resolution. A rigid motion changes only the mesh's camera matrix (an SSBO entry);
+// textures sharing one resolution. A rigid motion changes only the mesh's camera matrix (an entry of a
+// uniform block);
 // maps are redrawn only when a mesh's geometry or scale, the dilation radius or the map resolution change.
 
 #include "clip/clipping_camera.h"
+#include "clip/limits.h"
 #include "clip/rigid_pose.h"
 #include "clip/triangle_mesh.h"
-#include "render/gl/objects.h"
-#include "render/gl/program.h"
+#include "gl/objects.h"
+#include "gl/program.h"
 
 #include <cstdint>
 #include <memory>
@@ -26,7 +28,7 @@ struct ClipMapSettings {
 
 class ClipMeshSet {
 public:
-    static constexpr int maxMeshes = 16;   // shaders/clip_test.glsl MAX_CLIP_MESHES
+    static constexpr int maxMeshes = kMaxClipMeshes;
     static constexpr int layersPerMesh = 4;  // front 1, back 1, front 2, back 2
 
     explicit ClipMeshSet(ClipMapSettings settings = {});
@@ -47,11 +49,13 @@ public:
     void setDilationRadiusMm(double radiusMm);
     // Whether the dilated maps are drawn (cao needs them; solid, phong, lao and dos do not).
     void setDilatedMapsNeeded(bool needed);
+    bool dilatedMapsNeeded() const { return dilatedNeeded_; }
 
     int count() const { return static_cast<int>(meshes_.size()); }
     const RigidPose& pose(int index) const { return meshes_[static_cast<std::size_t>(index)].pose; }
     glm::dvec3 scale(int index) const { return meshes_[static_cast<std::size_t>(index)].scale; }
     const std::string& name(int index) const { return meshes_[static_cast<std::size_t>(index)].name; }
+    const TriangleMesh* geometry(int index) const { return meshes_[static_cast<std::size_t>(index)].geometry.get(); }
     const ClippingCamera& camera(int index) const { return meshes_[static_cast<std::size_t>(index)].camera; }
     int intervals(int index) const { return meshes_[static_cast<std::size_t>(index)].intervals; }
     int resolution() const { return resolution_; }
@@ -71,14 +75,21 @@ public:
     // How many times step II/III ran for a mesh (tests check rigid motion does not redraw).
     std::uint64_t mapRenderCount() const { return mapRenders_; }
 
-    // Steps II and III for meshes that need them, and the per-mesh cameras into the SSBO.
+    // Whether update() has nothing to draw: every mesh's depth maps (and, with `dilatedNeeded`, its dilated
+    // maps) match its geometry, scale and the dilation radius, at a resolution that still fits.
+    bool mapsCurrent(bool dilatedNeeded) const;
+    // Steps II and III for meshes that need them, and the per-mesh cameras into the uniform block.
     void update();
-    // Binds the SSBO and the map arrays to the units of shaders/clip_test.glsl.
-    void bind() const;
+    // Only the per-mesh cameras (a rigid motion needs nothing else).
+    void uploadCameras();
+    // The binder of shaders/clip_test.glsl: clipMeshCount, the uniform block of clipping cameras and the map
+    // arrays on their units.
+    void apply(gl::Program& program) const;
 
     // Reads one map layer back (tests): layer 0..3 = front 1, back 1, front 2, back 2.
     std::vector<float> readMap(int index, int layer, bool dilated) const;
-    std::size_t gpuBytes() const;
+    std::size_t gpuBytes() const;        // the map arrays
+    std::size_t geometryBytes() const;   // the meshes' vertex and index buffers
 
 private:
     struct Mesh {
@@ -99,7 +110,8 @@ private:
     void allocateArrays(int layers);
     void renderMaps(int index);
     void dilateMaps(int index);
-    void uploadCameras();
+    int wantedResolution() const;
+    bool needsReallocation(int wanted, bool dilatedNeeded) const;
     // Mesh `index`'s map box in its pose's local frame (x, y: the map; z: the depth range plus margin).
     void mapBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
 

@@ -26,7 +26,7 @@ struct ClippingCamera {
 };
 
 // Fits a camera to `localMin..localMax` with room for a dilation of `dilationRadiusMm` (plus the pixel
-// margin the dilation adds, see clip_maps.h) at `resolution` pixels.
+// margin the dilation adds, see ClipMeshSet::kernelRadiusMm) at `resolution` pixels.
 ClippingCamera fitClippingCamera(glm::dvec3 localMin, glm::dvec3 localMax, double dilationRadiusMm, int resolution);
 
 }  // namespace curette::clip

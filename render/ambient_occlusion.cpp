@@ -2,8 +2,7 @@
 
 #include "base/error.h"
 #include "base/progress.h"
-#include "render/bindings.h"
-#include "render/renderer.h"
+#include "gl/bindings.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -103,12 +102,11 @@ double AmbientOcclusion::dilationRadiusMm(const LaoSettings& settings, const Vol
 }
 
 void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
+    // lao_ray.glsl's uniforms (lao.comp only; the compaction pass casts no ray).
     glm::ivec3 dims = volume_.geometry().dims;
     p.set("laoDirectionCount", settings_.directions.count);
     p.set("laoSamples", settings_.samples);
-    p.set("volumeSize", dims);
     p.set("laoTextureMargin", glm::vec3(0.5 / glm::dvec3(dims)));
-    p.set("maxGroupsX", 32768u);
     p.set("laoOpacityExponent", opacityExponent);
 }
 
@@ -142,17 +140,16 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     tf.addDefines(defines);
     gl::Program& p = clipPrograms_.get(defines);
     const VolumeGeometry& g = volume_.geometry();
-    tf.setUniforms(p);
-    tf.bind();
+    tf.apply(p);
     p.set("indexToWorld", glm::mat4(g.indexToWorld));
     p.set("volumeSize", g.dims);
     p.set("antiAliasingSamples", settings_.antiAliasingSamples);
     p.set("testDilation", testDilation ? 1 : 0);
     p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
-    p.set("clipMeshCount", clip ? clip->count() : 0);
+    if (clip) clip->apply(p);
+    else p.set("clipMeshCount", 0);
     // Clip samples lie within one voxel step along every axis: at most a cell diagonal from the centre.
     p.set("sampleReachMm", static_cast<float>(g.cellDiagonalMm() * 1.001));
-    if (clip) clip->bind();
     glBindTextureUnit(binding::volume, volume_.texture());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboAntiAliasing, antiAliasing_.name());
     glBindImageTexture(binding::imageOpacity, opacity_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
@@ -181,6 +178,7 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
     };
     glm::uvec2 grid = groupsFor(voxels);
     setLaoUniforms(laoProgram_, opacityExponent);
+    laoProgram_.set("volumeSize", volume_.geometry().dims);
     laoProgram_.set("regionOrigin", region.origin);
     laoProgram_.set("regionSize", region.size);
     if (!compacted) {
@@ -188,7 +186,8 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
         laoProgram_.use();
         glDispatchCompute(grid.x, grid.y, 1);
     } else {
-        setLaoUniforms(compactProgram_, opacityExponent);
+        compactProgram_.set("volumeSize", volume_.geometry().dims);
+        compactProgram_.set("maxGroupsX", 32768u);
         compactProgram_.set("regionOrigin", region.origin);
         compactProgram_.set("regionSize", region.size);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
@@ -211,23 +210,18 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
     stats_.recomputed = counts[1];
 }
 
-void AmbientOcclusion::precompute(const TransferFunctionTexture& tf, gl::TimerSet* timers) {
+void AmbientOcclusion::precompute(const TransferFunctionTexture& tf) {
     // Step I is step IV without meshes (every voxel keeps its TF opacity, all category b) followed by the
     // LAO of every voxel, written to V_PAO.
     Progress progress("LAO precompute (step I)", 2);
-    if (timers) timers->begin("I  LAO precompute");
     runVoxelClipping(tf, nullptr, false, wholeVolume());
     progress.update(1);
     runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()), wholeVolume());
-    if (timers) timers->end();
     progress.finish();
-    precomputed_valid_ = true;
     lastMeshRegion_.reset();
 }
 
-void AmbientOcclusion::update(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode,
-                              gl::TimerSet* timers) {
-    if (!precomputed_valid_) precompute(tf, timers);
+void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode) {
     bool cao = mode == ShadingMode::Cao;
     // Full LAO (the baseline) and the first update after step I visit every voxel. A CAO update visits the
     // bounding box of this frame's mesh region and the last update's: outside both, every voxel is category
@@ -250,25 +244,25 @@ void AmbientOcclusion::update(const TransferFunctionTexture& tf, const clip::Cli
     stats_.voxels = std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
     stats_.dispatched = visit.voxels();
     stats_.recomputed = 0;
-    if (visit.empty()) return;
-    if (timers) timers->begin("IV voxel clipping");
-    runVoxelClipping(tf, &clip, cao, visit);
-    if (timers) timers->end();
-    if (timers) timers->begin("V  LAO recompute");
+    visit_ = visit;
+    if (!visit.empty()) runVoxelClipping(tf, &clip, cao, visit);
+}
+
+void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {
+    if (visit_.empty()) return;
     runLao(ambient_.name(), settings_.dispatch == LaoSettings::Dispatch::Compacted,
-           static_cast<float>(settings_.stepMm / tf.unitLengthMm()), visit);
-    if (timers) timers->end();
+           static_cast<float>(settings_.stepMm / tf.unitLengthMm()), visit_);
 }
 
 std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
     glm::ivec3 d = volume_.geometry().dims;
     std::size_t n = std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z);
-    std::vector<GpuAllocation> list{{"V_o (clipped opacity)", "R16", 2 * n},
-                                    {"V_m (categories a/b/c)", "R8UI", n},
-                                    {"V_PAO (precomputed LAO)", "R16", 2 * n},
-                                    {"V_AO (LAO under clipping)", "R16", 2 * n}};
-    if (settings_.dispatch == LaoSettings::Dispatch::Compacted) list.push_back({"recompute list", "uint32 buffer", 4 * n + 8});
-    list.push_back({"LAO directions", "vec4 buffer", 16u * std::size_t(settings_.directions.count)});
+    std::vector<GpuAllocation> list{{Resource::ClippedOpacity, 2 * n, {}},
+                                    {Resource::CategoryMask, n, {}},
+                                    {Resource::PrecomputedAo, 2 * n, {}},
+                                    {Resource::Ambient, 2 * n, {}},
+                                    {Resource::RecomputeList, settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * n + 8 : 8, {}},
+                                    {Resource::LaoDirections, 16u * std::size_t(settings_.directions.count), {}}};
     return list;
 }
 

@@ -14,10 +14,11 @@
 // and in the compacted variant a recompute list of 4 bytes per voxel.
 
 #include "clip/clip_mesh_set.h"
-#include "render/gl/program.h"
-#include "render/gl/timer.h"
+#include "gl/program.h"
+#include "render/gpu_resources.h"
 #include "render/gpu_volume.h"
 #include "render/lao_directions.h"
+#include "render/lao_settings.h"
 #include "render/shading_mode.h"
 #include "render/transfer_function_texture.h"
 
@@ -25,30 +26,6 @@
 #include <vector>
 
 namespace curette {
-
-struct GpuAllocation;
-
-struct LaoSettings {
-    LaoDirectionSet directions;
-    int samples = 20;                // M, samples per ray (eq. 2); the paper's Engine scene uses 20
-    double stepMm = 1.0;             // distance between LAO samples (the paper: 1 mm)
-    int antiAliasingSamples = 32;    // N of Algorithm 2 (the paper: 32)
-    // Shading: colour = TF colour * ambientScale * A. With 2 an open flat surface (A = 0.5) shows its TF
-    // colour (the reference implementation also doubles LAO). Not part of V_AO, so not of the contract.
-    double ambientScale = 2.0;
-    // Step V: a full-grid dispatch that decides per voxel (early exit), or a compacted list of the voxels to
-    // recompute (atomic append + indirect dispatch). `curette bench cao` measures both (its "Step V dispatch"
-    // table): on the head at K = 26 the compacted list took 710 ms against 982 ms for the grid (both over the
-    // CAO dispatch region), 803 against 1645 ms when both still visited the whole volume.
-    enum class Dispatch { Compacted, FullGrid } dispatch = Dispatch::Compacted;
-
-    bool operator==(const LaoSettings& o) const {
-        return directions.pattern == o.directions.pattern && directions.count == o.directions.count &&
-               directions.jitter == o.directions.jitter && directions.seed == o.directions.seed &&
-               directions.skyWeighting == o.directions.skyWeighting && samples == o.samples && stepMm == o.stepMm &&
-               antiAliasingSamples == o.antiAliasingSamples && dispatch == o.dispatch && ambientScale == o.ambientScale;
-    }
-};
 
 // The N extra anti-aliasing offsets of step IV (Algorithm 2, line 9) in voxel index units: Halton points
 // (bases 2, 3, 5) in [-1, 1]^3, fixed so every run classifies the same. One definition for the GPU buffer and
@@ -75,15 +52,19 @@ public:
     double dilationRadiusMm() const { return dilationRadiusMm(settings_, volume_.geometry()); }
     static double dilationRadiusMm(const LaoSettings& settings, const VolumeGeometry& geometry);
 
-    // Step I for the volume under `tf`. Call again when the TF or the settings change.
-    void precompute(const TransferFunctionTexture& tf, gl::TimerSet* timers = nullptr);
-    // Steps IV and V under the meshes' current poses. mode: Cao (masked) or Lao (every visible voxel).
-    void update(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode,
-                gl::TimerSet* timers = nullptr);
+    // The passes of the frame plan (render/frame_plan.h); the renderer decides when each runs (its Freshness
+    // record says what V_PAO and V_AO were computed from).
+    // Step I for the volume under `tf`. Run again when the TF or the settings change.
+    void precompute(const TransferFunctionTexture& tf);
+    // Step IV under the meshes' current poses. mode: Cao (masked, over the dispatch region) or Lao (every
+    // voxel). Must follow step I.
+    void clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode);
+    // Step V over the region step IV just visited.
+    void recomputeLao(const TransferFunctionTexture& tf);
 
     GLuint ambientTexture() const { return ambient_.name(); }
     const AmbientOcclusionStats& lastStats() const { return stats_; }
-    std::vector<GpuAllocation> allocations() const;
+    std::vector<GpuAllocation> allocations() const;   // V_o, V_m, V_PAO, V_AO, recompute list, directions
 
     // Read-backs for tests and `replay --check` (x fastest).
     std::vector<std::uint16_t> readAmbient() const;
@@ -113,7 +94,7 @@ private:
     gl::ComputeVariants clipPrograms_{"voxel_clip.comp"};
     gl::Program laoProgram_, compactProgram_;
     AmbientOcclusionStats stats_;
-    bool precomputed_valid_ = false;
+    VoxelRegion visit_;   // what the last step IV visited: step V visits the same
     // Outside this region (of the last update) V_o holds the unclipped opacity and V_AO equals V_PAO, so the
     // next CAO update only visits it and its own mesh region. Unset after step I (V_AO not yet written).
     std::optional<VoxelRegion> lastMeshRegion_;

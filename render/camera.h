@@ -15,6 +15,7 @@ struct OrbitCamera {
     double fovYDeg = 30.0;
     double nearMm = 1.0;
     double farMm = 10000.0;
+    bool operator==(const OrbitCamera&) const = default;
 
     glm::dvec3 position() const;
     glm::dvec3 forward() const;  // unit vector from the camera towards the target

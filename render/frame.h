@@ -16,6 +16,7 @@ struct Light {
     glm::dvec3 direction{0.3, 0.5, 1.0};  // towards the light; camera space is (right, up, towards viewer)
     glm::dvec3 color{1.0};                // colour times intensity
     bool cameraSpace = true;              // a headlight-style light moves with the camera
+    bool operator==(const Light&) const = default;
 };
 
 struct RaycastSettings {
@@ -23,6 +24,7 @@ struct RaycastSettings {
     double earlyTerminationAlpha = 0.99;  // stop a ray once its opacity reaches this
     std::uint32_t jitterSeed = 0;         // 0: no jitter; otherwise a deterministic per-pixel offset
     bool skipEmptySpace = true;
+    bool operator==(const RaycastSettings&) const = default;
 };
 
 // Directional occlusion shading (seed 001) and the slab pass.
@@ -41,6 +43,7 @@ struct FrameDescription {
     RaycastSettings raycast;
     DosSettings dos;
     std::vector<Light> lights{Light{}};
+    bool operator==(const FrameDescription&) const = default;
 };
 
 }  // namespace curette

@@ -3,9 +3,9 @@
 // conversion, so 8-bit CT/MRI costs one byte a voxel), its geometry, and per-brick value ranges used to
 // skip empty space.
 
-#include "render/gl/context.h"
-#include "render/gl/objects.h"
-#include "render/volume.h"
+#include "gl/context.h"
+#include "gl/objects.h"
+#include "base/volume.h"
 #include "render/volume_geometry.h"
 
 #include <vector>

@@ -3,8 +3,8 @@
 // shades: the ray caster, the slab pass and the tube compositor.
 
 #include "render/frame.h"
-#include "render/gl/program.h"
-#include "render/transfer_function.h"
+#include "gl/program.h"
+#include "base/transfer_function.h"
 
 namespace curette {
 

@@ -1,8 +1,9 @@
 #include "render/renderer.h"
 
 #include "base/error.h"
-#include "render/bindings.h"
+#include "gl/bindings.h"
 #include "render/lighting.h"
+#include "render/shader_pieces.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -16,47 +17,27 @@ Renderer::Renderer(gl::Context& context, const VolumeData& volume, const Transfe
     setTransferFunction(tf);
 }
 
+Renderer::~Renderer() = default;
+
 void Renderer::setLaoSettings(const LaoSettings& settings) {
     // The ambient scale only shades: changing it alone keeps every AO volume.
     LaoSettings comparable = settings;
     comparable.ambientScale = laoSettings_.ambientScale;
     bool aoChanged = !(comparable == laoSettings_);
+    bool scaleChanged = settings.ambientScale != laoSettings_.ambientScale;
     laoSettings_ = settings;
+    if (scaleChanged) ++tubesVersion_;   // not an AO input, but the image changes
     if (!aoChanged) return;
     // The clip maps leave room for the LAO reach in every mode, so every mode clips identically.
     clip_.setDilationRadiusMm(AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()));
     ao_.reset();  // buffers depend on the settings (directions, list); reallocated at the next AO frame
-    aoValid_ = aoPrecomputedValid_ = false;
+    ++freshness_.current().laoSettings;
+    freshness_.forgetAmbientOcclusion();
 }
-
-void Renderer::updateAmbientOcclusion(ShadingMode mode) {
-    lastFrameUpdatedAmbient_ = false;
-    if (!ao_) {
-        ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_);
-        aoValid_ = aoPrecomputedValid_ = false;
-    }
-    // Only cao needs the dilated maps; lao recomputes every visible voxel.
-    clip_.setDilatedMapsNeeded(mode == ShadingMode::Cao);
-    clip_.update();
-    if (!aoPrecomputedValid_ || aoTfVersion_ != tfVersion_) {
-        ao_->precompute(*tf_, &timers_);
-        aoPrecomputedValid_ = true;
-        aoValid_ = false;
-    }
-    if (aoValid_ && aoClipVersion_ == clip_.version() && aoTfVersion_ == tfVersion_ && aoMode_ == mode) return;
-    ao_->update(*tf_, clip_, mode, &timers_);
-    aoValid_ = true;
-    aoClipVersion_ = clip_.version();
-    aoTfVersion_ = tfVersion_;
-    aoMode_ = mode;
-    lastFrameUpdatedAmbient_ = true;
-}
-
-Renderer::~Renderer() = default;
 
 void Renderer::setTransferFunction(const TransferFunction& tf) {
     tf_ = std::make_unique<TransferFunctionTexture>(tf, volume_.valueScale(), volume_.valueOffset());
-    ++tfVersion_;  // V_PAO and V_AO depend on the TF (the reference implementation forgot this: its bug 4)
+    ++freshness_.current().transferFunction;  // V_PAO and V_AO depend on the TF (the reference implementation's bug 4)
     updateOccupancy();
 }
 
@@ -87,11 +68,68 @@ void Renderer::ensureOutput(glm::ivec2 size) {
     outputSize_ = size;
 }
 
-gl::Program& Renderer::raycastProgram(ShadingMode mode) {
-    gl::Defines defines{{"SHADING", std::to_string(static_cast<int>(mode))}};
-    if (countSamples_) defines.emplace_back("COUNT_SAMPLES", "1");
-    tf_->addDefines(defines);
-    return raycastPrograms_.get(defines);
+void Renderer::setTubes(const TubeVertices& vertices, const TubeShading& shading) {
+    tubes_ = std::make_unique<TubeSet>(vertices);
+    tubeShading_ = shading;
+    ++tubesVersion_;
+}
+
+void Renderer::setTubeShading(const TubeShading& shading) {
+    tubeShading_ = shading;
+    ++tubesVersion_;
+}
+
+void Renderer::clearTubes() {
+    tubes_.reset();
+    ++tubesVersion_;
+}
+
+InputVersions Renderer::currentVersions() const {
+    InputVersions v = freshness_.current();
+    v.clipMeshes = clip_.version();
+    return v;
+}
+
+bool Renderer::tubesInView(const FrameDescription& frame) const {
+    // Conservative: the tubes' world box is outside the view only when all eight corners lie beyond one plane
+    // of the view frustum; then they cover no pixel and the frame is the one without tubes.
+    if (!tubes_) return false;
+    double aspect = double(frame.size.x) / frame.size.y;
+    glm::dmat4 viewProjection = frame.camera.projection(aspect) * frame.camera.view();
+    glm::dvec3 lo = tubes_->boundsMin(), hi = tubes_->boundsMax();
+    for (int plane = 0; plane < 6; ++plane) {
+        int axis = plane / 2;
+        double sign = plane % 2 == 0 ? 1.0 : -1.0;
+        bool allOutside = true;
+        for (int corner = 0; corner < 8 && allOutside; ++corner) {
+            glm::dvec4 c = viewProjection * glm::dvec4((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z, 1.0);
+            allOutside = sign * c[axis] > c.w;   // x > w, x < -w, and so on
+        }
+        if (allOutside) return false;
+    }
+    return true;
+}
+
+PlanInputs Renderer::planInputs(const FrameDescription& frame) const {
+    const ShadingModeTraits& mode = traits(frame.shading);
+    Freshness freshness = freshness_;
+    freshness.current().clipMeshes = clip_.version();
+    PlanInputs in;
+    in.shading = frame.shading;
+    in.clipMeshes = clip_.count();
+    // Only cao needs the dilated maps; the other modes keep whatever maps were drawn.
+    in.clipMapsCurrent = clip_.mapsCurrent(mode.ambientOcclusion ? mode.dilatedMaps : clip_.dilatedMapsNeeded());
+    in.tubes = tubes_ != nullptr;
+    in.tubesInView = tubesInView(frame);
+    in.precomputedCurrent = ao_ && freshness.precomputedCurrent();
+    in.ambientCurrent = ao_ && freshness.ambientCurrent(frame.shading);
+    return in;
+}
+
+FramePlan Renderer::plan(const FrameDescription& frame) const { return planFrame(planInputs(frame)); }
+
+bool Renderer::showing(const FrameDescription& frame) const {
+    return shownFrame_ && *shownFrame_ == frame && shownVersions_ == currentVersions() && shownTubesVersion_ == tubesVersion_;
 }
 
 void Renderer::render(const FrameDescription& frame) {
@@ -100,52 +138,65 @@ void Renderer::render(const FrameDescription& frame) {
         throw InputError("<frame>", "size", "between 1x1 and the GL maximum texture size",
                          std::to_string(frame.size.x) + "x" + std::to_string(frame.size.y));
     ensureOutput(frame.size);
-    if (usesAmbientOcclusion(frame.shading)) {
-        updateAmbientOcclusion(frame.shading);
-    } else {
-        clip_.update();
-        lastFrameUpdatedAmbient_ = false;
-    }
-    if (tubes_) {
-        renderWithTubes(frame);
-        return;
-    }
-    if (frame.shading == ShadingMode::Dos) {
-        // Directional occlusion needs the slab pass (all rays advance slice by slice together).
-        timers_.begin("slab pass (DOS)");
-        slab_.run(frame, frame.dos, volume_, *tf_, clip_, output_.name(), 0);
+    freshness_.current().clipMeshes = clip_.version();
+    lastPlan_ = plan(frame);
+    // A rigid motion changes only the clipping cameras: upload them when the maps are not redrawn anyway.
+    if (!lastPlan_.runs(Pass::ClipMaps)) clip_.uploadCameras();
+    for (const PlannedPass& p : lastPlan_.passes) {
+        timers_.begin(passInfo(p.pass).name);
+        run(p.pass, frame);
         timers_.end();
-        slabUsed_ = true;
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-        return;
     }
-    const VolumeGeometry& g = volume_.geometry();
-    gl::Program& p = raycastProgram(frame.shading);
+    shownFrame_ = frame;
+    shownVersions_ = currentVersions();
+    shownTubesVersion_ = tubesVersion_;
+}
 
-    double aspect = double(frame.size.x) / frame.size.y;
-    glm::dmat4 viewProjection = frame.camera.projection(aspect) * frame.camera.view();
-    p.set("inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
-    p.set("eyeWorld", glm::vec3(frame.camera.position()));
-    p.set("outputSize", frame.size);
+void Renderer::run(Pass pass, const FrameDescription& frame) {
+    switch (pass) {
+        case Pass::ClipMaps:
+            if (usesAmbientOcclusion(frame.shading)) clip_.setDilatedMapsNeeded(traits(frame.shading).dilatedMaps);
+            clip_.update();
+            return;
+        case Pass::LaoPrecompute:
+            if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_);
+            ao_->precompute(*tf_);
+            freshness_.markPrecomputed();
+            return;
+        case Pass::VoxelClipping: ao_->clipVoxels(*tf_, clip_, frame.shading); return;
+        case Pass::LaoRecompute:
+            ao_->recomputeLao(*tf_);
+            freshness_.markAmbient(frame.shading);
+            return;
+        case Pass::TubeGBuffer: tubes_->drawGBuffer(frame, clip_, gbuffer_); return;
+        case Pass::RayCast: runRayCast(frame); return;
+        case Pass::SlabPass: runSlabPass(frame, lastPlan_.runs(Pass::TubeGBuffer)); return;
+        case Pass::Composite: runComposite(frame); return;
+        case Pass::Count: break;
+    }
+    throw SystemError("frame plan: a pass without code");
+}
+
+void Renderer::runRayCast(const FrameDescription& frame) {
+    gl::Defines defines;
+    SampleShadingPiece::addDefines(defines, frame.shading);
+    if (countSamples_) defines.emplace_back("COUNT_SAMPLES", "1");
+    tf_->addDefines(defines);
+    gl::Program& p = raycastPrograms_.get(defines);
+
+    CameraRayPiece{frame}.apply(p);
+    VolumePiece{volume_}.apply(p);
+    tf_->apply(p);
+    clip_.apply(p);
+    SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ao_ ? ao_->ambientTexture() : 0}.apply(p);
+    setLightingUniforms(p, frame, tf_->material());
     p.set("stepMm", static_cast<float>(resolveStepMm(frame.raycast)));
     p.set("earlyTerminationAlpha", static_cast<float>(frame.raycast.earlyTerminationAlpha));
     p.set("jitterSeed", static_cast<unsigned>(frame.raycast.jitterSeed));
     p.set("skipEmptySpace", frame.raycast.skipEmptySpace ? 1 : 0);
-    p.set("volumeSize", g.dims);
+    p.set("volumeSize", volume_.geometry().dims);
     p.set("brickSize", GpuVolume::brickSize);
-    p.set("worldToTexture", glm::mat4(g.worldToTexture()));
-    p.set("texelSize", glm::vec3(1.0 / glm::dvec3(g.dims)));
-    p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
-    tf_->setUniforms(p);
-    p.set("clipMeshCount", clip_.count());
-    p.set("ambientScale", static_cast<float>(laoSettings_.ambientScale));
-    setLightingUniforms(p, frame, tf_->material());
-
-    glBindTextureUnit(binding::volume, volume_.texture());
-    tf_->bind();
-    clip_.bind();
     glBindTextureUnit(binding::occupancy, occupancy_.name());
-    if (ao_ && usesAmbientOcclusion(frame.shading)) glBindTextureUnit(binding::ambient, ao_->ambientTexture());
     glBindImageTexture(binding::imageOutput, output_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (countSamples_) {
         if (!sampleCounter_) {
@@ -156,32 +207,20 @@ void Renderer::render(const FrameDescription& frame) {
         glNamedBufferSubData(sampleCounter_.name(), 0, 8, zero);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboSampleCounter, sampleCounter_.name());
     }
-
-    timers_.begin("VI ray casting");
     p.dispatchCovering(glm::uvec3(frame.size.x, frame.size.y, 1));
-    timers_.end();
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
-void Renderer::setTubes(const TubeVertices& vertices, const TubeShading& shading) {
-    tubes_ = std::make_unique<TubeSet>(vertices);
-    tubeShading_ = shading;
+void Renderer::runSlabPass(const FrameDescription& frame, bool withTubes) {
+    // Without tubes only dos comes here (all rays advance slice by slice together); with tubes every mode.
+    GLuint ambient = usesAmbientOcclusion(frame.shading) && ao_ ? ao_->ambientTexture() : 0;
+    slab_.run(SlabInputs{frame, volume_, *tf_, clip_, SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ambient}, output_.name(),
+                         withTubes ? &gbuffer_ : nullptr, withTubes ? tubeShading_.geometryOpacity : 0.0});
+    slabUsed_ = true;
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
-void Renderer::clearTubes() { tubes_.reset(); }
-
-void Renderer::renderWithTubes(const FrameDescription& frame) {
-    // Seed 000 Algorithm 1: G-buffer, slab pass (eye, partial and volumetric occlusion buffers), composite.
-    timers_.begin("tubes G-buffer");
-    tubes_->drawGBuffer(frame, clip_, gbuffer_);
-    timers_.end();
-    GLuint ambient = usesAmbientOcclusion(frame.shading) && ao_ ? ao_->ambientTexture() : 0;
-    timers_.begin("slab pass");
-    slab_.run(frame, frame.dos, volume_, *tf_, clip_, output_.name(), ambient, &gbuffer_, tubeShading_.geometryOpacity,
-              laoSettings_.ambientScale);
-    timers_.end();
-    slabUsed_ = true;
-
+void Renderer::runComposite(const FrameDescription& frame) {
     if (!compositeProgram_) compositeProgram_ = gl::Program::compute("tube_composite.comp");
     if (poissonCount_ != tubeShading_.vicinitySamples) {
         std::vector<glm::vec2> disk = poissonDisk(tubeShading_.vicinitySamples);
@@ -191,30 +230,27 @@ void Renderer::renderWithTubes(const FrameDescription& frame) {
         poissonCount_ = tubeShading_.vicinitySamples;
     }
     gl::Program& c = compositeProgram_;
-    double aspect = double(frame.size.x) / frame.size.y;
-    c.set("inverseViewProjection", glm::mat4(glm::inverse(frame.camera.projection(aspect) * frame.camera.view())));
-    c.set("eyeWorld", glm::vec3(frame.camera.position()));
-    c.set("outputSize", frame.size);
+    CameraRayPiece{frame}.apply(c);
+    setLightingUniforms(c, frame, tubeShading_.material);
     c.set("poissonCount", poissonCount_);
     // Section 3.1.5: the vicinity radius l_vicinity tan(theta), projected at the surface's depth.
     double pixelsPerMmAtUnitDepth = frame.size.y / (2.0 * std::tan(glm::radians(frame.camera.fovYDeg) / 2.0));
     c.set("vicinityRadiusPixelsAtUnitDepth",
           static_cast<float>(tubeShading_.vicinityDistanceMm * std::tan(glm::radians(frame.dos.coneAngleDeg)) * pixelsPerMmAtUnitDepth));
     c.set("depthBiasMm", static_cast<float>(tubeShading_.depthBiasMm));
-    c.set("useOcclusion", frame.shading == ShadingMode::Solid || frame.shading == ShadingMode::Phong ? 0 : 1);
+    c.set("useOcclusion", traits(frame.shading).occludesTubes ? 1 : 0);
     c.set("lineDiffuseExponent", static_cast<float>(tubeShading_.lineDiffuseExponent));
-    setLightingUniforms(c, frame, tubeShading_.material);
     glBindImageTexture(binding::imageOutput, output_.name(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glBindTextureUnit(binding::tubeDepth, gbuffer_.depth());
     glBindTextureUnit(binding::tubeColor, gbuffer_.color());
     glBindTextureUnit(binding::tubeNormal, gbuffer_.normal());
     glBindTextureUnit(binding::partialOcclusion, gbuffer_.partialOcclusion());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboPoissonDisk, poissonDisk_.name());
-    timers_.begin("composite + vicinity");
     c.dispatchCovering(glm::uvec3(static_cast<unsigned>(frame.size.x), static_cast<unsigned>(frame.size.y), 1u));
-    timers_.end();
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
+
+void Renderer::finish() const { glFinish(); }
 
 std::uint64_t Renderer::samplesLastFrame() const {
     if (!sampleCounter_) return 0;
@@ -234,34 +270,38 @@ Image Renderer::readImage() const {
     return image;
 }
 
-std::vector<GpuAllocation> Renderer::gpuAllocations() const {
-    const char* volumeFormat = volume_.format() == StorageFormat::UNorm8    ? "R8"
-                               : volume_.format() == StorageFormat::UNorm16 ? "R16"
-                                                                            : "R32F";
-    glm::ivec3 grid = volume_.brickGrid();
-    std::vector<GpuAllocation> list{
-        {"V (data volume)", volumeFormat, volume_.gpuBytes()},
-        {"transfer function", "RGBA32F 1D", TransferFunctionTexture::tableSize * 16u},
-        {"gradient opacity", "R32F 1D", TransferFunctionTexture::gradientTableSize * 4u},
-        {"occupancy bricks", "R8", static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y) * static_cast<std::size_t>(grid.z)},
-        {"output image", "RGBA32F", static_cast<std::size_t>(outputSize_.x) * static_cast<std::size_t>(outputSize_.y) * 16u},
-    };
-    if (clip_.count() > 0) list.push_back({"clip maps (depth + dilated arrays)", "R32F 2D arrays", clip_.gpuBytes()});
-    if (ao_)
-        for (const GpuAllocation& a : ao_->allocations()) list.push_back(a);
-    if (slabUsed_) list.push_back({"DOS occlusion buffers (2, ping-pong)", "RG32F", slab_.gpuBytes()});
-    if (tubes_) {
-        list.push_back({"tube geometry", tubes_->lines() ? "line vertex buffers" : "triangle vertex buffers", tubes_->gpuBytes()});
-        list.push_back({"G-buffer + partial occlusion", "RGBA16F x2, R32F x2, D32F", gbuffer_.gpuBytes()});
-    }
-    return list;
+FrameTimings Renderer::collectTimings() {
+    FrameTimings timings;
+    for (const auto& [name, ms] : timers_.collectMilliseconds())
+        for (const PassInfo& info : allPasses())
+            if (name == info.name) timings.passes.push_back({info.id, ms});
+    return timings;
 }
 
-double Renderer::ambientOcclusionMs(const std::vector<std::pair<std::string, double>>& timings) {
-    double ms = 0;
-    for (const auto& [pass, passMs] : timings)
-        if (pass.rfind("I ", 0) == 0 || pass.rfind("IV ", 0) == 0 || pass.rfind("V ", 0) == 0) ms += passMs;
-    return ms;
+std::vector<GpuAllocation> Renderer::gpuAllocations() const {
+    const char* volumeFormat = volume_.format() == StorageFormat::UNorm8    ? "R8 3D"
+                               : volume_.format() == StorageFormat::UNorm16 ? "R16 3D"
+                                                                            : "R32F 3D";
+    glm::ivec3 grid = volume_.brickGrid();
+    std::vector<GpuAllocation> list{
+        {Resource::Volume, volume_.gpuBytes(), volumeFormat},
+        {Resource::TransferFunction, TransferFunctionTexture::tableSize * 16u, {}},
+        {Resource::GradientOpacity, TransferFunctionTexture::gradientTableSize * 4u, {}},
+        {Resource::Occupancy, static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y) * static_cast<std::size_t>(grid.z), {}},
+        {Resource::OutputImage, static_cast<std::size_t>(outputSize_.x) * static_cast<std::size_t>(outputSize_.y) * 16u, {}},
+    };
+    if (clip_.count() > 0) {
+        list.push_back({Resource::ClipMeshGeometry, clip_.geometryBytes(), {}});
+        list.push_back({Resource::ClipMaps, clip_.gpuBytes(), {}});
+    }
+    if (ao_)
+        for (const GpuAllocation& a : ao_->allocations()) list.push_back(a);
+    if (slabUsed_) list.push_back({Resource::OcclusionBuffers, slab_.gpuBytes(), {}});
+    if (tubes_) {
+        list.push_back({Resource::TubeGeometry, tubes_->gpuBytes(), tubes_->lines() ? "line vertex buffers" : "triangle vertex buffers"});
+        list.push_back({Resource::GBuffer, gbuffer_.gpuBytes(), {}});
+    }
+    return list;
 }
 
 }  // namespace curette

@@ -1,31 +1,27 @@
 #pragma once
-// The renderer of one scene: it owns the GPU resources the scene needs (allocated once, only those its
-// shading modes use) and runs the frame's passes. See DESIGN.md "One frame, as data flows".
+// The renderer of one scene: it owns the GPU resources the scene needs (allocated when a pass first needs
+// them, only those its shading modes use) and runs each frame as the plan of passes render/frame_plan.h
+// makes from the frame, what the scene has and what is up to date (docs/architecture.md, "The frame plan").
 
 #include "clip/clip_mesh_set.h"
+#include "gl/context.h"
+#include "gl/program.h"
+#include "gl/timer.h"
 #include "render/ambient_occlusion.h"
 #include "render/frame.h"
-#include "render/gl/context.h"
-#include "render/gl/program.h"
-#include "render/gl/timer.h"
+#include "render/frame_plan.h"
+#include "render/gpu_resources.h"
 #include "render/gpu_volume.h"
 #include "render/image.h"
 #include "render/slab_pass.h"
-#include "render/tube_set.h"
 #include "render/transfer_function_texture.h"
+#include "render/tube_set.h"
 
 #include <memory>
-#include <string>
-#include <utility>
+#include <optional>
 #include <vector>
 
 namespace curette {
-
-struct GpuAllocation {
-    std::string name;    // e.g. "V (data volume)"
-    std::string format;  // e.g. "R8"
-    std::size_t bytes = 0;
-};
 
 class Renderer {
 public:
@@ -36,27 +32,35 @@ public:
     // LAO settings for lao/cao shading; a change recomputes V_PAO on the next AO frame.
     void setLaoSettings(const LaoSettings& settings);
     const LaoSettings& laoSettings() const { return laoSettings_; }
-    // The clip meshes; the app adds them and sets their poses between frames.
+    // The clip meshes; the session step (app/session_step.h) makes them match the interaction state.
     clip::ClipMeshSet& clipMeshes() { return clip_; }
     const clip::ClipMeshSet& clipMeshes() const { return clip_; }
     // The AO pipeline, allocated at the first lao/cao frame (null before: a scene allocates what it uses).
     const AmbientOcclusion* ambientOcclusion() const { return ao_.get(); }
     const SlabPass& slabPass() const { return slab_; }
-    // Tubes (or illuminated lines) in world millimetres; a scene with tubes renders through the G-buffer,
-    // the slab pass and the compositor in every shading mode.
+    // Tubes (or illuminated lines) in world millimetres; a scene with tubes in view renders through the
+    // G-buffer, the slab pass and the compositor in every shading mode.
     void setTubes(const TubeVertices& vertices, const TubeShading& shading);
-    void setTubeShading(const TubeShading& shading) { tubeShading_ = shading; }
+    void setTubeShading(const TubeShading& shading);
     void clearTubes();
     bool hasTubes() const { return tubes_ != nullptr; }
     std::size_t tubeTriangleCount() const { return tubes_ ? tubes_->triangleCount() : 0; }
     const GBuffer& gbuffer() const { return gbuffer_; }
-    // Whether the last frame ran steps IV and V (they run only when something they read changed).
-    bool lastFrameUpdatedAmbient() const { return lastFrameUpdatedAmbient_; }
     const VolumeGeometry& geometry() const { return volume_.geometry(); }
     double resolveStepMm(const RaycastSettings& settings) const;
 
-    // Runs the frame on the GPU; the result stays in outputTexture() until read.
+    // The passes render(frame) would run now, in order, with what each reads and writes.
+    FramePlan plan(const FrameDescription& frame) const;
+    const FramePlan& lastPlan() const { return lastPlan_; }
+    // Whether the last frame ran steps IV and V (they run only when something they read changed).
+    bool lastFrameUpdatedAmbient() const { return lastPlan_.runs(Pass::LaoRecompute); }
+    // Whether the image in outputTexture() is already `frame` under the current scene (nothing to render).
+    bool showing(const FrameDescription& frame) const;
+
+    // Runs the frame's plan on the GPU; the result stays in outputTexture() until read.
     void render(const FrameDescription& frame);
+    // Waits until the GPU has finished every pass submitted so far (for wall-clock timing).
+    void finish() const;
     GLuint outputTexture() const { return output_.name(); }
     glm::ivec2 outputSize() const { return outputSize_; }
     Image readImage() const;
@@ -65,30 +69,34 @@ public:
     void setCountSamples(bool on) { countSamples_ = on; }
     std::uint64_t samplesLastFrame() const;
 
-    // GPU time per pass of the frames rendered since the last call (milliseconds).
-    std::vector<std::pair<std::string, double>> collectTimings() { return timers_.collectMilliseconds(); }
-    // The ambient-occlusion share of a frame's timings (steps I, IV and V).
-    static double ambientOcclusionMs(const std::vector<std::pair<std::string, double>>& timings);
+    // Time per pass of the frames rendered since the last call.
+    FrameTimings collectTimings();
+    // Every GPU resource allocated now, named by the descriptor table (render/gpu_resources.h).
     std::vector<GpuAllocation> gpuAllocations() const;
 
 private:
-    gl::Program& raycastProgram(ShadingMode mode);
+    PlanInputs planInputs(const FrameDescription& frame) const;
+    InputVersions currentVersions() const;
+    bool tubesInView(const FrameDescription& frame) const;
+    void run(Pass pass, const FrameDescription& frame);
+    void runRayCast(const FrameDescription& frame);
+    void runSlabPass(const FrameDescription& frame, bool withTubes);
+    void runComposite(const FrameDescription& frame);
     void updateOccupancy();
     void ensureOutput(glm::ivec2 size);
-
-    void updateAmbientOcclusion(ShadingMode mode);
 
     gl::Context& context_;
     GpuVolume volume_;
     std::unique_ptr<TransferFunctionTexture> tf_;
-    std::uint64_t tfVersion_ = 0;
     clip::ClipMeshSet clip_;
     LaoSettings laoSettings_;
     std::unique_ptr<AmbientOcclusion> ao_;
-    // What V_AO was last computed from (steps IV-V rerun only when one of these changes).
-    std::uint64_t aoClipVersion_ = 0, aoTfVersion_ = 0;
-    ShadingMode aoMode_ = ShadingMode::Solid;
-    bool aoValid_ = false, aoPrecomputedValid_ = false, lastFrameUpdatedAmbient_ = false;
+    Freshness freshness_;            // what V_PAO and V_AO were computed from
+    std::uint64_t tubesVersion_ = 1;
+    FramePlan lastPlan_;
+    std::optional<FrameDescription> shownFrame_;
+    InputVersions shownVersions_;
+    std::uint64_t shownTubesVersion_ = 0;
     gl::Texture occupancy_;
     gl::Texture output_;
     glm::ivec2 outputSize_{0};
@@ -104,7 +112,6 @@ private:
     gl::Program compositeProgram_;
     gl::Buffer poissonDisk_;
     int poissonCount_ = 0;
-    void renderWithTubes(const FrameDescription& frame);
 };
 
 }  // namespace curette

@@ -1,33 +1,44 @@
 #include "render/shading_mode.h"
 
+#include <iterator>
+
 namespace curette {
 
 namespace {
-constexpr ShadingMode allModes[] = {ShadingMode::Solid, ShadingMode::Phong, ShadingMode::Lao, ShadingMode::Cao,
-                                    ShadingMode::Dos};
+constexpr ShadingModeTraits kModes[] = {
+    //  mode               name     AO     dilated slab   occludes tubes
+    {ShadingMode::Solid, "solid", false, false, false, false, "emission-absorption with the TF colour"},
+    {ShadingMode::Phong, "phong", false, false, false, false, "Blinn-Phong with gradient normals"},
+    {ShadingMode::Lao, "lao", true, false, false, true, "ambient from LAO recomputed for every voxel (CAO's baseline)"},
+    {ShadingMode::Cao, "cao", true, true, false, true, "ambient from Contextual Ambient Occlusion (seed 002)"},
+    {ShadingMode::Dos, "dos", false, false, true, true, "directional occlusion shading (seed 001), slab pass"},
+};
+constexpr bool inEnumOrder() {
+    for (std::size_t i = 0; i < std::size(kModes); ++i)
+        if (static_cast<std::size_t>(kModes[i].mode) != i) return false;
+    return true;
 }
+static_assert(inEnumOrder(), "kModes is indexed by ShadingMode");
+}  // namespace
 
-const char* shadingModeName(ShadingMode mode) {
-    switch (mode) {
-        case ShadingMode::Solid: return "solid";
-        case ShadingMode::Phong: return "phong";
-        case ShadingMode::Lao: return "lao";
-        case ShadingMode::Cao: return "cao";
-        case ShadingMode::Dos: return "dos";
-    }
-    return "?";
-}
+const ShadingModeTraits& traits(ShadingMode mode) { return kModes[static_cast<std::size_t>(mode)]; }
+std::span<const ShadingModeTraits> allShadingModes() { return kModes; }
+const char* shadingModeName(ShadingMode mode) { return traits(mode).name; }
 
 std::optional<ShadingMode> parseShadingMode(std::string_view name) {
-    for (ShadingMode m : allModes)
-        if (name == shadingModeName(m)) return m;
+    for (const ShadingModeTraits& t : kModes)
+        if (name == t.name) return t.mode;
     return std::nullopt;
 }
 
 std::string shadingModeList() {
     std::string list;
-    for (ShadingMode m : allModes) list += (list.empty() ? "" : ", ") + std::string(shadingModeName(m));
+    for (const ShadingModeTraits& t : kModes) list += (list.empty() ? "" : ", ") + std::string(t.name);
     return list;
+}
+
+ShadingMode nextShadingMode(ShadingMode mode) {
+    return kModes[(static_cast<std::size_t>(mode) + 1) % std::size(kModes)].mode;
 }
 
 }  // namespace curette

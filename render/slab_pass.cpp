@@ -2,7 +2,7 @@
 
 #include "base/error.h"
 #include "base/log.h"
-#include "render/bindings.h"
+#include "gl/bindings.h"
 #include "render/lighting.h"
 
 #include <algorithm>
@@ -11,7 +11,8 @@
 namespace curette {
 
 gl::Program& SlabPass::program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf) {
-    gl::Defines defines{{"SHADING", std::to_string(static_cast<int>(mode))}};
+    gl::Defines defines;
+    SampleShadingPiece::addDefines(defines, mode);
     if (tubes) defines.emplace_back("HAS_TUBES", "1");
     tf.addDefines(defines);
     return programs_.get(defines);
@@ -35,9 +36,11 @@ double SlabPass::resolveSliceDistanceMm(const DosSettings& s, const GpuVolume& v
     return s.sliceDistanceMm > 0 ? s.sliceDistanceMm : 0.5 * volume.geometry().minSpacing();
 }
 
-void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, const GpuVolume& volume,
-                   const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, GLuint eyeBuffer, GLuint ambient,
-                   GBuffer* tubes, double geometryOpacity, double ambientScale) {
+void SlabPass::run(const SlabInputs& in) {
+    const FrameDescription& frame = in.frame;
+    const DosSettings& settings = frame.dos;
+    const GpuVolume& volume = in.volume;
+    GBuffer* tubes = in.tubes;
     if (!(settings.coneAngleDeg >= 0.0 && settings.coneAngleDeg < 90.0))
         throw InputError("<dos settings>", "cone_angle_deg", "an angle in [0, 90)", std::to_string(settings.coneAngleDeg));
     if (settings.gridSize < 1 || settings.gridSize > 16)
@@ -45,7 +48,7 @@ void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, c
     ensureBuffers(frame.size);
     const VolumeGeometry& g = volume.geometry();
     const OrbitCamera& camera = frame.camera;
-    glm::dvec3 eye = camera.position(), forward = camera.forward();
+    glm::dvec3 forward = camera.forward();
 
     SliceLattice lattice = sliceLattice(g, camera, resolveSliceDistanceMm(settings, volume));
     if (lattice.widened)
@@ -56,39 +59,30 @@ void SlabPass::run(const FrameDescription& frame, const DosSettings& settings, c
 
     // Start: an empty eye buffer, and full visibility in both occlusion channels.
     const float clearEye[4] = {0, 0, 0, 0}, clearOcclusion[2] = {1, 1};
-    glClearTexImage(eyeBuffer, 0, GL_RGBA, GL_FLOAT, clearEye);
+    glClearTexImage(in.eyeBuffer, 0, GL_RGBA, GL_FLOAT, clearEye);
     glClearTexImage(occlusion_[0].name(), 0, GL_RG, GL_FLOAT, clearOcclusion);
 
-    gl::Program& p = program(frame.shading, tubes != nullptr, tf);
+    gl::Program& p = program(frame.shading, tubes != nullptr, in.tf);
     if (tubes) {
         // Surfaces in front of the first slice keep full visibility.
         const float one = 1.0f;
         glClearTexImage(tubes->partialOcclusion(), 0, GL_RED, GL_FLOAT, &one);
         glBindTextureUnit(binding::tubeDepth, tubes->depth());
         glBindImageTexture(binding::imagePartialOcclusion, tubes->partialOcclusion(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-        p.set("geometryOpacity", static_cast<float>(geometryOpacity));
+        p.set("geometryOpacity", static_cast<float>(in.geometryOpacity));
     }
-    setLightingUniforms(p, frame, tf.material());
-    double aspect = double(frame.size.x) / frame.size.y;
-    p.set("inverseViewProjection", glm::mat4(glm::inverse(camera.projection(aspect) * camera.view())));
-    p.set("eyeWorld", glm::vec3(eye));
+    setLightingUniforms(p, frame, in.tf.material());
+    CameraRayPiece{frame}.apply(p);
+    VolumePiece{volume}.apply(p);
+    in.tf.apply(p);
+    in.clip.apply(p);
+    in.shading.apply(p);
     p.set("viewForward", glm::vec3(forward));
-    p.set("outputSize", frame.size);
     p.set("sliceDistance", static_cast<float>(d));
     p.set("gridSize", settings.gridSize);
     p.set("ambientRadiance", static_cast<float>(settings.ambientRadiance));
     p.set("earlyTerminationAlpha", static_cast<float>(frame.raycast.earlyTerminationAlpha));
-    p.set("worldToTexture", glm::mat4(g.worldToTexture()));
-    p.set("texelSize", glm::vec3(1.0 / glm::dvec3(g.dims)));
-    p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume.valueScale()));
-    p.set("clipMeshCount", clip.count());
-    p.set("ambientScale", static_cast<float>(ambientScale));
-    tf.setUniforms(p);
-    tf.bind();
-    clip.bind();
-    glBindTextureUnit(binding::volume, volume.texture());
-    if (ambient) glBindTextureUnit(binding::ambient, ambient);
-    glBindImageTexture(binding::imageOutput, eyeBuffer, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(binding::imageOutput, in.eyeBuffer, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
 
     // Eq. 11 and 12: the cone base radius d tan(theta) in world units, projected at the previous slice's
     // depth into pixels (the projection scales a length at depth z by H / (2 z tan(fovy / 2))).

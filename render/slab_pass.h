@@ -5,24 +5,32 @@
 
 #include "clip/clip_mesh_set.h"
 #include "render/frame.h"
-#include "render/gl/program.h"
+#include "gl/program.h"
 #include "render/gpu_volume.h"
+#include "render/shader_pieces.h"
 #include "render/slice_lattice.h"
 #include "render/transfer_function_texture.h"
 #include "render/tube_set.h"
 
 namespace curette {
 
+// What one run of the slab pass reads and where it writes.
+struct SlabInputs {
+    const FrameDescription& frame;        // camera, size, shading, lights, frame.dos
+    const GpuVolume& volume;
+    const TransferFunctionTexture& tf;
+    const clip::ClipMeshSet& clip;
+    SampleShadingPiece shading;           // the mode's colour; V_AO and its scale in lao/cao
+    GLuint eyeBuffer = 0;                 // RGBA32F, frame.size: the image
+    GBuffer* tubes = nullptr;             // a filled G-buffer: tubes take part, the partial occlusion is written
+    double geometryOpacity = 0.0;         // what a tube injects into the occlusion buffer (seed 000 Algorithm 3)
+};
+
 class SlabPass {
 public:
     static constexpr long maxSlices = kMaxSlabSlices;
 
-    // Renders the volume into `eyeBuffer` (RGBA32F, `frame.size`). `ambient` is V_AO for cao/lao shading
-    // (0 otherwise). With `tubes` (a filled G-buffer) the tubes take part in the occlusion and the partial
-    // occlusion buffer is written.
-    void run(const FrameDescription& frame, const DosSettings& settings, const GpuVolume& volume,
-             const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, GLuint eyeBuffer, GLuint ambient,
-             GBuffer* tubes = nullptr, double geometryOpacity = 0.0, double ambientScale = 2.0);
+    void run(const SlabInputs& in);
 
     double resolveSliceDistanceMm(const DosSettings& settings, const GpuVolume& volume) const;
     int slicesLastFrame() const { return slices_; }

@@ -1,6 +1,6 @@
 #include "render/transfer_function_texture.h"
 
-#include "render/bindings.h"
+#include "gl/bindings.h"
 
 #include <algorithm>
 #include <bit>
@@ -78,13 +78,10 @@ void TransferFunctionTexture::addDefines(gl::Defines& defines) const {
     if (useGradientOpacity_) defines.emplace_back("GRADIENT_OPACITY", "1");
 }
 
-void TransferFunctionTexture::setUniforms(gl::Program& p) const {
+void TransferFunctionTexture::apply(gl::Program& p) const {
     p.set("texelToTf", texelToTf_);
     p.set("gradientToTf", gradientToTf_);
     p.set("tfUnitLengthMm", unitLengthMm_);
-}
-
-void TransferFunctionTexture::bind() const {
     glBindTextureUnit(binding::transferFunction, texture_.name());
     glBindTextureUnit(binding::gradientOpacity, gradientTexture_.name());
 }

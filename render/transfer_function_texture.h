@@ -4,9 +4,9 @@
 // table coordinates. Also answers "can any sample with texel values in [lo, hi] be non-transparent?" for
 // empty-space skipping, from the same table the shader filters.
 
-#include "render/gl/objects.h"
-#include "render/gl/program.h"
-#include "render/transfer_function.h"
+#include "gl/objects.h"
+#include "gl/program.h"
+#include "base/transfer_function.h"
 
 #include <vector>
 
@@ -29,11 +29,10 @@ public:
     const TransferFunction::Material& material() const { return material_; }
     const std::vector<glm::vec4>& table() const { return table_; }
 
-    // Adds the defines shaders/transfer_function.glsl needs (GRADIENT_OPACITY when the TF has one) to
-    // `defines`; sets its uniforms on a program compiled with them and binds the tables to their units.
+    // The binder of shaders/transfer_function.glsl: adds the defines it needs (GRADIENT_OPACITY when the TF
+    // has one) to `defines`; apply() sets its uniforms on a program compiled with them and binds the tables.
     void addDefines(gl::Defines& defines) const;
-    void setUniforms(gl::Program& program) const;
-    void bind() const;
+    void apply(gl::Program& program) const;
 
     // Largest opacity the linearly filtered table returns for texel values in [lo, hi] (with one table
     // texel of margin for rounding of the coordinate on the GPU).

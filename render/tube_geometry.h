@@ -4,9 +4,9 @@
 // circle is swept along it with rotation-minimising frames (the double reflection method of Wang, Jüttler,
 // Zheng and Liu 2008: parallel transport, never Frenet, so no flips at inflections and no twist).
 
-#include "render/tractogram.h"
-#include "render/transfer_function.h"
-#include "render/tube_set.h"
+#include "base/tractogram.h"
+#include "base/transfer_function.h"
+#include "render/tube_vertices.h"
 
 #include <string>
 

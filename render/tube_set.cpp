@@ -1,7 +1,7 @@
 #include "render/tube_set.h"
 
 #include "base/error.h"
-#include "render/bindings.h"
+#include "gl/bindings.h"
 
 #include <cmath>
 #include <random>
@@ -63,6 +63,10 @@ TubeSet::TubeSet(const TubeVertices& v) : lines_(v.lines) {
     upload(colors_, v.colors.data(), v.colors.size() * sizeof(glm::vec4));
     upload(indices_, v.indices.data(), v.indices.size() * sizeof(std::uint32_t));
     indexCount_ = static_cast<GLsizei>(v.indices.size());
+    if (!v.positions.empty()) {
+        boundsMin_ = boundsMax_ = glm::dvec3(v.positions.front());
+        for (const glm::vec3& p : v.positions) boundsMin_ = glm::min(boundsMin_, glm::dvec3(p)), boundsMax_ = glm::max(boundsMax_, glm::dvec3(p));
+    }
     vertexArray_ = gl::createVertexArray();
     GLuint va = vertexArray_.name();
     glVertexArrayVertexBuffer(va, 0, positions_.name(), 0, sizeof(glm::vec3));
@@ -94,8 +98,7 @@ void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet
     program_.set("eyeWorld", glm::vec3(frame.camera.position()));
     program_.set("viewForward", glm::vec3(frame.camera.forward()));
     program_.set("surfaceKind", lines_ ? 2.0f : 1.0f);
-    program_.set("clipMeshCount", clip.count());
-    clip.bind();
+    clip.apply(program_);
     program_.use();
     glBindVertexArray(vertexArray_.name());
     glDrawElements(lines_ ? GL_LINES : GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);

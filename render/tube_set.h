@@ -4,33 +4,13 @@
 // axis. The geometry itself is built on the CPU (render/tube_geometry.h) in world millimetres.
 
 #include "clip/clip_mesh_set.h"
+#include "gl/program.h"
 #include "render/frame.h"
-#include "render/gl/program.h"
-#include "render/transfer_function.h"
+#include "render/tube_vertices.h"
 
 #include <vector>
 
 namespace curette {
-
-// Vertex streams as drawn: triangles for tubes, GL_LINES pairs for illuminated lines.
-struct TubeVertices {
-    std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> directions;   // normals (tubes) or tangents (lines), unit
-    std::vector<glm::vec4> colors;
-    std::vector<std::uint32_t> indices;
-    bool lines = false;
-};
-
-// How tubes take part in the combined occlusion (seed 000) and how they are lit.
-struct TubeShading {
-    double geometryOpacity = 0.9;      // opacity a tube injects into the occlusion buffer (Algorithm 3)
-    double vicinityDistanceMm = 3.0;   // l_vicinity: the vicinity radius is l_vicinity tan(theta) (section 3.1.5)
-    int vicinitySamples = 64;          // Poisson-disk samples (the paper: up to 118)
-    double depthBiasMm = 0.5;          // an occluding neighbour must be this much nearer (Algorithm 5)
-    double lineDiffuseExponent = 2.0;  // p of seed 004 eq. 3.15 (Banks: 4.8; the chapter: 2)
-    TransferFunction::Material material{0.25, 0.75, 0.35, 32.0};
-    bool operator==(const TubeShading&) const = default;
-};
 
 class GBuffer {
 public:
@@ -58,6 +38,9 @@ public:
     std::size_t triangleCount() const { return lines_ ? 0 : indexCount_ / 3; }
     std::size_t segmentCount() const { return lines_ ? indexCount_ / 2 : 0; }
     std::size_t gpuBytes() const { return bytes_; }
+    // The world box around every vertex (the frame plan leaves tubes out of a frame they cannot be seen in).
+    glm::dvec3 boundsMin() const { return boundsMin_; }
+    glm::dvec3 boundsMax() const { return boundsMax_; }
     void drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target);
 
 private:
@@ -67,6 +50,7 @@ private:
     GLsizei indexCount_ = 0;
     bool lines_ = false;
     std::size_t bytes_ = 0;
+    glm::dvec3 boundsMin_{0.0}, boundsMax_{0.0};
 };
 
 // Deterministic Poisson-disk samples in the unit disk (dart throwing with a fixed seed).

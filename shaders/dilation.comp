@@ -19,7 +19,7 @@ uniform int sourceLayer;
 uniform int destinationLayer;
 uniform ivec2 direction;      // (1, 0) for the first pass, (0, 1) for the second
 uniform int resolution;
-uniform float radiusMm;       // R: the dilation radius including the pixel margin (clip/clip_maps.cpp)
+uniform float radiusMm;       // R: the dilation radius including the pixel margin (clip::ClipMeshSet::kernelRadiusMm)
 uniform float pixelMm;
 uniform bool backMap;
 

@@ -12,29 +12,22 @@
 // cone base (radius d tan(theta), projected at the previous slice's depth: the perspective correction of
 // eq. 12), times this slice's transmittance.
 #include "bindings.glsl"
-#include "shading_modes.glsl"
-#include "volume.glsl"
-#include "transfer_function.glsl"
+#include "pixel_ray.glsl"
+#include "shade_sample.glsl"
 #include "clip_test.glsl"
-#include "phong.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D eyeBuffer;
 layout(rg32f, binding = IMAGE_OCCLUSION_NEXT) uniform writeonly image2D occlusionNext;
 layout(binding = BINDING_OCCLUSION_PREVIOUS) uniform sampler2D occlusionPrevious;
-layout(binding = BINDING_AMBIENT) uniform sampler3D ambientOcclusion;   // V_AO in cao/lao shading
 
-uniform mat4 inverseViewProjection;
-uniform vec3 eyeWorld;
 uniform vec3 viewForward;          // unit, world
-uniform ivec2 outputSize;
 uniform float sliceDepth;          // z_k: distance of this slice's plane from the eye along viewForward, mm
 uniform float sliceDistance;       // d, mm
 uniform float coneRadiusPixels;    // d tan(theta) in pixels at the previous slice's depth (eq. 11, 12)
 uniform int gridSize;              // n: the cone base is sampled on an n x n grid (points inside the disk)
-uniform float ambientRadiance;     // La
+uniform float ambientRadiance;     // La: the ambient light of dos shading (seed 001); lao/cao use V_AO
 uniform float earlyTerminationAlpha;
-uniform float ambientScale;        // lao/cao: the factor applied to V_AO
 
 #ifdef HAS_TUBES
 // Tubes (seed 000): behind a tube surface the slice takes the tube's opacity in the occlusion buffer
@@ -48,11 +41,8 @@ uniform float geometryOpacity;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, outputSize))) return;
-    vec2 ndc = (vec2(pixel) + 0.5) / vec2(outputSize) * 2.0 - 1.0;
-    ndc.y = -ndc.y;
-    vec4 farPoint = inverseViewProjection * vec4(ndc, 1.0, 1.0);
-    vec3 direction = normalize(farPoint.xyz / farPoint.w - eyeWorld);
+    if (outsideImage(pixel)) return;
+    vec3 direction = pixelRayDirection(pixel);
     float cosine = dot(direction, viewForward);
     float t = sliceDepth / cosine;               // where this ray crosses the slice plane
     float segment = sliceDistance / cosine;      // the true length of ray this sample stands for
@@ -70,24 +60,12 @@ void main() {
     vec3 world = eyeWorld + t * direction;
     vec3 tex = toTexture(world);
 
-    // Opacity of this slice's sample (zero outside the volume or inside a clip mesh).
-    float alphaUnit = 0.0;
-    vec3 albedo = vec3(0.0);
-    vec3 gradient = vec3(0.0);
+    // This slice's sample (nothing outside the volume or inside a clip mesh).
     bool insideVolume = all(greaterThanEqual(tex, vec3(0.0))) && all(lessThanEqual(tex, vec3(1.0)));
-    if (insideVolume && !(clipMeshCount > 0 && insideAnyClipMesh(world))) {
-        vec4 classified = classify(sampleTexel(tex));
-        alphaUnit = classified.a;
-#if SHADING == SHADING_PHONG
-        gradient = gradientWorld(tex);
-#else
-        if (useGradientOpacity) gradient = gradientWorld(tex);
-#endif
-        if (useGradientOpacity) alphaUnit *= gradientOpacityFactor(length(gradient));
-        albedo = classified.rgb;
-    }
-    float alpha = correctOpacity(alphaUnit, segment);           // for the occlusion buffer: the whole slice
-    float eyeAlpha = correctOpacity(alphaUnit, eyeSegment);     // for the eye: up to a tube surface
+    VolumeSample point = emptySample();
+    if (insideVolume && !(clipMeshCount > 0 && insideAnyClipMesh(world))) point = classifySample(tex);
+    float alpha = correctOpacity(point.alphaUnit, segment);           // for the occlusion buffer: the whole slice
+    float eyeAlpha = correctOpacity(point.alphaUnit, eyeSegment);     // for the eye: up to a tube surface
 
     // Cone-base average of the previous occlusion buffer (Algorithm 3).
     vec2 previousSum = vec2(0.0);
@@ -109,14 +87,11 @@ void main() {
     // shadows from channel "geometry", so nothing is counted twice.
     vec4 eye = imageLoad(eyeBuffer, pixel);
     if (!behindSurface && eyeAlpha > 0.0 && eye.a < earlyTerminationAlpha) {
+        vec3 color = shadeSample(point, tex, -direction);
 #if SHADING == SHADING_DOS
-        vec3 color = ambientRadiance * albedo * occlusionBefore.x;
+        color = ambientRadiance * color * occlusionBefore.x;
 #elif SHADING == SHADING_LAO || SHADING == SHADING_CAO
-        vec3 color = ambientRadiance * albedo * ambientScale * texture(ambientOcclusion, tex).r * occlusionBefore.y;
-#elif SHADING == SHADING_PHONG
-        vec3 color = shadePhong(albedo, gradient, -direction, 1.0);
-#else
-        vec3 color = albedo;
+        color *= occlusionBefore.y;
 #endif
         eye.rgb += (1.0 - eye.a) * eyeAlpha * color;
         eye.a += (1.0 - eye.a) * eyeAlpha;

@@ -1,11 +1,20 @@
-// Blinn-Phong shading of a volume sample with a gradient normal, for `phong` shading (and, with the ambient
-// term scaled by occlusion, for `cao`/`lao`). Up to MAX_LIGHTS directional lights in world space.
+// Blinn-Phong: one definition of the diffuse and specular terms for volume samples (`phong` shading) and tube
+// surfaces (tube_composite.comp). Up to MAX_LIGHTS directional lights in world space.
+// Binder: setLightingUniforms (render/lighting.h).
 #define MAX_LIGHTS 4
 
 uniform int lightCount;
 uniform vec3 lightDirection[MAX_LIGHTS];   // world, unit, from the surface towards the light
 uniform vec3 lightColor[MAX_LIGHTS];       // colour times intensity
 uniform vec4 material;                     // ambient, diffuse, specular, specular power
+
+// (n.l clamped, specular) for unit normal n, unit light direction l and unit view direction v.
+vec2 blinnPhongTerms(vec3 n, vec3 l, vec3 v, float power) {
+    float diffuse = max(dot(n, l), 0.0);
+    vec3 halfway = normalize(l + v);
+    float specular = diffuse > 0.0 ? pow(max(dot(n, halfway), 0.0), power) : 0.0;
+    return vec2(diffuse, specular);
+}
 
 // albedo: TF colour; gradient: world gradient of the value; viewDirection: unit, from the sample to the eye;
 // ambient: the ambient light reaching the sample (1 without occlusion).
@@ -18,11 +27,8 @@ vec3 shadePhong(vec3 albedo, vec3 gradient, vec3 viewDirection, float ambient) {
     vec3 normal = -gradient / magnitude;                       // points from dense to less dense
     if (dot(normal, viewDirection) < 0.0) normal = -normal;    // two-sided: light the side we see
     for (int i = 0; i < lightCount; ++i) {
-        vec3 l = lightDirection[i];
-        float diffuse = max(dot(normal, l), 0.0);
-        vec3 halfway = normalize(l + viewDirection);
-        float specular = diffuse > 0.0 ? pow(max(dot(normal, halfway), 0.0), material.w) : 0.0;
-        color += lightColor[i] * (material.y * diffuse * albedo + material.z * specular);
+        vec2 terms = blinnPhongTerms(normal, lightDirection[i], viewDirection, material.w);
+        color += lightColor[i] * (material.y * terms.x * albedo + material.z * terms.y);
     }
     return color;
 }

@@ -5,7 +5,7 @@
 // l_vicinity * tan(theta) that are not nearer to the eye than the surface plus a depth bias). The lit surface
 // lies behind the volume accumulated in front of it in the eye buffer.
 #include "bindings.glsl"
-#include "shading_modes.glsl"
+#include "pixel_ray.glsl"
 #include "phong.glsl"
 #include "illuminated_lines.glsl"
 
@@ -17,9 +17,6 @@ layout(binding = BINDING_TUBE_NORMAL) uniform sampler2D tubeNormal;
 layout(binding = BINDING_PARTIAL_OCCLUSION) uniform sampler2D partialOcclusionBuffer;
 layout(std430, binding = SSBO_POISSON_DISK) readonly buffer PoissonDisk { vec2 poissonDisk[]; };
 
-uniform mat4 inverseViewProjection;
-uniform vec3 eyeWorld;
-uniform ivec2 outputSize;
 uniform int poissonCount;
 uniform float vicinityRadiusPixelsAtUnitDepth;   // l_vicinity tan(theta) * pixels per mm at 1 mm depth
 uniform float depthBiasMm;
@@ -41,7 +38,7 @@ float vicinityOcclusion(ivec2 pixel, float surfaceDepth) {
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, outputSize))) return;
+    if (outsideImage(pixel)) return;
     vec4 normalKind = texelFetch(tubeNormal, pixel, 0);
     if (normalKind.w == SURFACE_NONE) return;  // the volume alone: the eye buffer is the pixel
     vec4 eye = imageLoad(eyeBuffer, pixel);
@@ -49,10 +46,7 @@ void main() {
     vec3 albedo = texelFetch(tubeColor, pixel, 0).rgb;
     float occlusion = useOcclusion ? texelFetch(partialOcclusionBuffer, pixel, 0).r * vicinityOcclusion(pixel, surfaceDepth) : 1.0;
 
-    vec2 ndc = (vec2(pixel) + 0.5) / vec2(outputSize) * 2.0 - 1.0;
-    ndc.y = -ndc.y;
-    vec4 farPoint = inverseViewProjection * vec4(ndc, 1.0, 1.0);
-    vec3 toViewer = -normalize(farPoint.xyz / farPoint.w - eyeWorld);
+    vec3 toViewer = -pixelRayDirection(pixel);
     vec3 shaded;
     if (normalKind.w == SURFACE_TUBE) {
         // Algorithm 6: occlusion * colour * (ambient + diffuse) + specular.
@@ -60,10 +54,9 @@ void main() {
         if (dot(n, toViewer) < 0.0) n = -n;
         vec3 diffuse = vec3(0.0), specular = vec3(0.0);
         for (int i = 0; i < lightCount; ++i) {
-            float nl = max(dot(n, lightDirection[i]), 0.0);
-            diffuse += lightColor[i] * nl;
-            vec3 h = normalize(lightDirection[i] + toViewer);
-            specular += lightColor[i] * (nl > 0.0 ? pow(max(dot(n, h), 0.0), material.w) : 0.0);
+            vec2 terms = blinnPhongTerms(n, lightDirection[i], toViewer, material.w);
+            diffuse += lightColor[i] * terms.x;
+            specular += lightColor[i] * terms.y;
         }
         shaded = occlusion * albedo * (material.x + material.y * diffuse) + material.z * specular;
     } else {

@@ -7,6 +7,7 @@
 
 #include "app/bench/report.h"
 #include "app/loaded_scene.h"
+#include "app/session_step.h"
 #include "base/error.h"
 #include "clip/primitives.h"
 #include "render/reference/lao_reference.h"
@@ -89,17 +90,24 @@ int benchCao(const CommandLine& cl) {
                 loaded.scene.volumePath.c_str(), v.dims.x, v.dims.y, v.dims.z, size.x, size.y, frames, sphereRadius,
                 context->info().renderer.c_str());
 
+    // The meshes reach the renderer through the session step, as in every command.
+    InteractionState state;
     auto setMeshes = [&](int count, int frame) {
-        clip::ClipMeshSet& set = renderer.clipMeshes();
-        if (set.count() != count) {
-            set.clear();
-            set.add(sphere, glm::dvec3(1), {}, "moving sphere");
-            if (count == 2) set.add(secondSphere, glm::dvec3(1), {}, "second sphere");
+        if (static_cast<int>(state.meshes.size()) != count) {
+            state.meshes.clear();
+            for (int i = 0; i < count; ++i) {
+                MeshState m;
+                m.id = i;
+                m.name = i == 0 ? "moving sphere" : "second sphere";
+                m.geometry = i == 0 ? sphere : secondSphere;
+                state.meshes.push_back(m);
+            }
         }
         glm::dvec3 p = pathPoint(g, frame, seed);
-        set.setPose(0, clip::RigidPose{p, {}});
+        state.meshes[0].pose = clip::RigidPose{p, {}};
         // The second sphere overlaps the first (as in the paper's Table 4 scenes).
-        if (count == 2) set.setPose(1, clip::RigidPose{p + glm::dvec3(0.9 * sphereRadius, 0.0, 0.3 * sphereRadius), {}});
+        if (count == 2) state.meshes[1].pose = clip::RigidPose{p + glm::dvec3(0.9 * sphereRadius, 0.0, 0.3 * sphereRadius), {}};
+        syncClipMeshes(state, renderer.clipMeshes());
     };
 
     // Runs `frames` frames of one mode with the sphere moving; the first (warm-up) frame is not counted.
@@ -108,20 +116,20 @@ int benchCao(const CommandLine& cl) {
         FrameDescription frame = base;
         frame.shading = mode;
         std::vector<double> wall;
-        std::map<std::string, std::vector<double>> steps;
+        std::map<std::string, std::vector<double>> steps;   // by pass name (render/frame_plan.h)
         double fractions = 0, visited = 0;
         for (int f = -1; f < frames; ++f) {
             setMeshes(meshes, f + 1);
-            glFinish();
+            renderer.finish();
             renderer.collectTimings();
             auto start = Clock::now();
             renderer.render(frame);
-            glFinish();
+            renderer.finish();
             double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-            auto timings = renderer.collectTimings();
+            FrameTimings timings = renderer.collectTimings();
             if (f < 0) continue;
             wall.push_back(ms);
-            for (auto& [name, t] : timings) steps[name].push_back(t);
+            for (const FrameTimings::Entry& e : timings.passes) steps[passInfo(e.pass).name].push_back(e.ms);
             if (renderer.ambientOcclusion()) {
                 const AmbientOcclusionStats& stats = renderer.ambientOcclusion()->lastStats();
                 fractions += stats.recomputedFraction();
@@ -146,7 +154,8 @@ int benchCao(const CommandLine& cl) {
                    {"rays K", "meshes", "recomputed %", "paper Engine %", "paper Beetle %", "paper Skeleton %",
                     "visited by IV and V %"});
     Table perStep("Fig. 10: GPU time per step (ms, median)",
-                  {"rays K", "meshes", "mode", "IV voxel clipping", "V LAO", "VI ray casting", "total frame"});
+                  {"rays K", "meshes", "mode", passInfo(Pass::VoxelClipping).name, passInfo(Pass::LaoRecompute).name,
+                   passInfo(Pass::RayCast).name, "total frame"});
     Table slowdown("Table 4: slowdown of a second, overlapping mesh (CAO)",
                  {"rays K", "CAO 1 mesh ms", "CAO 2 meshes ms", "slowdown %", "paper Engine %", "paper Skeleton %"});
     Table dispatch("Step V dispatch: full grid with early exit vs compacted list (CAO, 1 mesh)",
@@ -204,8 +213,8 @@ int benchCao(const CommandLine& cl) {
                        groundTruthVoxels ? nlohmann::json(rms) : nlohmann::json()});
             fraction.add({rays, meshes, 100.0 * cao.recomputedFraction, 14.94, 20.24, 16.13, 100.0 * cao.visitedFraction});
             for (auto [name, r] : {std::pair<const char*, ModeResult*>{"LAO", &full}, {"CAO", &cao}})
-                perStep.add({rays, meshes, name, r->stepMs["IV voxel clipping"], r->stepMs["V  LAO recompute"],
-                             r->stepMs["VI ray casting"], r->msPerFrame});
+                perStep.add({rays, meshes, name, r->stepMs[passInfo(Pass::VoxelClipping).name], r->stepMs[passInfo(Pass::LaoRecompute).name],
+                             r->stepMs[passInfo(Pass::RayCast).name], r->msPerFrame});
             caoByMeshes[meshes] = cao;
             raw.push_back({{"rays", rays}, {"meshes", meshes}, {"solid_ms", solid.msPerFrame}, {"lao_ms", full.msPerFrame},
                            {"cao_ms", cao.msPerFrame}, {"recomputed_fraction", cao.recomputedFraction},
@@ -225,7 +234,7 @@ int benchCao(const CommandLine& cl) {
                 s.dispatch = variant == 0 ? LaoSettings::Dispatch::FullGrid : LaoSettings::Dispatch::Compacted;
                 renderer.setLaoSettings(s);
                 ModeResult r = runMode(ShadingMode::Cao, 1);
-                vMs[variant] = r.stepMs["V  LAO recompute"];
+                vMs[variant] = r.stepMs[passInfo(Pass::LaoRecompute).name];
             }
             dispatch.add({rays, vMs[0], vMs[1], vMs[0] < vMs[1] ? "full grid" : "compacted"});
             renderer.setLaoSettings(lao);

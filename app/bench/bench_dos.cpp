@@ -44,7 +44,7 @@ int benchDos(const CommandLine& cl) {
     // One configuration: `frames` frames orbiting a little, the first a warm-up; median ms and pass times.
     struct Result {
         double ms = 0;
-        std::map<std::string, double> passes;
+        std::map<Pass, double> passes;   // median per pass of the frame plan
         int slices = 0;
     };
     auto measure = [&](FrameDescription frame, bool tubes) {
@@ -52,22 +52,22 @@ int benchDos(const CommandLine& cl) {
         else configureRenderer(loaded, renderer);
         Result r;
         std::vector<double> wall;
-        std::map<std::string, std::vector<double>> passes;
+        std::map<Pass, std::vector<double>> passes;
         for (int f = -1; f < frames; ++f) {
             FrameDescription current = frame;
             current.camera.azimuthDeg += 4.0 * (f + 1);
             renderer.collectTimings();
             auto start = Clock::now();
             renderer.render(current);
-            glFinish();
+            renderer.finish();
             double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-            auto timings = renderer.collectTimings();
+            FrameTimings timings = renderer.collectTimings();
             if (f < 0) continue;
             wall.push_back(ms);
-            for (auto& [name, t] : timings) passes[name].push_back(t);
+            for (const FrameTimings::Entry& e : timings.passes) passes[e.pass].push_back(e.ms);
         }
         r.ms = median(wall);
-        for (auto& [name, list] : passes) r.passes[name] = median(list);
+        for (auto& [pass, list] : passes) r.passes[pass] = median(list);
         r.slices = renderer.slabPass().slicesLastFrame();
         return r;
     };
@@ -86,7 +86,7 @@ int benchDos(const CommandLine& cl) {
     Result volumeOnly = measure(frame, false);
     Result combined = measure(frame, true);
     std::string image = std::to_string(size.x) + "x" + std::to_string(size.y);
-    double vicinityMs = combined.passes["composite + vicinity"];
+    double vicinityMs = combined.passes[Pass::Composite];
     table.add({"emission/absorption volume + Phong tubes", solid.slices, image, solid.ms, 1000.0 / solid.ms, 101.1});
     table.add({"volumetric Phong + Phong tubes", phong.slices, image, phong.ms, 1000.0 / phong.ms, 82.61});
     table.add({"volumetric occlusion only (DOS, no tubes)", volumeOnly.slices, image, volumeOnly.ms, 1000.0 / volumeOnly.ms, 11.24});
@@ -96,7 +96,7 @@ int benchDos(const CommandLine& cl) {
     double overhead = 100.0 * (combined.ms - volumeOnly.ms) / volumeOnly.ms;
     std::printf("tubes add %.1f %% to the DOS frame (G-buffer %.0f ms, composite with vicinity %.0f ms, slab pass %.0f vs %.0f ms);\n"
                 "the paper reports about 25 %% (DTI 512x512: 11.24 -> 9.73 FPS, 13 %%; mixing pipe: 30 %%)\n",
-                overhead, combined.passes["tubes G-buffer"], vicinityMs, combined.passes["slab pass"], volumeOnly.passes["slab pass (DOS)"]);
+                overhead, combined.passes[Pass::TubeGBuffer], vicinityMs, combined.passes[Pass::SlabPass], volumeOnly.passes[Pass::SlabPass]);
 
     // Accuracy next to speed: the slab pass against the Monte-Carlo reference on sampled pixels, volume only,
     // without clip meshes (the reference clips analytically; the maps would differ at the cut by a pixel).

@@ -48,15 +48,15 @@ int benchRaycast(const CommandLine& cl) {
             };
             // Warm-up: compiles the program and touches every texture.
             renderer.render(frameAt(0));
-            glFinish();
+            renderer.finish();
             renderer.collectTimings();
             std::vector<double> wall, gpu;
             for (int i = 0; i < frames; ++i) {
                 auto start = Clock::now();
                 renderer.render(frameAt(i));
-                glFinish();
+                renderer.finish();
                 wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-                for (auto& [name, ms] : renderer.collectTimings()) gpu.push_back(ms);
+                gpu.push_back(renderer.collectTimings().ms(Pass::RayCast));
             }
             // Samples per frame, counted in a separate pass over the same path (the counter costs time).
             renderer.setCountSamples(true);

@@ -8,6 +8,7 @@
 #include "app/interaction.h"
 #include "app/live_input.h"
 #include "app/loaded_scene.h"
+#include "app/session_step.h"
 #include "base/error.h"
 #include "input/devices/encoders.h"
 #include "input/hid/fake_backend.h"
@@ -131,9 +132,10 @@ int record(const Arguments& args) {
 
     LoadedScene loaded = loadSceneWithVolume(scenePath);
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
-    FrameDescription frame = initialFrame(loaded.scene, geometry);
-    glm::ivec2 size = cl.value("size") ? CommandLine::parseSize("size", *cl.value("size")) : frame.size;
-    InteractionState state = InteractionState::fromScene(loaded.scene);
+    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, geometry));
+    glm::ivec2 size = cl.value("size") ? CommandLine::parseSize("size", *cl.value("size")) : step.frame().size;
+    step.frame().size = size;
+    InteractionState& state = step.state();
 
     auto ports = std::make_shared<input::FakeHidBackend::Ports>();
     std::vector<input::HidDeviceDescription> descriptions;
@@ -180,11 +182,9 @@ int record(const Arguments& args) {
             }
         double frameDt = f == 0 ? 0.0 : dt;
         InputFrame inputFrame = input.step(now, input::KeyboardMouseState{}, frameDt, static_cast<int>(state.meshes.size()));
-        state.addedMeshIds.clear();
-        state.removedMeshIds.clear();
-        state.apply(inputFrame.actions, frame.camera, size.y);
+        step.apply(inputFrame.actions, size.y);
         state.toggleRecording = state.screenshot = false;   // nothing to toggle or capture headless
-        recording.addFrame(now, frameDt, size, frame.camera, state, input::KeyboardMouseState{}, inputFrame);
+        recording.addFrame(now, frameDt, size, step.frame().camera, state, input::KeyboardMouseState{}, inputFrame);
     }
     recording.finish();
     std::printf("wrote %s: %d frames, %zu synthetic devices, %zu meshes, scene %s\n", out.c_str(), frames, kinds.size(), state.meshes.size(),

@@ -12,6 +12,7 @@
 #include "app/interaction.h"
 #include "app/loaded_scene.h"
 #include "app/session.h"
+#include "app/session_step.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "base/json_reader.h"
@@ -79,7 +80,10 @@ int replay(const Arguments& args) {
         renderer = std::make_unique<Renderer>(*context, loaded.volume, loaded.scene.transferFunction);
         configureRenderer(loaded, *renderer);
     }
-    InteractionState state = InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string());
+    VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
+    SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
+                     initialFrame(loaded.scene, geometry));
+    const InteractionState& state = step.state();
 
     std::optional<input::InputPipeline> pipeline;
     if (fromReports) {
@@ -102,50 +106,29 @@ int replay(const Arguments& args) {
             std::vector<input::RawReport> reports;
             for (const SessionReport& r : f.reports) reports.push_back({r.device, r.time, r.bytes});
             input::KeyboardMouseState keys{f.keys, f.drag};
-            state.addedMeshIds.clear();
-            state.removedMeshIds.clear();
-            state.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size())), f.camera, f.size.y);
+            step.frame().camera = f.camera;
+            step.frame().size = f.size;
+            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size())), f.size.y);
             // The re-derived poses (and shading) must be the recorded ones, bit for bit.
-            bool same = state.shading == f.shading && state.meshes.size() == f.meshes.size();
-            for (std::size_t i = 0; same && i < f.meshes.size(); ++i) {
-                const MeshState& m = state.meshes[i];
-                const SessionMesh& r = f.meshes[i];
-                same = m.id == r.id && m.pose.position == r.position && m.pose.orientation == r.orientation && m.scale == r.scale;
-            }
+            bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes);
             if (!same && poseMismatches++ == 0)
                 std::fprintf(stderr, "curette replay: %s: poses re-derived from the reports differ from the recorded ones\n", where.c_str());
         } else {
             // Follow the recorded poses: meshes added and removed, then every pose.
-            for (const SessionAddedMesh& a : f.meshesAdded) {
-                MeshState m;
-                m.id = a.id;
-                m.name = a.name;
-                m.description = a.description;
-                m.geometry = meshFromDescription(a.description, where + ": meshes_added.mesh", scenePath.parent_path());
-                state.meshes.push_back(m);
-            }
-            for (int id : f.meshesRemoved)
-                if (int i = state.indexOf(id); i >= 0) state.meshes.erase(state.meshes.begin() + i);
-            for (const SessionMesh& r : f.meshes) {
-                int i = state.indexOf(r.id);
-                if (i < 0) throw InputError(file.string(), "line " + std::to_string(n + 2) + ": meshes", "ids of meshes present at that frame",
-                                            std::to_string(r.id));
-                state.meshes[static_cast<std::size_t>(i)].pose = {r.position, r.orientation};
-                state.meshes[static_cast<std::size_t>(i)].scale = r.scale;
-            }
+            step.follow(f, scenePath.parent_path(), where);
         }
         if (!render || n % static_cast<std::size_t>(every) != 0) continue;
-        syncClipMeshes(state, renderer->clipMeshes());
-        FrameDescription frame = initialFrame(loaded.scene, renderer->geometry());
+        step.syncTo(renderer->clipMeshes());
+        FrameDescription frame = step.frame();
         frame.camera = f.camera;
         frame.size = size.value_or(f.size);
         frame.shading = f.shading;
         renderer->collectTimings();
         auto start = std::chrono::steady_clock::now();
         renderer->render(frame);
-        glFinish();
+        renderer->finish();
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        double aoMs = Renderer::ambientOcclusionMs(renderer->collectTimings());
+        double aoMs = renderer->collectTimings().ambientOcclusionMs();
         Image image = renderer->readImage();
         std::vector<std::uint8_t> rgba = toRgba8(image, glm::vec4(loaded.scene.background));
         std::string hash = imageHash(rgba);

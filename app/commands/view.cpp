@@ -1,17 +1,19 @@
 // curette view --scene S: the interactive viewer. Devices (hidapi: gamepads, SpaceMice) and the keyboard and
 // mouse drive the clip meshes through the mapping (input/mapping.h); left drag orbits the camera and the wheel
 // zooms. F9 (or a mapped button) starts and stops recording a session; P or F12 saves a screenshot. The overlay
-// shows which device holds which mesh, the shading, frame time and AO time. The frame is re-rendered only when
-// something it depends on changed, at reduced resolution while the camera moves (llvmpipe renders on the CPU).
+// shows which device holds which mesh, the shading, and the time of every pass of the frame plan. The frame is
+// re-rendered only when the renderer is not already showing it (Renderer::showing), at reduced resolution
+// while the camera moves (llvmpipe renders on the CPU).
 #include "app/command_line.h"
 #include "app/commands/commands.h"
 #include "app/interaction.h"
 #include "app/live_input.h"
 #include "app/loaded_scene.h"
+#include "app/session_step.h"
 #include "base/error.h"
 #include "base/log.h"
 #include "input/hid/fake_backend.h"
-#include "render/gl/program.h"
+#include "render/presenter.h"
 #include "render/renderer.h"
 
 #define GLFW_INCLUDE_NONE
@@ -82,11 +84,11 @@ int view(const Arguments& args) {
     auto window = gl::createWindowContext("curette - " + scenePath, windowSize);
     Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
-    gl::Program present = gl::Program::graphics("present.vert", "present.frag");
-    gl::VertexArray emptyVertexArray = gl::createVertexArray();
+    Presenter presenter;
 
-    FrameDescription frame = initialFrame(loaded.scene, renderer.geometry());
-    InteractionState state = InteractionState::fromScene(loaded.scene);
+    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+    FrameDescription& frame = step.frame();
+    InteractionState& state = step.state();
     LiveInput live(openHid(!cl.flag("no-devices")), mapping, 40.0, 60.0);
     std::unique_ptr<LiveRecording> recording;
     auto startRecording = [&](const std::filesystem::path& path, double now) {
@@ -108,10 +110,11 @@ int view(const Arguments& args) {
     ImGui_ImplOpenGL3_Init("#version 450");
 
     double renderScale = 1.0, movingScale = 0.5;  // resolution when idle, while the camera moves
-    bool dirty = true, orbiting = false, dragging = false, wasMoving = false;
+    bool orbiting = false, dragging = false;
     glm::dvec2 lastCursor{0.0};
     int screenshots = 0;
-    double lastFrameMs = 0, lastAmbientMs = 0, previous = glfwGetTime();
+    double lastFrameMs = 0, previous = glfwGetTime();
+    FrameTimings lastTimings;
     std::deque<std::string> messages;
     std::signal(SIGINT, requestQuit);
     std::signal(SIGTERM, requestQuit);
@@ -154,27 +157,14 @@ int view(const Arguments& args) {
         orbiting = left;
         dragging = right;
 
-        // Devices and keys -> actions -> the scene.
-        std::vector<SessionMesh> posesBefore = state.sessionPoses();
-        ShadingMode shadingBefore = state.shading;
+        // Devices and keys -> actions -> the scene (the session step every command runs).
         InputFrame input = live.step(now, keys, dt, static_cast<int>(state.meshes.size()));
-        state.addedMeshIds.clear();
-        state.removedMeshIds.clear();
-        state.apply(input.actions, frame.camera, framebuffer.y);
+        step.apply(input.actions, framebuffer.y);
         for (std::string& m : live.takeMessages()) {
             messages.push_back(std::move(m));
             if (messages.size() > 6) messages.pop_front();
         }
-        std::vector<SessionMesh> posesAfter = state.sessionPoses();
-        bool posesChanged = posesAfter.size() != posesBefore.size();
-        for (std::size_t i = 0; !posesChanged && i < posesAfter.size(); ++i)
-            posesChanged = posesAfter[i].id != posesBefore[i].id || posesAfter[i].position != posesBefore[i].position ||
-                           posesAfter[i].orientation != posesBefore[i].orientation;
-        bool cameraMoving = !(frame.camera.target == cameraBefore.target && frame.camera.distanceMm == cameraBefore.distanceMm &&
-                              frame.camera.azimuthDeg == cameraBefore.azimuthDeg && frame.camera.elevationDeg == cameraBefore.elevationDeg);
-        if (posesChanged || cameraMoving || state.shading != shadingBefore || wasMoving != cameraMoving) dirty = true;
-        wasMoving = cameraMoving;
-        frame.shading = state.shading;
+        bool cameraMoving = !(frame.camera == cameraBefore);
 
         if (recording) {
             if (state.toggleRecording) stopRecording();
@@ -188,8 +178,9 @@ int view(const Arguments& args) {
         ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
         ImGui::Begin("curette", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
         // Shading changes only through input (1-5, C, mapped buttons), so a session replays it from its reports.
-        ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-5, C) | %dx%d", lastFrameMs, lastAmbientMs, shadingModeName(frame.shading),
-                    renderer.outputSize().x, renderer.outputSize().y);
+        ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-5, C) | %dx%d", lastFrameMs, lastTimings.ambientOcclusionMs(),
+                    shadingModeName(frame.shading), renderer.outputSize().x, renderer.outputSize().y);
+        for (const FrameTimings::Entry& e : lastTimings.passes) ImGui::Text("  %-22s %8.1f ms", passInfo(e.pass).name, e.ms);
         auto meshLabel = [&](int index) {
             return index >= 0 && index < static_cast<int>(state.meshes.size()) ? "mesh " + std::to_string(index) + " \"" + state.meshes[static_cast<std::size_t>(index)].name + "\""
                                                                               : std::string("no mesh");
@@ -209,38 +200,29 @@ int view(const Arguments& args) {
         if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %s: %zu frames (F9 stops)", recording->path().c_str(), recording->frames());
         for (const std::string& m : messages) ImGui::TextWrapped("%s", m.c_str());
         float scale = static_cast<float>(renderScale);
-        if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) renderScale = scale, dirty = true;
+        if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) renderScale = scale;
         ImGui::TextUnformatted("left drag: orbit  wheel: zoom  WASDQE, arrows, PgUp/PgDn, right drag: move mesh\n"
                                "Tab: next mesh  R: reset  Ins/Del: add/remove  F9: record  P: screenshot");
         ImGui::End();
         ImGui::Render();
 
         if (framebuffer.x > 0 && framebuffer.y > 0) {
-            syncClipMeshes(state, renderer.clipMeshes());
+            step.syncTo(renderer.clipMeshes());
             double scaleNow = cameraMoving ? std::min(movingScale, renderScale) : renderScale;
-            glm::ivec2 renderSize = glm::max(glm::ivec2(glm::dvec2(framebuffer) * scaleNow), glm::ivec2(1));
-            if (renderSize != frame.size) frame.size = renderSize, dirty = true;
-            if (dirty) {
+            frame.size = glm::max(glm::ivec2(glm::dvec2(framebuffer) * scaleNow), glm::ivec2(1));
+            if (!renderer.showing(frame)) {
                 auto start = std::chrono::steady_clock::now();
                 renderer.render(frame);
-                glFinish();
+                renderer.finish();
                 lastFrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-                lastAmbientMs = Renderer::ambientOcclusionMs(renderer.collectTimings());
-                dirty = false;
+                lastTimings = renderer.collectTimings();
             }
             if (state.screenshot) {
                 std::string name = "curette-screenshot-" + std::to_string(++screenshots) + ".png";
                 writePng(name, renderer.readImage(), glm::vec4(loaded.scene.background));
                 std::printf("saved %s\n", name.c_str());
             }
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-            glViewport(0, 0, framebuffer.x, framebuffer.y);
-            glDisable(GL_DEPTH_TEST);
-            glBindTextureUnit(0, renderer.outputTexture());
-            present.set("background", glm::vec4(loaded.scene.background));
-            present.use();
-            glBindVertexArray(emptyVertexArray.name());
-            glDrawArrays(GL_TRIANGLES, 0, 3);
+            presenter.present(renderer.outputTexture(), framebuffer, glm::vec4(loaded.scene.background));
         }
         state.screenshot = false;
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -3,7 +3,7 @@
 // .hdr/.img pair. Scalar types uint8, int16, uint16, int32, float32, float64; scl_slope/scl_inter; the
 // index-to-world affine from the sform (sform_code > 0), else the qform (qform_code > 0), else pixdim.
 
-#include "render/volume.h"
+#include "base/volume.h"
 
 #include <filesystem>
 #include <span>

@@ -3,7 +3,7 @@
 // and ascii encodings; either endianness; `space directions`/`space origin` kept as the index-to-world
 // affine (LPS and LAS spaces converted to RAS), `spacings` as the fallback.
 
-#include "render/volume.h"
+#include "base/volume.h"
 
 #include <filesystem>
 #include <span>

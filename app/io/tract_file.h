@@ -1,7 +1,7 @@
 #pragma once
 // Tractography import: TrackVis .trk (versions 1 and 2) and MRtrix .tck, into world millimetres RAS.
 
-#include "render/tractogram.h"
+#include "base/tractogram.h"
 
 #include <filesystem>
 #include <span>

@@ -12,7 +12,7 @@
 // opacity and gradient opacity as "N x0 y0 x1 y1 ..." (N numbers follow) and the colour as
 // "N x0 r0 g0 b0 ..." (vtkMRMLVolumePropertyStorageNode).
 
-#include "render/transfer_function.h"
+#include "base/transfer_function.h"
 
 #include <nlohmann/json_fwd.hpp>
 

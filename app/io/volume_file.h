@@ -3,7 +3,7 @@
 // and raw files whose layout is given on the command line. Every reader keeps the index-to-world affine and
 // throws InputError naming the file, the header field and the expected form on bad input.
 
-#include "render/volume.h"
+#include "base/volume.h"
 
 #include <filesystem>
 #include <optional>

@@ -8,8 +8,8 @@
 
 #include "render/frame.h"
 #include "render/reference/lao_reference.h"
-#include "render/transfer_function.h"
-#include "render/volume.h"
+#include "base/transfer_function.h"
+#include "base/volume.h"
 
 namespace curette::reference {
 

@@ -4,8 +4,8 @@
 
 #include "render/lao_directions.h"
 #include "render/reference/volume_sampler.h"
-#include "render/transfer_function.h"
-#include "render/volume.h"
+#include "base/transfer_function.h"
+#include "base/volume.h"
 
 #include <functional>
 

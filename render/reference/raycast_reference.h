@@ -4,8 +4,8 @@
 // early termination. Tests compare the GPU image against it pixel by pixel.
 
 #include "render/frame.h"
-#include "render/transfer_function.h"
-#include "render/volume.h"
+#include "base/transfer_function.h"
+#include "base/volume.h"
 
 #include <glm/glm.hpp>
 

@@ -65,7 +65,7 @@ TEST(Interaction, CameraFrameMotionDragsResetAddRemoveAndShading) {
     EXPECT_EQ(s.meshes[0].id, 1) << "ids stay with their meshes";
     EXPECT_EQ(s.removedMeshIds, std::vector<int>{0});
     for (int i = 0; i < 40; ++i) s.apply({input::AddMesh{}}, camera, 100);
-    EXPECT_EQ(static_cast<int>(s.meshes.size()), clip::ClipMeshSet::maxMeshes) << "adding stops at the limit";
+    EXPECT_EQ(static_cast<int>(s.meshes.size()), clip::kMaxClipMeshes) << "adding stops at the limit";
 }
 
 using curette::testing::Invocation;

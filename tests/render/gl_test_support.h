@@ -2,9 +2,9 @@
 // Shared pieces of the GL tests: one headless context per test process, and small synthetic volumes
 // written from analytic functions (so tests know the answer).
 
-#include "render/gl/context.h"
-#include "render/transfer_function.h"
-#include "render/volume.h"
+#include "gl/context.h"
+#include "base/transfer_function.h"
+#include "base/volume.h"
 
 #include <functional>
 

@@ -3,7 +3,7 @@
 // motion without map redraws, and defined behaviour on bad poses.
 #include "base/error.h"
 #include "clip/primitives.h"
-#include "render/bindings.h"
+#include "gl/bindings.h"
 #include "render/reference/lao_reference.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
@@ -233,7 +233,7 @@ TEST(Cao, ShaderClipTestAgreesWithAnalyticSphereAndBox) {
         glNamedBufferStorage(in.name(), static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(), 0);
         glNamedBufferStorage(out.name(), static_cast<GLsizeiptr>(points.size() * 4), nullptr, GL_DYNAMIC_STORAGE_BIT);
         gl::Program probe = gl::Program::compute("clip_probe.comp");
-        set.bind();
+        set.apply(probe);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, in.name());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, out.name());
         probe.set("clipMeshCount", 1);

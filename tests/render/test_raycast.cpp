@@ -1,5 +1,5 @@
 // Ray casting (shaders/raycast.comp) against its CPU double twin and against analytic answers.
-#include "render/bindings.h"
+#include "gl/bindings.h"
 #include "render/reference/raycast_reference.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 namespace curette {
@@ -286,8 +287,11 @@ TEST(Tubes, TubesShadowTheVolumeInCaoShadingToo) {
     renderer.render(frame);
     Image with = renderer.readImage();
     std::vector<float> depth = renderer.gbuffer().readDepth();
-    // The same frame with a tube far away (off screen), so both go through the slab pass.
-    renderer.setTubes(straightTube(glm::dvec3(0, 5, 400), glm::dvec3(0, 0, 1), 4.0, 1.2, glm::vec4(1)), TubeShading{});
+    // The same frame with the same tube injecting no opacity into the occlusion buffer, so both go through
+    // the slab pass and differ only by the tube's shadow (a tube off screen would now leave the frame plan).
+    TubeShading noShadow;
+    noShadow.geometryOpacity = 0.0;
+    renderer.setTubes(straightTube(glm::dvec3(0, 5, 0), glm::dvec3(0, 0, 1), 4.0, 1.2, glm::vec4(1)), noShadow);
     renderer.render(frame);
     Image without = renderer.readImage();
     int darkened = 0, far = 0;
@@ -308,6 +312,66 @@ TEST(Tubes, TubesShadowTheVolumeInCaoShadingToo) {
     EXPECT_GT(darkened, 10);
 }
 
+// Tubes that cover no pixel (here: behind the camera) leave a CAO frame bit for bit as it is without tubes:
+// the frame plan leaves the tube passes out and the ray caster runs as before.
+TEST(Tubes, TubesThatCoverNoPixelLeaveACaoImageUnchanged) {
+    glContext();
+    glm::ivec3 dims(24);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
+                                         [](glm::dvec3 p) { return p.y < -2.0 ? 60.0 : 0.0; });
+    Renderer renderer(glContext(), volume, whiteTransferFunction(0.15, 0.15));
+    LaoSettings lao;
+    parseLaoPattern("6", lao.directions);
+    lao.samples = 4;
+    renderer.setLaoSettings(lao);
+    FrameDescription frame = frontFrame(ShadingMode::Cao);
+    renderer.render(frame);
+    Image without = renderer.readImage();
+    glm::dvec3 behindCamera = frame.camera.position() - 50.0 * frame.camera.forward();
+    renderer.setTubes(straightTube(behindCamera, glm::dvec3(0, 0, 1), 4.0, 1.2, glm::vec4(1)), TubeShading{});
+    EXPECT_FALSE(renderer.plan(frame).runs(Pass::SlabPass));
+    renderer.render(frame);
+    Image with = renderer.readImage();
+    ASSERT_EQ(with.pixels.size(), without.pixels.size());
+    EXPECT_EQ(std::memcmp(with.pixels.data(), without.pixels.data(), with.pixels.size() * sizeof(glm::vec4)), 0);
+}
+
+// La is the ambient light of dos shading (seed 001 Algorithm 1); lao/cao take their ambient from V_AO in the
+// ray caster and the slab pass alike, so with tubes in view a CAO frame does not change with La. (The slab
+// pass used to multiply V_AO by La, so a CAO scene changed brightness when tubes were added.)
+TEST(Tubes, AmbientRadianceOfDosDoesNotScaleCaoWithTubes) {
+    glContext();
+    glm::ivec3 dims(24);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
+                                         [](glm::dvec3 p) { return p.y < -2.0 ? 60.0 : 0.0; });
+    Renderer renderer(glContext(), volume, whiteTransferFunction(0.15, 0.15));
+    LaoSettings lao;
+    parseLaoPattern("6", lao.directions);
+    lao.samples = 4;
+    renderer.setLaoSettings(lao);
+    renderer.setTubes(straightTube(glm::dvec3(0, 5, 0), glm::dvec3(0, 0, 1), 4.0, 1.2, glm::vec4(1)), TubeShading{});
+    FrameDescription frame = frontFrame(ShadingMode::Cao);
+    frame.dos.ambientRadiance = 1.0;
+    renderer.render(frame);
+    ASSERT_TRUE(renderer.lastPlan().runs(Pass::SlabPass));
+    Image one = renderer.readImage();
+    frame.dos.ambientRadiance = 3.0;
+    renderer.render(frame);
+    Image three = renderer.readImage();
+    EXPECT_EQ(std::memcmp(one.pixels.data(), three.pixels.data(), one.pixels.size() * sizeof(glm::vec4)), 0);
+    double sum = 0;
+    for (const glm::vec4& p : one.pixels) sum += p.r;
+    EXPECT_GT(sum, 1.0) << "the frame must show something";
+    // In dos shading La does scale the volume's light.
+    frame.shading = ShadingMode::Dos;
+    renderer.render(frame);
+    Image dosThree = renderer.readImage();
+    frame.dos.ambientRadiance = 1.0;
+    renderer.render(frame);
+    Image dosOne = renderer.readImage();
+    EXPECT_NE(std::memcmp(dosOne.pixels.data(), dosThree.pixels.data(), dosOne.pixels.size() * sizeof(glm::vec4)), 0);
+}
+
 // A scene allocates only what it uses: no AO volumes, G-buffer or slab buffers for phong without tubes;
 // AO volumes only once lao/cao runs; the G-buffer and slab buffers only with tubes or dos.
 TEST(Tubes, AScenesAllocatesOnlyWhatItUses) {
@@ -316,7 +380,7 @@ TEST(Tubes, AScenesAllocatesOnlyWhatItUses) {
     VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [](glm::dvec3 p) { return p.x > 0 ? 100.0 : 0.0; });
     auto names = [](const Renderer& r) {
         std::string all;
-        for (const GpuAllocation& a : r.gpuAllocations()) all += a.name + ";";
+        for (const GpuAllocation& a : r.gpuAllocations()) all += std::string(a.name()) + ";";
         return all;
     };
     Renderer renderer(glContext(), volume, whiteTransferFunction(0.2, 0.2));

@@ -1,4 +1,4 @@
-#include "render/gl/timer.h"
+#include "gl/timer.h"
 
 #include <cassert>
 

@@ -1,4 +1,4 @@
-#include "render/tractogram.h"
+#include "base/tractogram.h"
 
 namespace curette {
 

@@ -3,11 +3,12 @@
 // embedded table (or from $CURETTE_SHADER_DIR for live editing), each file once, with #line directives so
 // compiler errors name the real file and line. Defines are injected after #version.
 
-#include "render/gl/objects.h"
+#include "gl/objects.h"
 
 #include <glm/glm.hpp>
 
 #include <map>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -34,8 +35,10 @@ public:
     explicit operator bool() const { return static_cast<bool>(program_); }
     void use() const { glUseProgram(program_.name()); }
 
-    // Uniform setters by name (glProgramUniform*). A name the linker removed is ignored, so passes can set
-    // uniforms a define compiled out.
+    // Uniform setters by name (glProgramUniform*). The name must be declared by the program's source (any of
+    // its shader pieces), or set() throws: a typo or a stale name is an error, as an unknown scene key is. A
+    // declared uniform the compiler removed (unused, or under a define that is off) is ignored, so a binder
+    // may set every uniform of its piece whatever the variant.
     void set(const char* uniform, int v);
     void set(const char* uniform, unsigned v);
     void set(const char* uniform, float v);
@@ -48,6 +51,8 @@ public:
     void set(const char* uniform, const glm::mat3& v);
     void set(const char* uniform, const glm::mat4& v);
     GLint location(const char* uniform);
+    // Whether the source declares `uniform` (plain uniforms, not block members).
+    bool declares(const std::string& uniform) const { return declared_.count(uniform) != 0; }
 
     // The compute work-group size declared by the shader.
     glm::uvec3 workGroupSize() const;
@@ -58,7 +63,12 @@ private:
     ProgramName program_;
     std::string label_;
     std::unordered_map<std::string, GLint> locations_;
+    std::set<std::string> declared_;
 };
+
+// The names of the plain uniforms `source` declares (`uniform T name;`, arrays by their name; blocks are not
+// plain uniforms). Preprocessor conditionals are not evaluated: a uniform under an #ifdef counts as declared.
+std::set<std::string> declaredUniforms(const std::string& source);
 
 // The variants of one compute shader, each compiled on first use for its set of defines (shading mode, TF
 // features, bench counters). Passes compile features in or out rather than branch on uniforms: llvmpipe runs

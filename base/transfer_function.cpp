@@ -1,4 +1,4 @@
-#include "render/transfer_function.h"
+#include "base/transfer_function.h"
 
 #include "base/error.h"
 

@@ -1,4 +1,4 @@
-#include "render/volume.h"
+#include "base/volume.h"
 
 #include "base/error.h"
 

@@ -1,11 +1,13 @@
-#include "render/gl/program.h"
+#include "gl/program.h"
 
 #include "base/error.h"
 #include "base/log.h"
-#include "render/gl/embedded_shaders.h"
+#include "gl/embedded_shaders.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -81,8 +83,9 @@ std::string annotateLog(const std::string& log, const std::vector<std::string>& 
     return result;
 }
 
-ShaderName compileStage(GLenum stage, const std::string& name, const Defines& defines) {
+ShaderName compileStage(GLenum stage, const std::string& name, const Defines& defines, std::set<std::string>& declared) {
     ExpandedSource source = expandShaderSource(name, defines);
+    declared.merge(declaredUniforms(source.text));
     ShaderName shader(glCreateShader(stage));
     const char* text = source.text.c_str();
     glShaderSource(shader.name(), 1, &text, nullptr);
@@ -119,6 +122,71 @@ ProgramName link(const std::vector<GLuint>& shaders, const std::string& label) {
 
 }  // namespace
 
+std::set<std::string> declaredUniforms(const std::string& source) {
+    // Statements are split at ';' and '{' after comments are dropped; a statement whose first word after
+    // any layout(...) and qualifiers is "uniform" declares the identifiers before each '[' , ',' or its end.
+    std::string text;
+    text.reserve(source.size());
+    for (std::size_t i = 0; i < source.size(); ++i) {
+        if (source.compare(i, 2, "//") == 0) {
+            i = source.find('\n', i);
+            if (i == std::string::npos) break;
+        } else if (source.compare(i, 2, "/*") == 0) {
+            i = source.find("*/", i);
+            if (i == std::string::npos) break;
+            ++i;
+            continue;
+        }
+        if (source[i] == '#') {  // preprocessor lines are not declarations
+            i = source.find('\n', i);
+            if (i == std::string::npos) break;
+        }
+        text += source[i];
+    }
+    std::set<std::string> names;
+    auto isIdentifier = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find_first_of(";{}", start);
+        if (end == std::string::npos) end = text.size();
+        std::string statement = text.substr(start, end - start);
+        bool block = end < text.size() && text[end] == '{';
+        start = end + 1;
+        // Drop layout(...) qualifiers.
+        for (std::size_t l = statement.find("layout"); l != std::string::npos; l = statement.find("layout")) {
+            std::size_t close = statement.find(')', l);
+            if (close == std::string::npos) break;
+            statement.erase(l, close + 1 - l);
+        }
+        std::istringstream words(statement);
+        std::vector<std::string> tokens;
+        for (std::string w; words >> w;) tokens.push_back(w);
+        auto u = std::find(tokens.begin(), tokens.end(), "uniform");
+        if (u == tokens.end() || block) continue;
+        // What follows "uniform": qualifiers and a type, then declarators "name", "name[N]" separated by commas.
+        std::string rest;
+        for (auto t = u + 1; t != tokens.end(); ++t) rest += *t + " ";
+        std::vector<std::string> declarators;
+        std::size_t from = 0;
+        while (from <= rest.size()) {
+            std::size_t comma = rest.find(',', from);
+            if (comma == std::string::npos) comma = rest.size();
+            declarators.push_back(rest.substr(from, comma - from));
+            from = comma + 1;
+        }
+        for (std::string& d : declarators) {
+            std::size_t bracket = d.find('[');
+            if (bracket != std::string::npos) d.erase(bracket);
+            std::size_t last = d.find_last_not_of(' ');
+            if (last == std::string::npos) continue;
+            std::size_t first = last;
+            while (first > 0 && isIdentifier(d[first - 1])) --first;
+            names.insert(d.substr(first, last + 1 - first));
+        }
+    }
+    return names;
+}
+
 ExpandedSource expandShaderSource(const std::string& name, const Defines& defines) {
     Expander expander;
     std::string body;
@@ -138,7 +206,7 @@ ExpandedSource expandShaderSource(const std::string& name, const Defines& define
 
 Program Program::compute(const std::string& name, const Defines& defines) {
     Program p;
-    ShaderName shader = compileStage(GL_COMPUTE_SHADER, name, defines);
+    ShaderName shader = compileStage(GL_COMPUTE_SHADER, name, defines, p.declared_);
     p.program_ = link({shader.name()}, name);
     p.label_ = name;
     return p;
@@ -152,8 +220,8 @@ Program& ComputeVariants::get(const Defines& defines) {
 
 Program Program::graphics(const std::string& vertex, const std::string& fragment, const Defines& defines) {
     Program p;
-    ShaderName vs = compileStage(GL_VERTEX_SHADER, vertex, defines);
-    ShaderName fs = compileStage(GL_FRAGMENT_SHADER, fragment, defines);
+    ShaderName vs = compileStage(GL_VERTEX_SHADER, vertex, defines, p.declared_);
+    ShaderName fs = compileStage(GL_FRAGMENT_SHADER, fragment, defines, p.declared_);
     p.label_ = vertex + "+" + fragment;
     p.program_ = link({vs.name(), fs.name()}, p.label_);
     return p;
@@ -162,6 +230,9 @@ Program Program::graphics(const std::string& vertex, const std::string& fragment
 GLint Program::location(const char* uniform) {
     auto found = locations_.find(uniform);
     if (found != locations_.end()) return found->second;
+    if (!declared_.count(uniform))
+        throw SystemError("shader program " + label_ + " declares no uniform \"" + uniform +
+                          "\" (a binder or pass sets a name its shader pieces do not have)");
     GLint location = glGetUniformLocation(program_.name(), uniform);
     locations_.emplace(uniform, location);
     return location;

@@ -4,7 +4,7 @@
 // running each dispatch to completion, so there the scope is timed between glFinish calls instead
 // (synchronous mode). A TimerSet owns one query per named scope; results are read after the frame.
 
-#include "render/gl/objects.h"
+#include "gl/objects.h"
 
 #include <chrono>
 #include <string>

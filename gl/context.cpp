@@ -1,4 +1,4 @@
-#include "render/gl/context.h"
+#include "gl/context.h"
 
 #include "base/error.h"
 #include "base/log.h"

@@ -1,0 +1,61 @@
+#pragma once
+// One step of a session, the same for `view`, `record`, `replay` and the benches: a frame's input (live
+// actions, actions re-derived from recorded reports, or recorded poses) -> the interaction state -> the
+// FrameDescription and, through syncTo, the renderer's clip-mesh set. The only path by which meshes reach a
+// renderer, so every per-mesh setting (geometry, scale, pose, clips_tubes) arrives by every command alike;
+// and the only definition of "the poses changed".
+
+#include "app/interaction.h"
+#include "app/session.h"
+#include "clip/clip_mesh_set.h"
+#include "input/actions.h"
+#include "render/frame.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace curette {
+
+struct StepChanges {
+    bool poses = false;    // a position, an orientation or a scale
+    bool meshes = false;   // a mesh added or removed
+    bool shading = false;
+    bool any() const { return poses || meshes || shading; }
+};
+
+// SessionStep::syncTo for a state without a step (a scene's first frame: render, bench raycast/dos).
+void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set);
+
+// Pose equality, for every command: same ids in the same order, positions, orientations and scales.
+bool samePoses(const std::vector<SessionMesh>& a, const std::vector<SessionMesh>& b);
+
+class SessionStep {
+public:
+    SessionStep(InteractionState state, FrameDescription frame);
+
+    InteractionState& state() { return state_; }
+    const InteractionState& state() const { return state_; }
+    // The frame to render: the camera, size and shading of the last step (callers move the camera and size).
+    FrameDescription& frame() { return frame_; }
+    const FrameDescription& frame() const { return frame_; }
+
+    // Live input, or input re-derived from recorded reports: the actions applied through the interaction
+    // state with the frame's camera, for a viewport `viewportHeight` pixels high (drags).
+    StepChanges apply(const std::vector<input::Action>& actions, int viewportHeight);
+    // A recorded frame followed as recorded (replay without --from-reports): meshes added and removed, every
+    // pose and scale, the shading, camera and image size. `where` names the line in errors.
+    StepChanges follow(const SessionFrame& recorded, const std::filesystem::path& sceneDirectory, const std::string& where);
+
+    // Makes `set` match the state's meshes (index i = state().meshes[i]). Poses, scales and clips_tubes are set
+    // (cheap: a rigid motion only changes a camera matrix); meshes are re-added only when the list changed.
+    void syncTo(clip::ClipMeshSet& set) const;
+
+private:
+    StepChanges compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, bool meshesChanged);
+
+    InteractionState state_;
+    FrameDescription frame_;
+};
+
+}  // namespace curette

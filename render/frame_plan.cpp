@@ -1,0 +1,129 @@
+#include "render/frame_plan.h"
+
+#include <algorithm>
+
+namespace curette {
+
+namespace {
+using R = Resource;
+const PassInfo kPasses[] = {
+    {Pass::ClipMaps, "II-III clip maps", "CAO steps II-III: depth peeling, 2-D Minkowski dilation", {R::ClipMeshGeometry}, {R::ClipMaps}, false},
+    {Pass::LaoPrecompute, "I LAO precompute", "CAO step I: LAO of every voxel, eq. 2-3", {R::Volume, R::TransferFunction, R::GradientOpacity, R::LaoDirections},
+     {R::ClippedOpacity, R::CategoryMask, R::PrecomputedAo}, true},
+    {Pass::VoxelClipping, "IV voxel clipping", "CAO step IV: anti-aliased shadow-test clipping, Algorithm 2",
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::ClipMaps}, {R::ClippedOpacity, R::CategoryMask}, true},
+    {Pass::LaoRecompute, "V LAO recompute", "CAO step V: LAO of category-b voxels",
+     {R::ClippedOpacity, R::CategoryMask, R::PrecomputedAo, R::LaoDirections}, {R::RecomputeList, R::Ambient}, true},
+    {Pass::TubeGBuffer, "tubes G-buffer", "DOS+geometry section 3.1.1", {R::TubeGeometry, R::ClipMaps}, {R::GBuffer}, false},
+    {Pass::RayCast, "VI ray casting", "CAO step VI: ray casting with shadow-test clipping",
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::Occupancy, R::ClipMaps, R::Ambient}, {R::OutputImage}, false},
+    {Pass::SlabPass, "slab pass", "DOS Algorithms 1, 3; DOS+geometry Algorithms 2-4",
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::ClipMaps, R::Ambient, R::GBuffer}, {R::OcclusionBuffers, R::GBuffer, R::OutputImage}, false},
+    {Pass::Composite, "composite + vicinity", "DOS+geometry Algorithms 5-6", {R::GBuffer, R::OutputImage}, {R::OutputImage}, false},
+};
+static_assert(std::size(kPasses) == static_cast<std::size_t>(Pass::Count));
+}  // namespace
+
+const PassInfo& passInfo(Pass pass) { return kPasses[static_cast<std::size_t>(pass)]; }
+std::span<const PassInfo> allPasses() { return kPasses; }
+
+bool Freshness::precomputedCurrent() const {
+    return hasPrecomputed_ && precomputed_.volume == current_.volume && precomputed_.transferFunction == current_.transferFunction &&
+           precomputed_.laoSettings == current_.laoSettings;
+}
+
+bool Freshness::ambientCurrent(ShadingMode mode) const {
+    return precomputedCurrent() && hasAmbient_ && ambient_ == current_ && ambientMode_ == mode;
+}
+
+FramePlan planFrame(const PlanInputs& in) {
+    const ShadingModeTraits& mode = traits(in.shading);
+    bool tubes = in.tubes && in.tubesInView;
+    // Resources this frame has at all: a pass's declared input that the scene lacks is left out of its line.
+    auto present = [&](Resource r) {
+        switch (r) {
+            case R::ClipMeshGeometry:
+            case R::ClipMaps: return in.clipMeshes > 0;
+            case R::ClippedOpacity:
+            case R::CategoryMask:
+            case R::PrecomputedAo:
+            case R::Ambient:
+            case R::RecomputeList:
+            case R::LaoDirections: return mode.ambientOcclusion;
+            case R::TubeGeometry:
+            case R::GBuffer: return tubes;
+            default: return true;
+        }
+    };
+    FramePlan plan;
+    auto add = [&](Pass p) {
+        PlannedPass planned{p, {}, {}};
+        for (Resource r : passInfo(p).reads)
+            if (present(r)) planned.reads.push_back(r);
+        for (Resource r : passInfo(p).writes)
+            if (present(r)) planned.writes.push_back(r);
+        plan.passes.push_back(std::move(planned));
+    };
+    if (in.clipMeshes > 0 && !in.clipMapsCurrent) add(Pass::ClipMaps);
+    if (mode.ambientOcclusion) {
+        if (!in.precomputedCurrent) add(Pass::LaoPrecompute);
+        if (!in.precomputedCurrent || !in.ambientCurrent) {
+            add(Pass::VoxelClipping);
+            add(Pass::LaoRecompute);
+        }
+    }
+    if (tubes) {
+        // Seed 000 Algorithm 1: G-buffer, slab pass, composite.
+        add(Pass::TubeGBuffer);
+        add(Pass::SlabPass);
+        add(Pass::Composite);
+    } else if (mode.slabPass) {
+        add(Pass::SlabPass);
+    } else {
+        add(Pass::RayCast);
+    }
+    return plan;
+}
+
+bool FramePlan::runs(Pass pass) const {
+    return std::any_of(passes.begin(), passes.end(), [&](const PlannedPass& p) { return p.pass == pass; });
+}
+
+std::string FramePlan::describe() const {
+    auto list = [](const std::vector<Resource>& resources) {
+        std::string text;
+        for (Resource r : resources) text += (text.empty() ? "" : ", ") + std::string(resourceInfo(r).name);
+        return text.empty() ? std::string("-") : text;
+    };
+    std::string out;
+    int n = 0;
+    for (const PlannedPass& p : passes) {
+        const PassInfo& info = passInfo(p.pass);
+        out += std::to_string(++n) + ". " + info.name + "  (" + info.implements + ")\n";
+        out += "     reads:  " + list(p.reads) + "\n";
+        out += "     writes: " + list(p.writes) + "\n";
+    }
+    return out;
+}
+
+double FrameTimings::ms(Pass pass) const {
+    double sum = 0;
+    for (const Entry& e : passes)
+        if (e.pass == pass) sum += e.ms;
+    return sum;
+}
+
+double FrameTimings::ambientOcclusionMs() const {
+    double sum = 0;
+    for (const Entry& e : passes)
+        if (passInfo(e.pass).ambientOcclusion) sum += e.ms;
+    return sum;
+}
+
+double FrameTimings::totalMs() const {
+    double sum = 0;
+    for (const Entry& e : passes) sum += e.ms;
+    return sum;
+}
+
+}  // namespace curette

@@ -1,0 +1,19 @@
+#include "render/presenter.h"
+
+namespace curette {
+
+Presenter::Presenter()
+    : program_(gl::Program::graphics("present.vert", "present.frag")), emptyVertexArray_(gl::createVertexArray()) {}
+
+void Presenter::present(GLuint image, glm::ivec2 framebufferSize, glm::vec4 background) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, framebufferSize.x, framebufferSize.y);
+    glDisable(GL_DEPTH_TEST);
+    glBindTextureUnit(0, image);
+    program_.set("background", background);
+    program_.use();
+    glBindVertexArray(emptyVertexArray_.name());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+}  // namespace curette

@@ -1,0 +1,37 @@
+#include "render/shader_pieces.h"
+
+#include "gl/bindings.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <string>
+
+namespace curette {
+
+void CameraRayPiece::apply(gl::Program& p) const {
+    double aspect = double(frame.size.x) / frame.size.y;
+    glm::dmat4 viewProjection = frame.camera.projection(aspect) * frame.camera.view();
+    p.set("inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
+    p.set("eyeWorld", glm::vec3(frame.camera.position()));
+    p.set("outputSize", frame.size);
+}
+
+void VolumePiece::apply(gl::Program& p) const {
+    const VolumeGeometry& g = volume.geometry();
+    p.set("worldToTexture", glm::mat4(g.worldToTexture()));
+    p.set("texelSize", glm::vec3(1.0 / glm::dvec3(g.dims)));
+    p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume.valueScale()));
+    glBindTextureUnit(binding::volume, volume.texture());
+}
+
+void SampleShadingPiece::addDefines(gl::Defines& defines, ShadingMode mode) {
+    defines.emplace_back("SHADING", std::to_string(static_cast<int>(mode)));
+}
+
+void SampleShadingPiece::apply(gl::Program& p) const {
+    if (!usesAmbientOcclusion(mode)) return;
+    p.set("ambientScale", static_cast<float>(ambientScale));
+    if (ambient) glBindTextureUnit(binding::ambient, ambient);
+}
+
+}  // namespace curette

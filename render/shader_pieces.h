@@ -1,0 +1,45 @@
+#pragma once
+// One C++ binder per shared GLSL piece (the Inviwo shader-component model): each owns its piece's defines,
+// uniforms and texture units, so a pass that includes a piece calls its binder instead of spelling uniform
+// names at the call site, and gl::Program rejects a name no piece declares. A new uniform means editing the
+// piece and its binder, nothing else.
+//
+//   GLSL piece                   binder
+//   pixel_ray.glsl               CameraRayPiece (below)
+//   volume.glsl                  VolumePiece (below)
+//   transfer_function.glsl       TransferFunctionTexture::addDefines / apply (render/transfer_function_texture.h)
+//   classify_sample.glsl         (no uniforms: volume.glsl + transfer_function.glsl)
+//   shade_sample.glsl            SampleShadingPiece (below)
+//   phong.glsl                   setLightingUniforms (render/lighting.h)
+//   clip_test.glsl               clip::ClipMeshSet::apply (clip/clip_mesh_set.h)
+
+#include "gl/program.h"
+#include "render/frame.h"
+#include "render/gpu_volume.h"
+#include "render/shading_mode.h"
+
+namespace curette {
+
+// pixel_ray.glsl: the camera ray through each pixel of a frame.
+struct CameraRayPiece {
+    const FrameDescription& frame;
+    void apply(gl::Program& program) const;
+};
+
+// volume.glsl: the data volume, its world-to-texture map and the gradient's map to world units.
+struct VolumePiece {
+    const GpuVolume& volume;
+    void apply(gl::Program& program) const;
+};
+
+// shade_sample.glsl: the colour of a sample in `mode`; lao/cao read V_AO (`ambient`, a 3-D texture) scaled by
+// `ambientScale`.
+struct SampleShadingPiece {
+    ShadingMode mode;
+    double ambientScale = 1.0;
+    GLuint ambient = 0;
+    static void addDefines(gl::Defines& defines, ShadingMode mode);
+    void apply(gl::Program& program) const;
+};
+
+}  // namespace curette

@@ -1,0 +1,30 @@
+// Classification of one volume sample: TF colour and opacity per unit length, the gradient when a mode or the
+// TF needs it, and the gradient-opacity factor. One definition for the ray caster and the slab pass; the
+// segment's opacity is then correctOpacity(alphaUnit, length) (transfer_function.glsl).
+// Binders: VolumePiece (volume.glsl) and TransferFunctionTexture (transfer_function.glsl); no uniforms of its own.
+#include "shading_modes.glsl"
+#include "volume.glsl"
+#include "transfer_function.glsl"
+
+struct VolumeSample {
+    vec3 albedo;       // TF colour
+    float alphaUnit;   // opacity per tfUnitLengthMm, times the gradient-opacity factor
+    vec3 gradient;     // world gradient of the value (zero when neither phong nor gradient opacity needs it)
+};
+
+VolumeSample classifySample(vec3 tex) {
+    VolumeSample s;
+    vec4 classified = classify(sampleTexel(tex));
+    s.albedo = classified.rgb;
+#if SHADING == SHADING_PHONG
+    s.gradient = gradientWorld(tex);
+#else
+    s.gradient = useGradientOpacity ? gradientWorld(tex) : vec3(0.0);
+#endif
+    s.alphaUnit = classified.a;
+    if (useGradientOpacity) s.alphaUnit *= gradientOpacityFactor(length(s.gradient));
+    return s;
+}
+
+// Nothing there: outside the volume or inside a clip mesh.
+VolumeSample emptySample() { return VolumeSample(vec3(0.0), 0.0, vec3(0.0)); }

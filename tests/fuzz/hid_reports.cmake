@@ -1,1 +1,0 @@
-curette_fuzzer(hid_reports ${R}/input/devices/parsers.cpp ${R}/input/device_state.cpp)

@@ -1,1 +1,0 @@
-curette_fuzzer(nifti ${R}/app/io/nifti.cpp ${R}/app/io/gzip.cpp)

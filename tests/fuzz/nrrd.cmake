@@ -1,1 +1,0 @@
-curette_fuzzer(nrrd ${R}/app/io/nrrd.cpp ${R}/app/io/gzip.cpp)

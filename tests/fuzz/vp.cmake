@@ -1,1 +1,0 @@
-curette_fuzzer(vp ${R}/app/io/transfer_function_file.cpp)

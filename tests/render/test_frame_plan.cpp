@@ -1,0 +1,118 @@
+// The frame plan (render/frame_plan.h), the descriptor tables and the checked shader interfaces.
+#include "base/error.h"
+#include "gl/program.h"
+#include "render/frame_plan.h"
+#include "render/gpu_resources.h"
+#include "render/renderer.h"
+#include "render/shading_mode.h"
+#include "tests/render/gl_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace curette {
+namespace {
+
+std::vector<Pass> passes(const FramePlan& plan) {
+    std::vector<Pass> out;
+    for (const PlannedPass& p : plan.passes) out.push_back(p.pass);
+    return out;
+}
+
+TEST(FramePlan, AStillSceneCostsStepSixAlone) {
+    PlanInputs in;
+    in.shading = ShadingMode::Cao;
+    in.clipMeshes = 1;
+    in.clipMapsCurrent = true;
+    in.precomputedCurrent = true;
+    in.ambientCurrent = true;
+    EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::RayCast});
+}
+
+TEST(FramePlan, AmbientOcclusionPassesRunOnlyWhenTheirInputsChanged) {
+    PlanInputs in;
+    in.shading = ShadingMode::Cao;
+    in.clipMeshes = 2;
+    in.clipMapsCurrent = false;
+    EXPECT_EQ(passes(planFrame(in)), (std::vector<Pass>{Pass::ClipMaps, Pass::LaoPrecompute, Pass::VoxelClipping, Pass::LaoRecompute,
+                                                        Pass::RayCast}));
+    in.clipMapsCurrent = true;
+    in.precomputedCurrent = true;   // a pose moved: IV and V only
+    EXPECT_EQ(passes(planFrame(in)), (std::vector<Pass>{Pass::VoxelClipping, Pass::LaoRecompute, Pass::RayCast}));
+    in.shading = ShadingMode::Phong;  // no AO in phong, whatever is stale
+    EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::RayCast});
+}
+
+TEST(FramePlan, TubesInViewGoThroughGBufferSlabAndComposite) {
+    PlanInputs in;
+    in.shading = ShadingMode::Phong;
+    in.tubes = true;
+    in.tubesInView = true;
+    EXPECT_EQ(passes(planFrame(in)), (std::vector<Pass>{Pass::TubeGBuffer, Pass::SlabPass, Pass::Composite}));
+    in.tubesInView = false;
+    EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::RayCast});
+    in.shading = ShadingMode::Dos;
+    EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::SlabPass});
+}
+
+TEST(FramePlan, DeclaredInputsTheSceneLacksAreLeftOut) {
+    PlanInputs in;
+    in.shading = ShadingMode::Phong;
+    FramePlan plan = planFrame(in);
+    ASSERT_EQ(plan.passes.size(), 1u);
+    const std::vector<Resource>& reads = plan.passes[0].reads;
+    EXPECT_EQ(std::count(reads.begin(), reads.end(), Resource::Ambient), 0) << "phong reads no V_AO";
+    EXPECT_EQ(std::count(reads.begin(), reads.end(), Resource::ClipMaps), 0) << "no meshes, no maps";
+    EXPECT_EQ(std::count(reads.begin(), reads.end(), Resource::Volume), 1);
+    in.shading = ShadingMode::Lao;
+    in.clipMeshes = 1;
+    plan = planFrame(in);
+    const std::vector<Resource>& caster = plan.passes.back().reads;
+    EXPECT_EQ(std::count(caster.begin(), caster.end(), Resource::Ambient), 1);
+    EXPECT_NE(plan.describe().find("V_AO (LAO under clipping)"), std::string::npos) << plan.describe();
+}
+
+TEST(FramePlan, TablesAreCompleteAndNamedOnce) {
+    std::set<std::string> names;
+    for (const PassInfo& p : allPasses()) {
+        EXPECT_EQ(&passInfo(p.id), &p) << p.name;
+        EXPECT_TRUE(names.insert(p.name).second) << "two passes named " << p.name;
+        EXPECT_FALSE(p.writes.empty()) << p.name;
+    }
+    std::set<std::string> resources;
+    for (int r = 0; r < static_cast<int>(Resource::Count); ++r)
+        EXPECT_TRUE(resources.insert(resourceInfo(static_cast<Resource>(r)).name).second);
+    // The timings name AO passes through the table, not by a prefix of their names.
+    FrameTimings t{{{Pass::LaoPrecompute, 5.0}, {Pass::VoxelClipping, 1.0}, {Pass::LaoRecompute, 2.0}, {Pass::RayCast, 10.0}}};
+    EXPECT_DOUBLE_EQ(t.ambientOcclusionMs(), 8.0);
+    EXPECT_DOUBLE_EQ(t.ms(Pass::RayCast), 10.0);
+}
+
+TEST(ShadingModes, TheCycleVisitsEveryModeOnce) {
+    std::set<ShadingMode> seen;
+    ShadingMode m = ShadingMode::Solid;
+    for (std::size_t i = 0; i < allShadingModes().size(); ++i, m = nextShadingMode(m)) EXPECT_TRUE(seen.insert(m).second);
+    EXPECT_EQ(m, ShadingMode::Solid);
+    EXPECT_EQ(seen.size(), allShadingModes().size());
+}
+
+TEST(ShaderInterface, DeclaredUniformsAreParsedFromTheSource) {
+    std::set<std::string> names = gl::declaredUniforms(
+        "#version 450\nlayout(binding = 0) uniform sampler3D volumeData; // uniform float notThis;\n"
+        "uniform vec3 lightDirection[4];\nuniform float a, b;\n/* uniform int hidden; */\n"
+        "layout(std140, binding = 0) uniform Block { mat4 member; };\nvoid main() { float uniformish = 1.0; }\n");
+    EXPECT_EQ(names, (std::set<std::string>{"volumeData", "lightDirection", "a", "b"}));
+}
+
+TEST(ShaderInterface, SettingAnUndeclaredUniformIsAnError) {
+    test::glContext();
+    gl::Program p = gl::Program::compute("raycast.comp", {{"SHADING", "0"}});
+    EXPECT_NO_THROW(p.set("stepMm", 0.5f));
+    EXPECT_NO_THROW(p.set("ambientScale", 2.0f)) << "declared under #if (lao/cao), compiled out in solid: ignored";
+    EXPECT_THROW(p.set("stepMM", 0.5f), SystemError) << "a typo must not pass silently";
+    EXPECT_THROW(p.set("sliceDistance", 1.0f), SystemError) << "a slab-pass uniform on the ray caster";
+}
+
+}  // namespace
+}  // namespace curette
