@@ -1,6 +1,6 @@
 #include "render/gpu_resources.h"
 
-#include <iterator>
+#include "base/enum_table.h"
 
 namespace curette {
 
@@ -23,13 +23,7 @@ constexpr ResourceInfo kResources[] = {
     {Resource::OcclusionBuffers, "DOS occlusion buffers (2, ping-pong)", "RG32F 2D x2", "the slab pass's cone-blurred visibility"},
     {Resource::OutputImage, "output image", "RGBA32F 2D", "the frame"},
 };
-static_assert(std::size(kResources) == static_cast<std::size_t>(Resource::Count));
-constexpr bool inIdOrder() {
-    for (std::size_t i = 0; i < std::size(kResources); ++i)
-        if (static_cast<std::size_t>(kResources[i].id) != i) return false;
-    return true;
-}
-static_assert(inIdOrder(), "kResources is indexed by Resource");
+static_assert(rowsInEnumOrder(kResources, &ResourceInfo::id, Resource::Count), "kResources is indexed by Resource");
 }  // namespace
 
 const ResourceInfo& resourceInfo(Resource id) { return kResources[static_cast<std::size_t>(id)]; }

@@ -1,5 +1,7 @@
 #include "render/shading_mode.h"
 
+#include "base/enum_table.h"
+
 #include <iterator>
 
 namespace curette {
@@ -13,12 +15,7 @@ constexpr ShadingModeTraits kModes[] = {
     {ShadingMode::Cao, "cao", true, true, false, true, "ambient from Contextual Ambient Occlusion (seed 002)"},
     {ShadingMode::Dos, "dos", false, false, true, true, "directional occlusion shading (seed 001), slab pass"},
 };
-constexpr bool inEnumOrder() {
-    for (std::size_t i = 0; i < std::size(kModes); ++i)
-        if (static_cast<std::size_t>(kModes[i].mode) != i) return false;
-    return true;
-}
-static_assert(inEnumOrder(), "kModes is indexed by ShadingMode");
+static_assert(rowsInEnumOrder(kModes, &ShadingModeTraits::mode, ShadingMode::Count), "kModes is indexed by ShadingMode");
 }  // namespace
 
 const ShadingModeTraits& traits(ShadingMode mode) { return kModes[static_cast<std::size_t>(mode)]; }

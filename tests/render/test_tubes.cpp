@@ -269,18 +269,28 @@ TEST(Tubes, IlluminatedLinesMatchTheirCpuOracle) {
     EXPECT_LT(worst, 5e-3);
 }
 
+// A 24^3 slab (y < -2) behind the origin and a renderer for it with a cheap LAO (K = 6, M = 4), for cao
+// frames with tubes in front of it.
+struct CaoSlab {
+    glm::ivec3 dims{24};
+    VolumeData volume;
+    std::unique_ptr<Renderer> renderer;
+    CaoSlab() {
+        glContext();
+        volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [](glm::dvec3 p) { return p.y < -2.0 ? 60.0 : 0.0; });
+        renderer = std::make_unique<Renderer>(glContext(), volume, whiteTransferFunction(0.15, 0.15));
+        LaoSettings lao;
+        parseLaoPattern("6", lao.directions);
+        lao.samples = 4;
+        renderer->setLaoSettings(lao);
+    }
+};
+
 // In cao shading with tubes the volume's own occlusion is V_AO and the tubes' shadows come from the
 // geometry channel: a tube in front of the slab still darkens it (geometry to volume), only around it.
 TEST(Tubes, TubesShadowTheVolumeInCaoShadingToo) {
-    glContext();
-    glm::ivec3 dims(24);
-    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
-                                         [](glm::dvec3 p) { return p.y < -2.0 ? 60.0 : 0.0; });
-    Renderer renderer(glContext(), volume, whiteTransferFunction(0.15, 0.15));
-    LaoSettings lao;
-    parseLaoPattern("6", lao.directions);
-    lao.samples = 4;
-    renderer.setLaoSettings(lao);
+    CaoSlab slab;
+    Renderer& renderer = *slab.renderer;
     FrameDescription frame = frontFrame(ShadingMode::Cao);
     frame.camera.fit(glm::dvec3(0), 12.0);
     renderer.setTubes(straightTube(glm::dvec3(0, 5, 0), glm::dvec3(0, 0, 1), 4.0, 1.2, glm::vec4(1)), TubeShading{});
@@ -315,15 +325,8 @@ TEST(Tubes, TubesShadowTheVolumeInCaoShadingToo) {
 // Tubes that cover no pixel (here: behind the camera) leave a CAO frame bit for bit as it is without tubes:
 // the frame plan leaves the tube passes out and the ray caster runs as before.
 TEST(Tubes, TubesThatCoverNoPixelLeaveACaoImageUnchanged) {
-    glContext();
-    glm::ivec3 dims(24);
-    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
-                                         [](glm::dvec3 p) { return p.y < -2.0 ? 60.0 : 0.0; });
-    Renderer renderer(glContext(), volume, whiteTransferFunction(0.15, 0.15));
-    LaoSettings lao;
-    parseLaoPattern("6", lao.directions);
-    lao.samples = 4;
-    renderer.setLaoSettings(lao);
+    CaoSlab slab;
+    Renderer& renderer = *slab.renderer;
     FrameDescription frame = frontFrame(ShadingMode::Cao);
     renderer.render(frame);
     Image without = renderer.readImage();
@@ -340,15 +343,8 @@ TEST(Tubes, TubesThatCoverNoPixelLeaveACaoImageUnchanged) {
 // ray caster and the slab pass alike, so with tubes in view a CAO frame does not change with La. (The slab
 // pass used to multiply V_AO by La, so a CAO scene changed brightness when tubes were added.)
 TEST(Tubes, AmbientRadianceOfDosDoesNotScaleCaoWithTubes) {
-    glContext();
-    glm::ivec3 dims(24);
-    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
-                                         [](glm::dvec3 p) { return p.y < -2.0 ? 60.0 : 0.0; });
-    Renderer renderer(glContext(), volume, whiteTransferFunction(0.15, 0.15));
-    LaoSettings lao;
-    parseLaoPattern("6", lao.directions);
-    lao.samples = 4;
-    renderer.setLaoSettings(lao);
+    CaoSlab slab;
+    Renderer& renderer = *slab.renderer;
     renderer.setTubes(straightTube(glm::dvec3(0, 5, 0), glm::dvec3(0, 0, 1), 4.0, 1.2, glm::vec4(1)), TubeShading{});
     FrameDescription frame = frontFrame(ShadingMode::Cao);
     frame.dos.ambientRadiance = 1.0;
