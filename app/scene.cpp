@@ -31,11 +31,13 @@ fs::path resolvePath(const fs::path& scene, const std::string& path) {
 void parseVolume(const JsonReader& r, Scene& scene) {
     scene.volumePath = resolvePath(scene.file, r.at("path").string());
     if (auto format = r.find("format")) {
-        std::string f = format->oneOf({"auto", "nifti", "nrrd", "raw"});
-        scene.volumeOptions.format = f == "nifti" ? io::VolumeFormat::Nifti
-                                     : f == "nrrd" ? io::VolumeFormat::Nrrd
-                                     : f == "raw"  ? io::VolumeFormat::Raw
-                                                   : io::VolumeFormat::Auto;
+        std::string f = format->oneOf({"auto", "nifti", "nrrd", "raw", "metaimage", "dicom"});
+        scene.volumeOptions.format = f == "nifti"       ? io::VolumeFormat::Nifti
+                                     : f == "nrrd"      ? io::VolumeFormat::Nrrd
+                                     : f == "raw"       ? io::VolumeFormat::Raw
+                                     : f == "metaimage" ? io::VolumeFormat::MetaImage
+                                     : f == "dicom"     ? io::VolumeFormat::Dicom
+                                                        : io::VolumeFormat::Auto;
     }
     if (auto raw = r.find("raw")) {
         io::RawLayout layout;
@@ -53,6 +55,9 @@ void parseVolume(const JsonReader& r, Scene& scene) {
         scene.volumeOptions.raw = layout;
         if (scene.volumeOptions.format == io::VolumeFormat::Auto) scene.volumeOptions.format = io::VolumeFormat::Raw;
     }
+    if (auto index = r.find("index")) scene.volumeOptions.volumeIndex = index->integer(0, 1 << 20);
+    if (auto series = r.find("series"))
+        scene.volumeOptions.series = series->isString() ? series->string() : std::to_string(series->integer(0, INT32_MAX));
     if (scene.volumeOptions.format == io::VolumeFormat::Raw && !scene.volumeOptions.raw)
         throw InputError(scene.file.string(), "volume.raw", "the raw layout (dims, type, ...) for format \"raw\"", "nothing");
     r.finish();

@@ -3,8 +3,9 @@
 // scene allocates and computes only what it uses. Relative paths are relative to the scene file.
 //
 // {
-//   "volume": {"path": "/usr/share/mricron/templates/ch2.nii.gz",
-//              "format": "auto" | "nifti" | "nrrd" | "raw",
+//   "volume": {"path": "/usr/share/mricron/templates/ch2.nii.gz" | a DICOM folder or file,
+//              "format": "auto" | "nifti" | "nrrd" | "raw" | "metaimage" | "dicom",
+//              "index": 0 (4-D/5-D files: which volume), "series": number | "UID" (DICOM),
 //              "raw": {"dims": [x,y,z], "type": "uint8|int16|uint16|int32|float32|float64",
 //                      "endian": "little|big", "spacing": [..], "origin": [..], "header_bytes": 0,
 //                      "gzip": false}},                                  (raw only)

@@ -30,6 +30,10 @@ struct VolumeData {
     ScalarType sourceType = ScalarType::UInt8;
     double minValue = 0.0, maxValue = 0.0;  // physical value range over all voxels
     std::string source;                     // file it came from, for messages
+    int volumeCount = 1;                    // 3-D volumes in the file (4-D/5-D NIfTI); this is volumeIndex
+    int volumeIndex = 0;
+    std::uint64_t noDataVoxels = 0;         // voxels that were NaN or Inf in the file ("no data": transparent)
+    std::string description;                // what the reader knows beyond the grid (DICOM: modality, series), one line
 
     std::size_t voxelCount() const {
         return static_cast<std::size_t>(dims.x) * static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(dims.z);

@@ -30,11 +30,17 @@ int info(const Arguments& args) {
                           {"raw-spacing", true, "raw file: spacing in mm, e.g. 1,1,2 (default 1,1,1)"},
                           {"raw-big-endian", false, "raw file: samples are big-endian"},
                           {"raw-header-bytes", true, "raw file: bytes to skip first"},
-                          {"raw-gzip", false, "raw file: the file is gzip-compressed"}});
+                          {"raw-gzip", false, "raw file: the file is gzip-compressed"},
+                          {"volume", true, "4-D/5-D files: the volume to describe (0-based, default 0)"},
+                          {"series", true, "DICOM: the series to describe, by number or SeriesInstanceUID"},
+                          {"show-identifiers", false, "DICOM: print patient name and ids (never printed otherwise)"}});
     if (cl.positional().size() != 1)
-        throw InputError("<command line>", "FILE", "exactly one volume file: curette info FILE [raw options]",
+        throw InputError("<command line>", "FILE", "exactly one volume file or DICOM folder: curette info FILE [options]",
                          std::to_string(cl.positional().size()) + " arguments");
     io::VolumeReadOptions options;
+    if (auto v = cl.value("volume")) options.volumeIndex = CommandLine::parseInt("volume", *v, 0, 1 << 20);
+    if (auto s = cl.value("series")) options.series = *s;
+    options.showIdentifiers = cl.flag("show-identifiers");
     if (auto dims = cl.value("raw-dims")) {
         io::RawLayout layout;
         std::string text = *dims;

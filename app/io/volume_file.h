@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 namespace curette::io {
 
@@ -21,11 +22,15 @@ struct RawLayout {
     bool gzip = false;              // the whole file is gzip-compressed
 };
 
-enum class VolumeFormat { Auto, Nifti, Nrrd, Raw };
+enum class VolumeFormat { Auto, Nifti, Nrrd, Raw, MetaImage, Dicom };
 
 struct VolumeReadOptions {
-    VolumeFormat format = VolumeFormat::Auto;  // Auto: by extension, then by magic bytes
+    VolumeFormat format = VolumeFormat::Auto;  // Auto: by extension, then by magic bytes; a directory is DICOM
     std::optional<RawLayout> raw;              // required for Raw
+    int volumeIndex = 0;                       // 4-D/5-D files: which 3-D volume (0-based; `--volume N`, scene volume.index)
+    std::string series;                        // DICOM: the series to open, by number or SeriesInstanceUID ("": the one
+                                               // curette would pick, see app/io/dicom.h)
+    bool showIdentifiers = false;              // DICOM: patient name and ids may be printed (`--show-identifiers`)
 };
 
 VolumeData readVolume(const std::filesystem::path& path, const VolumeReadOptions& options = {});
