@@ -16,7 +16,41 @@ std::string joinKey(const std::string& path, const std::string& key) {
 
 }  // namespace
 
+namespace {
+
+// The JSON parser (and whatever later walks the value) recurses once per nesting level, so a hostile file
+// nested a few hundred thousand levels deep would overflow the stack. Every file curette reads nests a handful
+// of levels; refuse anything deeper than kMaxJsonDepth before parsing, naming where it got too deep.
+constexpr int kMaxJsonDepth = 64;
+
+void checkNestingDepth(std::string_view text, const std::string& file) {
+    int depth = 0;
+    bool inString = false, escaped = false;
+    std::size_t line = 1, column = 0;
+    for (char c : text) {
+        ++column;
+        if (c == '\n') ++line, column = 0;
+        if (inString) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') inString = false;
+            continue;
+        }
+        if (c == '"') inString = true;
+        else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth)
+                throw InputError(file, "line " + std::to_string(line) + ", column " + std::to_string(column),
+                                 "JSON nested at most " + std::to_string(kMaxJsonDepth) + " levels deep", "deeper nesting");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+}  // namespace
+
 nlohmann::json parseJson(std::string_view text, const std::string& file) {
+    checkNestingDepth(text, file);
     try {
         return nlohmann::json::parse(text.begin(), text.end());
     } catch (const nlohmann::json::parse_error& e) {

@@ -76,7 +76,7 @@ int benchDos(const CommandLine& cl) {
     std::snprintf(setup, sizeof setup, "theta %.0f deg, grid %dx%d, vicinity %d samples, slice %.2f mm", dos.coneAngleDeg, dos.gridSize,
                   dos.gridSize, loaded.scene.tubeShading.vicinitySamples, dos.sliceDistanceMm > 0 ? dos.sliceDistanceMm : 0.5 * renderer.geometry().minSpacing());
     Table table(std::string("Seed 000 Table 1 layout (") + setup + ")",
-                {"configuration", "slices", "image", "ms/frame", "FPS", "paper FPS (DTI, 512x512)"});
+                {"configuration", "slices", "image (ours)", "ms/frame", "FPS", "paper FPS (DTI data set, 512x512, their GPU)"});
     FrameDescription frame = base;
     frame.shading = ShadingMode::Solid;
     Result solid = measure(frame, true);
@@ -91,7 +91,11 @@ int benchDos(const CommandLine& cl) {
     table.add({"volumetric Phong + Phong tubes", phong.slices, image, phong.ms, 1000.0 / phong.ms, 82.61});
     table.add({"volumetric occlusion only (DOS, no tubes)", volumeOnly.slices, image, volumeOnly.ms, 1000.0 / volumeOnly.ms, 11.24});
     table.add({"combined occlusion (DOS + tubes)", combined.slices, image, combined.ms, 1000.0 / combined.ms, 9.73});
-    table.add({"vicinity occlusion term alone (pass time)", nlohmann::json(), image, vicinityMs, 1000.0 / std::max(vicinityMs, 1e-3), 106.66});
+    // The paper's row is a whole frame rendered with the vicinity term alone; ours is the time of the one
+    // pass that computes it inside the combined frame (with its composite). Not the same quantity: the FPS
+    // column here is 1000 / pass ms, shown for scale, and the JSON says so.
+    table.add({"vicinity term: our composite pass alone vs the paper's whole vicinity-only frame", nlohmann::json(), image, vicinityMs,
+               1000.0 / std::max(vicinityMs, 1e-3), 106.66});
     table.print();
     double overhead = 100.0 * (combined.ms - volumeOnly.ms) / volumeOnly.ms;
     std::printf("tubes add %.1f %% to the DOS frame (G-buffer %.0f ms, composite with vicinity %.0f ms, slab pass %.0f vs %.0f ms);\n"

@@ -1,10 +1,13 @@
 // Scene files: every key read strictly, errors naming the key, relative paths, clip meshes.
 #include "app/scene.h"
 #include "base/error.h"
+#include "base/json_reader.h"
+#include "tests/app/run_curette.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace curette {
 namespace {
@@ -79,6 +82,34 @@ TEST(Scene, BadKeysTypesAndValuesNameTheKey) {
     expectError(R"({"volume": {"path": "x.nii"}, "transfer_function": "missing.json"})", "");
     expectError("[1, 2]", "(top level)");
     expectError("{" + kVolume + ",}", "line 1, column 106");
+}
+
+// A hostile scene nested hundreds of thousands of levels deep used to overflow the stack in the parser (and in
+// the code quoting the bad value); now it is refused before parsing with the usual one-line error, and the
+// binary exits 2. Ordinary nesting (a scene's deepest is four levels) still parses.
+TEST(Scene, DeeplyNestedFilesAreRefusedNotACrash) {
+    std::string deep = std::string(300000, '[') + std::string(300000, ']');
+    expectError(deep, "line 1, column 65");
+    std::string objects;
+    for (int i = 0; i < 200000; ++i) objects += "{\"a\":";
+    objects += "1" + std::string(200000, '}');
+    expectError(objects, "line 1, column 321");
+    std::string scene = "{" + kVolume + R"(, "lights": [{"direction": [0, 0, 1], "color": [1, 1, 1]}]})";
+    EXPECT_NO_THROW(parse(scene));
+    // Brackets inside strings are not nesting.
+    EXPECT_NO_THROW(parseJson("[\"" + std::string(1000, '[') + "\"]", "test"));
+
+    std::filesystem::path file = std::filesystem::temp_directory_path() / "curette-deep-scene.json";
+    {
+        std::ofstream out(file);
+        out << deep;
+    }
+    testing::Invocation r = testing::runCurette("render --scene " + file.string() + " --out " +
+                                                (std::filesystem::temp_directory_path() / "curette-deep.png").string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("nested at most 64 levels"), std::string::npos) << r.output;
+    EXPECT_LT(r.output.size(), 400u) << "one line, not the value";
+    std::filesystem::remove(file);
 }
 
 }  // namespace
