@@ -253,7 +253,8 @@ glm::dvec3 illuminatedLineColor(glm::dvec3 albedo, glm::dvec3 tangent, glm::dvec
                                 const TransferFunction::Material& m, double diffuseExponent) {
     double lt = glm::dot(toLight, tangent), vt = glm::dot(toViewer, tangent);
     double ln = std::sqrt(std::max(1.0 - lt * lt, 0.0));                               // eq. 3.12
-    double vr = lt * vt - ln * std::sqrt(std::max(1.0 - vt * vt, 0.0));                // eq. 3.13
+    // Eq. 3.13 with L and V both pointing away from the line (shaders/illuminated_lines.glsl has the signs).
+    double vr = ln * std::sqrt(std::max(1.0 - vt * vt, 0.0)) - lt * vt;
     double diffuse = std::pow(ln, diffuseExponent);                                     // eq. 3.14, 3.15
     double specular = std::pow(std::max(vr, 0.0), m.specularPower);
     return albedo * (m.ambient + m.diffuse * diffuse) + glm::dvec3(m.specular * specular);

@@ -139,20 +139,23 @@ TEST(TubeGeometry, StraightLinesKeepAStableFrameAndDirectionColour) {
 TEST(IlluminatedLines, OracleMatchesTheEquations) {
     TransferFunction::Material m{0.1, 0.6, 0.3, 20};
     glm::dvec3 albedo(1, 0.5, 0.25);
-    // Light perpendicular to the line: L.N = 1, full diffuse; the viewer along the light: V.R = -1 + ... =
-    // (L.T)(V.T) - sqrt(1)(sqrt(1)) = -1 -> no specular.
+    // A headlit line across the view (L = V perpendicular to T): L.N = 1, full diffuse, and the mirror
+    // direction points at the viewer: V.R = 1, the full highlight.
     glm::dvec3 c = illuminatedLineColor(albedo, {1, 0, 0}, {0, 1, 0}, {0, 1, 0}, m, 2.0);
-    EXPECT_NEAR(c.r, albedo.r * (0.1 + 0.6), 1e-12);
-    // Light along the line: L.N = 0, ambient only.
+    EXPECT_NEAR(c.r, albedo.r * (0.1 + 0.6) + 0.3, 1e-12);
+    // A line pointing at the eye and the light (L = V parallel to T): no diffuse, no highlight.
+    c = illuminatedLineColor(albedo, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}, m, 2.0);
+    EXPECT_NEAR(c.g, albedo.g * 0.1, 1e-12);
+    // Light along the line, viewer across it: L.N = 0, ambient only.
     c = illuminatedLineColor(albedo, {1, 0, 0}, {1, 0, 0}, {0, 1, 0}, m, 2.0);
     EXPECT_NEAR(c.g, albedo.g * 0.1, 1e-12);
-    // Eq. 3.13 as written is V.R = cos(alpha + beta) with alpha, beta the angles of L and V to the tangent:
-    // L = V at 53 degrees to the tangent gives 0.36 - 0.64 < 0, no highlight.
+    // L = V at 53 degrees to the tangent: the best normal reflects L into 2 (L.N)^2 - 1 = 0.28 of V:
+    // V.R = 0.8 * 0.8 - 0.6 * 0.6.
     c = illuminatedLineColor(albedo, {1, 0, 0}, {0.6, 0.8, 0}, {0.6, 0.8, 0}, m, 2.0);
-    EXPECT_NEAR(c.b, albedo.b * (0.1 + 0.6 * 0.64), 1e-12);
-    // L.T = V.T = 0.9: V.R = 0.81 - 0.19 = 0.62, L.N = sqrt(0.19).
-    c = illuminatedLineColor(albedo, {1, 0, 0}, {0.9, std::sqrt(0.19), 0}, {0.9, 0, std::sqrt(0.19)}, m, 2.0);
-    EXPECT_NEAR(c.b, albedo.b * (0.1 + 0.6 * 0.19) + 0.3 * std::pow(0.62, 20), 1e-12);
+    EXPECT_NEAR(c.b, albedo.b * (0.1 + 0.6 * 0.64) + 0.3 * std::pow(0.28, 20), 1e-12);
+    // Light and viewer on opposite sides of the normal plane (L.T = 0.9, V.T = -0.9): V.R = 0.19 + 0.81 = 1.
+    c = illuminatedLineColor(albedo, {1, 0, 0}, {0.9, std::sqrt(0.19), 0}, {-0.9, 0, std::sqrt(0.19)}, m, 2.0);
+    EXPECT_NEAR(c.b, albedo.b * (0.1 + 0.6 * 0.19) + 0.3, 1e-12);
     // The diffuse exponent p of eq. 3.15 darkens oblique light: (L.N)^4 instead of (L.N)^2.
     c = illuminatedLineColor(albedo, {1, 0, 0}, {0.6, 0.8, 0}, {0.6, 0.8, 0}, m, 4.0);
     EXPECT_NEAR(c.b, albedo.b * (0.1 + 0.6 * 0.4096), 1e-12);
