@@ -366,6 +366,7 @@ void ClipMeshSet::apply(gl::Program& program) const {
 
 std::vector<float> ClipMeshSet::readMap(int index, int layer, bool dilated) const {
     std::vector<float> values(static_cast<std::size_t>(resolution_) * static_cast<std::size_t>(resolution_));
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // the dilated maps are written by image stores
     glGetTextureSubImage(dilated ? dilatedMaps_.name() : depthMaps_.name(), 0, 0, 0, layersPerMesh * index + layer,
                          resolution_, resolution_, 1, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)),
                          values.data());

@@ -206,6 +206,7 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     std::uint32_t counts[2] = {0, 0};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // the counters were written by shader atomics
     glGetNamedBufferSubData(list_.name(), 0, 8, counts);
     stats_.recomputed = counts[1];
 }
@@ -271,6 +272,7 @@ template <typename T>
 std::vector<T> readTexture(GLuint texture, glm::ivec3 d, GLenum format, GLenum type) {
     std::vector<T> values(std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // written by image stores: make them visible to the read-back
     glGetTextureImage(texture, 0, format, type, static_cast<GLsizei>(values.size() * sizeof(T)), values.data());
     return values;
 }

@@ -255,6 +255,7 @@ void Renderer::finish() const { glFinish(); }
 std::uint64_t Renderer::samplesLastFrame() const {
     if (!sampleCounter_) return 0;
     std::uint32_t count = 0;  // one 32-bit counter: ample for a frame (4e9 samples)
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // written by shader atomics
     glGetNamedBufferSubData(sampleCounter_.name(), 0, 4, &count);
     return count;
 }
@@ -265,6 +266,7 @@ Image Renderer::readImage() const {
     image.height = outputSize_.y;
     image.pixels.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
     // The shader writes row 0 as the top of the picture, which is also Image's convention.
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // written by image stores
     glGetTextureImage(output_.name(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.pixels.size() * sizeof(glm::vec4)),
                       image.pixels.data());
     return image;

@@ -106,6 +106,7 @@ void SlabPass::run(const SlabInputs& in) {
 
 std::vector<glm::vec2> SlabPass::readOcclusion() const {
     std::vector<glm::vec2> values(static_cast<std::size_t>(size_.x) * static_cast<std::size_t>(size_.y));
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // written by image stores
     glGetTextureImage(occlusion_[last_].name(), 0, GL_RG, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(glm::vec2)),
                       values.data());
     return values;

@@ -25,7 +25,10 @@ layout(std430, binding = 0) buffer SampleCounter { uint samplesTaken; };  // `cu
 
 // Ray parameter interval inside the axis-aligned box [lo, hi] (texture space), or false if it misses.
 bool intersectBox(vec3 origin, vec3 direction, vec3 lo, vec3 hi, out float tNear, out float tFar) {
-    vec3 inverse = 1.0 / direction;  // IEEE: +-inf for zero components, which the min/max below handle
+    // A zero component would give 1/0 = inf and, for an origin on that face, 0 * inf = NaN; a tiny stand-in
+    // keeps every product finite and orders the slabs as inf would.
+    vec3 safe = mix(direction, vec3(1e-30), lessThan(abs(direction), vec3(1e-30)));
+    vec3 inverse = 1.0 / safe;
     vec3 a = (lo - origin) * inverse, b = (hi - origin) * inverse;
     vec3 nearAxes = min(a, b), farAxes = max(a, b);
     tNear = max(max(nearAxes.x, nearAxes.y), nearAxes.z);

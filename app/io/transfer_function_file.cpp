@@ -98,10 +98,20 @@ TransferFunction parseSlicerVolumeProperty(std::string_view text, const std::str
     };
     scalar(0, "interpolation");
     scalar(1, "shade");
-    tf.material.diffuse = scalar(2, "diffuse");
-    tf.material.ambient = scalar(3, "ambient");
-    tf.material.specular = scalar(4, "specular");
-    tf.material.specularPower = scalar(5, "specular power");
+    // The same ranges as the JSON material (readMaterial); a specular power of 0 would make the shader's
+    // pow(0, 0) undefined.
+    auto inRange = [&](int line, const char* what, double lo, double hi, bool positive) {
+        double v = scalar(line, what);
+        if (!(v >= lo && v <= hi) || (positive && !(v > 0.0)))
+            throw InputError(source, "line " + std::to_string(line + 1) + " (" + what + ")",
+                             std::string(positive ? "a positive number up to " : "a number in [0, ") + std::to_string(static_cast<int>(hi)) + (positive ? "" : "]"),
+                             std::to_string(v));
+        return v;
+    };
+    tf.material.diffuse = inRange(2, "diffuse", 0, 10, false);
+    tf.material.ambient = inRange(3, "ambient", 0, 10, false);
+    tf.material.specular = inRange(4, "specular", 0, 10, false);
+    tf.material.specularPower = inRange(5, "specular power", 0, 1000, true);
     for (const auto& p : parseFunction(lines[6], 2, source, "line 7 (scalar opacity)")) tf.opacity.push_back({p[0], p[1]});
     for (const auto& p : parseFunction(lines[7], 2, source, "line 8 (gradient opacity)")) tf.gradientOpacity.push_back({p[0], p[1]});
     for (const auto& p : parseFunction(lines[8], 4, source, "line 9 (colour)")) tf.color.push_back({p[0], {p[1], p[2], p[3]}});
@@ -122,7 +132,10 @@ void readMaterial(const JsonReader& object, TransferFunction::Material& material
     if (auto a = object.find("ambient")) material.ambient = a->number(0, 10);
     if (auto d = object.find("diffuse")) material.diffuse = d->number(0, 10);
     if (auto s = object.find("specular")) material.specular = s->number(0, 10);
-    if (auto p = object.find("specular_power")) material.specularPower = p->number(0, 1000);
+    if (auto p = object.find("specular_power")) {
+        material.specularPower = p->number(0, 1000);
+        if (!(material.specularPower > 0.0)) p->fail("a positive number up to 1000 (a power of 0 makes pow(0, 0) undefined)");
+    }
     object.finish();
 }
 

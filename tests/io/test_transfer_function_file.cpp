@@ -54,6 +54,12 @@ TEST(TransferFunctionFile, MalformedVpNamesTheLine) {
     expectVpError("1\n1\n0.9\n0.1\n0.2\n10\n4 0 0 1 1\n2 0 1\n5 0 1 1 1 1\n", "line 9 (colour)");
     expectVpError("1\n1\n0.9\n0.1\n0.2\n10\n4 5 0 1 1\n2 0 1\n4 0 1 1 1\n", "opacity[1]");  // unsorted
     expectVpError("1\n1\n0.9\n0.1\n0.2\n10\n4 0 0 1 1.5\n2 0 1\n4 0 1 1 1\n", "opacity[1]");  // alpha > 1
+    // Material out of range: a specular power of 0 (the shader's pow(0, 0) is undefined) or below, and
+    // negative or huge coefficients.
+    expectVpError("1\n1\n0.9\n0.1\n0.2\n0\n4 0 0 1 1\n2 0 1\n4 0 1 1 1\n", "line 6 (specular power)");
+    expectVpError("1\n1\n0.9\n0.1\n0.2\n-3\n4 0 0 1 1\n2 0 1\n4 0 1 1 1\n", "line 6 (specular power)");
+    expectVpError("1\n1\n-0.9\n0.1\n0.2\n10\n4 0 0 1 1\n2 0 1\n4 0 1 1 1\n", "line 3 (diffuse)");
+    expectVpError("1\n1\n0.9\n0.1\n200\n10\n4 0 0 1 1\n2 0 1\n4 0 1 1 1\n", "line 5 (specular)");
 }
 
 TEST(TransferFunctionFile, JsonRoundTripAndStrictErrors) {
