@@ -22,7 +22,7 @@
 //   "clip_meshes": [{"name": "probe", "mesh": {see clip/mesh_description.h}, "position_mm": [x,y,z],
 //                    "rotation_deg": [about x, about y, about z] (applied x, then y, then z),
 //                    "scale": 1.0 | [sx,sy,sz], "clips_tubes": false}]       (at most 16)
-//   "tubes": [{"path": "AF_L.trk" | "x.tck", "radius_mm": 0.5, "sides": 8, "caps": true,
+//   "tubes": [{"path": "AF_L.trk" | "x.tck" | "x.trk.gz" | "x.tck.gz" | "x.trx" (zip or folder), "radius_mm": 0.5, "sides": 8, "caps": true,
 //              "smoothing": "catmull-rom" | "none", "step_mm": 0.5,
 //              "color": "direction" | "scalar" | [r,g,b], "scalar": "FA", "scalar_range": [lo, hi]}],
 //   "tube_rendering": {"mode": "tubes" | "lines", "geometry_opacity": 0.9, "vicinity_distance_mm": 3,

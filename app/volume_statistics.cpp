@@ -10,14 +10,17 @@ VolumeStatistics computeStatistics(const VolumeData& volume, int bins) {
     s.min = volume.minValue;
     s.max = volume.maxValue;
     s.histogram.assign(static_cast<std::size_t>(bins), 0);
-    const std::size_t n = volume.voxelCount();
+    // Voxels without data (NaN/Inf in the file) are left out of every number (min and max already are).
+    const std::size_t total = volume.voxelCount();
+    const std::size_t n = total - static_cast<std::size_t>(volume.noDataVoxels);
     if (n == 0) return s;
     constexpr int fine = 4096;
     std::vector<std::uint64_t> fineHistogram(fine, 0);
     double span = s.max > s.min ? s.max - s.min : 1.0;
     double sum = 0, sumSquares = 0;
     std::uint64_t nonZero = 0;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < total; ++i) {
+        if (volume.isNoData(i)) continue;
         double v = volume.valueScale * volume.normalized(i) + volume.valueOffset;
         sum += v;
         sumSquares += v * v;

@@ -1,5 +1,6 @@
 #pragma once
-// Summary statistics of a volume's physical values, for `curette info`.
+// Summary statistics of a volume's physical values, for `curette info`; voxels without data (NaN/Inf) are
+// left out of all of them (VolumeData::noDataVoxels counts them).
 
 #include "base/volume.h"
 

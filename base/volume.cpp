@@ -1,7 +1,9 @@
 #include "base/volume.h"
 
 #include "base/error.h"
+#include "base/log.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -59,6 +61,19 @@ double VolumeData::normalized(std::size_t index) const {
     return 0.0;
 }
 
+bool VolumeData::isNoData(std::size_t index) const {
+    if (noDataVoxels == 0 || format != StorageFormat::Float32) return false;
+    float v;
+    std::memcpy(&v, voxels.data() + 4 * index, 4);
+    return v == noDataTexel;  // no finite voxel can equal it: it lies far outside the finite range
+}
+
+double VolumeData::value(int i, int j, int k) const {
+    std::size_t index = linearIndex(i, j, k);
+    if (isNoData(index)) return std::numeric_limits<double>::quiet_NaN();
+    return valueScale * normalized(index) + valueOffset;
+}
+
 glm::dvec3 VolumeData::spacing() const {
     return {glm::length(glm::dvec3(indexToWorld[0])), glm::length(glm::dvec3(indexToWorld[1])),
             glm::length(glm::dvec3(indexToWorld[2]))};
@@ -77,12 +92,23 @@ void VolumeData::updateRange() {
         lo = a / 255.0, hi = b / 255.0;
     } else {
         for (std::size_t i = 0; i < n; ++i) {
+            if (isNoData(i)) continue;
             double v = normalized(i);
             lo = std::min(lo, v), hi = std::max(hi, v);
         }
+        if (lo > hi) lo = hi = 0.0;  // no voxel has data
     }
     double a = valueScale * lo + valueOffset, b = valueScale * hi + valueOffset;
     minValue = std::min(a, b), maxValue = std::max(a, b);
+}
+
+float noDataTexelBelow(double lo, double hi, double valueScale, double valueOffset) {
+    double a = valueScale * lo + valueOffset, b = valueScale * hi + valueOffset;
+    double min = std::min(a, b), max = std::max(a, b);
+    double magnitude = std::abs(min) + std::abs(max) + (max - min) + 1.0;
+    double factor = std::clamp(1e18 / magnitude, 1024.0, 1073741824.0);  // 2^10 .. 2^30
+    double texel = (min - factor * magnitude - valueOffset) / (valueScale != 0.0 ? valueScale : 1.0);
+    return static_cast<float>(std::clamp(texel, -1e30, 1e30));
 }
 
 namespace {
@@ -139,25 +165,38 @@ VolumeData buildVolume(const std::string& source, glm::ivec3 dims, ScalarType ty
         case ScalarType::Float64: {
             volume.format = StorageFormat::Float32;
             volume.voxels.resize(4 * n);
+            // Finite values are stored as they are; NaN and Inf are "no data", stored after the pass once
+            // the finite range (and so noDataTexelBelow) is known.
+            float lo = std::numeric_limits<float>::infinity(), hi = -lo;
             for (std::size_t i = 0; i < n; ++i) {
                 double v = type == ScalarType::Int32     ? load<std::int32_t>(samples + size * i, swap)
                            : type == ScalarType::Float32 ? load<float>(samples + size * i, swap)
                                                          : load<double>(samples + size * i, swap);
-                if (!std::isfinite(v)) {
-                    int x = static_cast<int>(i % static_cast<std::size_t>(dims.x));
-                    int y = static_cast<int>((i / static_cast<std::size_t>(dims.x)) % static_cast<std::size_t>(dims.y));
-                    int z = static_cast<int>(i / (static_cast<std::size_t>(dims.x) * static_cast<std::size_t>(dims.y)));
-                    throw InputError(source, "data", "finite voxel values",
-                                     std::string(std::isnan(v) ? "NaN" : "Inf") + " at voxel (" + std::to_string(x) +
-                                         "," + std::to_string(y) + "," + std::to_string(z) + ")");
-                }
                 float f = static_cast<float>(v);
-                if (type == ScalarType::Float64 && std::isinf(f))
+                if (!std::isfinite(v)) {
+                    ++volume.noDataVoxels;
+                    f = std::numeric_limits<float>::quiet_NaN();
+                } else if (std::isinf(f)) {
                     throw InputError(source, "data", "values within float32 range", std::to_string(v));
+                } else {
+                    lo = std::min(lo, f), hi = std::max(hi, f);
+                }
                 std::memcpy(volume.voxels.data() + 4 * i, &f, 4);
             }
             volume.valueScale = slope;
             volume.valueOffset = intercept;
+            if (volume.noDataVoxels > 0) {
+                if (volume.noDataVoxels == n)
+                    throw InputError(source, "data", "at least one finite voxel value", "only NaN and Inf (no data anywhere)");
+                volume.noDataTexel = noDataTexelBelow(lo, hi, slope, intercept);
+                for (std::size_t i = 0; i < n; ++i) {
+                    float f;
+                    std::memcpy(&f, volume.voxels.data() + 4 * i, 4);
+                    if (std::isnan(f)) std::memcpy(volume.voxels.data() + 4 * i, &volume.noDataTexel, 4);
+                }
+                log::warn(source + ": " + std::to_string(volume.noDataVoxels) + " of " + std::to_string(n) +
+                          " voxels are NaN or Inf: no data, rendered transparent and left out of the value range");
+            }
             break;
         }
     }

@@ -25,6 +25,8 @@ public:
     double valueScale() const { return valueScale_; }
     double valueOffset() const { return valueOffset_; }
     std::size_t gpuBytes() const { return gpuBytes_; }
+    // Whether some voxels hold no data (NaN/Inf in the file, stored below the minimum: base/volume.h).
+    bool hasNoData() const { return hasNoData_; }
 
     // Bricks of brickSize^3 voxels; for each, the lowest and highest stored texel value that trilinear
     // sampling anywhere inside the brick can see (the brick plus a one-voxel apron).
@@ -37,6 +39,7 @@ private:
     StorageFormat format_;
     double valueScale_, valueOffset_;
     std::size_t gpuBytes_ = 0;
+    bool hasNoData_ = false;
     glm::ivec3 brickGrid_{0};
     std::vector<glm::vec2> brickRanges_;
 };

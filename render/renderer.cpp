@@ -36,7 +36,7 @@ void Renderer::setLaoSettings(const LaoSettings& settings) {
 }
 
 void Renderer::setTransferFunction(const TransferFunction& tf) {
-    tf_ = std::make_unique<TransferFunctionTexture>(tf, volume_.valueScale(), volume_.valueOffset());
+    tf_ = std::make_unique<TransferFunctionTexture>(tf, volume_.valueScale(), volume_.valueOffset(), volume_.hasNoData());
     ++freshness_.current().transferFunction;  // V_PAO and V_AO depend on the TF (the reference implementation's bug 4)
     updateOccupancy();
 }
@@ -287,7 +287,7 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
     glm::ivec3 grid = volume_.brickGrid();
     std::vector<GpuAllocation> list{
         {Resource::Volume, volume_.gpuBytes(), volumeFormat},
-        {Resource::TransferFunction, TransferFunctionTexture::tableSize * 16u, {}},
+        {Resource::TransferFunction, static_cast<std::size_t>(tf_->tableSize()) * 16u, {}},
         {Resource::GradientOpacity, TransferFunctionTexture::gradientTableSize * 4u, {}},
         {Resource::Occupancy, static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y) * static_cast<std::size_t>(grid.z), {}},
         {Resource::OutputImage, static_cast<std::size_t>(outputSize_.x) * static_cast<std::size_t>(outputSize_.y) * 16u, {}},

@@ -8,21 +8,33 @@
 
 namespace curette {
 
-TransferFunctionTexture::TransferFunctionTexture(const TransferFunction& tf, double valueScale, double valueOffset)
-    : unitLengthMm_(static_cast<float>(tf.unitLengthMm)), material_(tf.material) {
-    // Table texel i holds the TF at value d0 + i/(N-1) * (d1-d0), so the first and last texel centres sit
-    // exactly on the TF's end points and clamp-to-edge continues the end values, as the TF does.
+TransferFunctionTexture::TransferFunctionTexture(const TransferFunction& tf, double valueScale, double valueOffset, bool noData)
+    : unitLengthMm_(static_cast<float>(tf.unitLengthMm)), lead_(noData ? leadTexels : 0), material_(tf.material) {
+    const int tableSize = lead_ + domainTexels;
+    // Table texel leadTexels + i holds the TF at value d0 + i/(N-1) * (d1-d0), N = domainTexels, so the
+    // domain's first and last texel centres sit exactly on the TF's end points; the lead texels below continue
+    // the TF's clamped first value at the same spacing, and texel 0 is transparent (the header's layout).
     double d0 = tf.domainMin(), d1 = tf.domainMax();
     if (d1 <= d0) d1 = d0 + 1.0;
+    double spacing = (d1 - d0) / (domainTexels - 1);
     table_.resize(tableSize);
     for (int i = 0; i < tableSize; ++i) {
-        double v = d0 + (d1 - d0) * i / (tableSize - 1);
+        double v = i < lead_ ? d0 - (lead_ - i) * spacing : d0 + (d1 - d0) * (i - lead_) / (domainTexels - 1);
         table_[static_cast<std::size_t>(i)] = glm::vec4(glm::vec3(tf.evaluateColor(v)), static_cast<float>(tf.evaluateOpacity(v)));
     }
-    // coordinate = (0.5 + (value - d0) / (d1 - d0) * (N - 1)) / N, value = scale * texel + offset.
-    double perValue = (tableSize - 1) / ((d1 - d0) * tableSize);
-    texelToTf_ = glm::vec2(static_cast<float>(valueScale * perValue),
-                           static_cast<float>(0.5 / tableSize + (valueOffset - d0) * perValue));
+    if (lead_ > 0) {
+        table_[0].a = 0.0f;  // no data, and anything else this far below the first point
+        // coordinate = (lead + 0.5 + (value - d0) / spacing) / tableSize, value = scale * texel + offset.
+        double perValue = 1.0 / (spacing * tableSize);
+        texelToTf_ = glm::vec2(static_cast<float>(valueScale * perValue),
+                               static_cast<float>((lead_ + 0.5) / tableSize + (valueOffset - d0) * perValue));
+    } else {
+        // coordinate = (0.5 + (value - d0) / (d1 - d0) * (N - 1)) / N: the plain table, written as it always was
+        // so images of volumes without no-data voxels stay bit-identical.
+        double perValue = (tableSize - 1) / ((d1 - d0) * tableSize);
+        texelToTf_ = glm::vec2(static_cast<float>(valueScale * perValue),
+                               static_cast<float>(0.5 / tableSize + (valueOffset - d0) * perValue));
+    }
 
     texture_ = gl::createTexture(GL_TEXTURE_1D);
     glTextureStorage1D(texture_.name(), 1, GL_RGBA32F, tableSize);
@@ -62,8 +74,11 @@ TransferFunctionTexture::TransferFunctionTexture(const TransferFunction& tf, dou
 
 float TransferFunctionTexture::maxOpacity(float texelLo, float texelHi) const {
     // Texel coordinate of a value: u * N - 0.5; linear filtering reads floor and floor + 1.
+    // Clamped before the conversion to int: a no-data texel value lies millions of table widths away.
+    const int tableSize = this->tableSize();
+    const float size = static_cast<float>(tableSize);
     auto texelIndex = [&](float texel) {
-        return (texel * texelToTf_.x + texelToTf_.y) * tableSize - 0.5f;
+        return std::clamp((texel * texelToTf_.x + texelToTf_.y) * size - 0.5f, -4.0f, size + 4.0f);
     };
     float a = texelIndex(texelLo), b = texelIndex(texelHi);
     if (a > b) std::swap(a, b);  // a negative scale reverses the order

@@ -3,6 +3,15 @@
 // per unit length), a 1D table of the gradient-opacity factor, and the maps from stored texel values to
 // table coordinates. Also answers "can any sample with texel values in [lo, hi] be non-transparent?" for
 // empty-space skipping, from the same table the shader filters.
+//
+// Layout of the table: `domainTexels` texels over the TF's domain [d0, d1] (the first and last centres on
+// d0 and d1). Only for a volume with no-data voxels (a scene allocates what it uses, and every other volume
+// keeps the plain table bit for bit) they are preceded by `leadTexels` more at the same spacing that continue the first point's colour and
+// opacity down to d0 - 3 (d1 - d0) (the TF's clamping), except the very first texel, whose opacity is 0.
+// With clamp-to-edge, every value below that point is therefore transparent: that is where volumes store
+// voxels without data (NaN/Inf in the file, base/volume.h noDataTexelBelow), so "no data" costs the shader
+// nothing. Data more than three domain widths below a TF's first point become transparent too; that differs
+// from the TF's own clamping only for a TF whose first point has opacity, which no shipped TF has.
 
 #include "gl/objects.h"
 #include "gl/program.h"
@@ -14,11 +23,16 @@ namespace curette {
 
 class TransferFunctionTexture {
 public:
-    static constexpr int tableSize = 4096;
+    static constexpr int domainTexels = 4096;
+    static constexpr int leadTexels = 3 * (domainTexels - 1) + 3;  // texel 0 at d0 - (3 + 3/4095) (d1 - d0)
+    static constexpr int noDataTableSize = leadTexels + domainTexels;   // 16384, GL 4.5's smallest GL_MAX_TEXTURE_SIZE
     static constexpr int gradientTableSize = 256;
 
     // valueScale/valueOffset: the volume's texel -> physical value map.
-    TransferFunctionTexture(const TransferFunction& tf, double valueScale, double valueOffset);
+    // noData: the volume stores voxels without data below its minimum (base/volume.h): add the transparent lead.
+    TransferFunctionTexture(const TransferFunction& tf, double valueScale, double valueOffset, bool noData = false);
+    int tableSize() const { return static_cast<int>(table_.size()); }
+    int leadTexelCount() const { return lead_; }
 
     GLuint texture() const { return texture_.name(); }
     GLuint gradientTexture() const { return gradientTexture_.name(); }
@@ -45,6 +59,7 @@ private:
     glm::vec2 texelToTf_{1, 0}, gradientToTf_{0, 0};
     bool useGradientOpacity_ = false;
     float unitLengthMm_ = 1;
+    int lead_ = 0;
     TransferFunction::Material material_;
 };
 

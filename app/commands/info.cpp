@@ -1,6 +1,7 @@
 // curette info FILE: what a volume file holds, before rendering it.
 #include "app/command_line.h"
 #include "app/commands/commands.h"
+#include "app/io/dicom.h"
 #include "app/io/volume_file.h"
 #include "app/volume_statistics.h"
 #include "base/error.h"
@@ -20,6 +21,28 @@ ScalarType parseType(const std::string& text) {
     for (auto [name, type] : names)
         if (text == name) return type;
     throw InputError("<command line>", "--raw-type", "one of uint8, int16, uint16, int32, float32, float64", "\"" + text + "\"");
+}
+
+// DICOM: the table of the series found and which one opens, then that series as a volume. Patient name and
+// ids are read, and printed, only with --show-identifiers.
+VolumeData listAndReadDicom(const std::string& path, const io::VolumeReadOptions& options) {
+    std::vector<io::DicomSeries> series = io::scanDicom(path, options.showIdentifiers);
+    io::DicomChoice choice = io::chooseDicomSeries(series, options.series, path);
+    std::printf("DICOM        %zu series\n", series.size());
+    std::printf("     %-8s %-32s %-8s %7s  %-19s %s\n", "series", "description", "modality", "slices", "dimensions", "SeriesInstanceUID");
+    for (std::size_t i = 0; i < series.size(); ++i) {
+        const io::DicomSeries& s = series[i];
+        std::string dims = std::to_string(s.dims.x) + " x " + std::to_string(s.dims.y) + " x " + std::to_string(s.dims.z);
+        std::printf("  %-2s %-8s %-32s %-8s %7zu  %-19s %s%s\n", i == choice.index ? "->" : "", s.number.c_str(), s.description.c_str(),
+                    s.modality.c_str(), s.slices.size(), dims.c_str(), s.uid.c_str(), s.localizer ? "  (localizer)" : "");
+        if (!s.formsVolume()) std::printf("        not a volume: %s\n", s.problem.c_str());
+        if (options.showIdentifiers)
+            std::printf("        patient \"%s\", PatientID \"%s\", birth date \"%s\", accession \"%s\"\n", s.patientName.c_str(),
+                        s.patientId.c_str(), s.patientBirthDate.c_str(), s.accessionNumber.c_str());
+    }
+    std::printf("opens        %s: %s\n", series[choice.index].label().c_str(), choice.reason.c_str());
+    std::fflush(stdout);  // the table stays above an error line about the series that opens
+    return io::readDicomSeries(series[choice.index], path, choice, options.showIdentifiers);
 }
 
 }  // namespace
@@ -69,15 +92,19 @@ int info(const Arguments& args) {
         options.raw = layout;
     }
     const std::string& path = cl.positional()[0];
-    VolumeData volume = io::readVolume(path, options);
+    const bool dicom = options.format == io::VolumeFormat::Auto && std::filesystem::exists(path) && io::looksLikeDicom(path);
+    VolumeData volume = dicom ? listAndReadDicom(path, options) : io::readVolume(path, options);
     VolumeGeometry g{volume.dims, volume.indexToWorld};
     VolumeStatistics s = computeStatistics(volume);
 
     const char* storage = volume.format == StorageFormat::UNorm8 ? "R8" : volume.format == StorageFormat::UNorm16 ? "R16" : "R32F";
     glm::dvec3 sp = g.spacing();
     std::printf("file         %s\n", path.c_str());
+    if (!volume.description.empty()) std::printf("description  %s\n", volume.description.c_str());
     std::printf("type         %s (GPU texture %s, %zu bytes)\n", scalarTypeName(volume.sourceType), storage, volume.voxels.size());
     std::printf("dimensions   %d x %d x %d (%zu voxels)\n", volume.dims.x, volume.dims.y, volume.dims.z, volume.voxelCount());
+    if (volume.volumeCount > 1)
+        std::printf("volumes      %d (showing index %d, --volume N)\n", volume.volumeCount, volume.volumeIndex);
     std::printf("spacing      %g x %g x %g mm\n", sp.x, sp.y, sp.z);
     std::printf("affine       index (i,j,k) -> world mm (RAS)\n");
     for (int r = 0; r < 3; ++r)
@@ -88,6 +115,8 @@ int info(const Arguments& args) {
     std::printf("world box    x [%.2f, %.2f]  y [%.2f, %.2f]  z [%.2f, %.2f] mm\n", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
     std::printf("values       min %g  max %g  mean %.4g  std %.4g  non-zero %.1f %%\n", s.min, s.max, s.mean,
                 s.standardDeviation, 100.0 * s.nonZeroFraction);
+    if (volume.noDataVoxels > 0)
+        std::printf("no data      %llu voxels (NaN/Inf): transparent\n", static_cast<unsigned long long>(volume.noDataVoxels));
     std::printf("percentiles  1%%: %.4g  25%%: %.4g  50%%: %.4g  75%%: %.4g  99%%: %.4g\n", s.percentiles[0],
                 s.percentiles[1], s.percentiles[2], s.percentiles[3], s.percentiles[4]);
     std::printf("histogram    (%zu bins over [min, max], bar length ~ log count)\n", s.histogram.size());

@@ -1,6 +1,7 @@
 #pragma once
-// Volume import: NIfTI-1 (.nii, .nii.gz), NRRD (.nrrd attached, .nhdr detached; raw and gzip; both endians)
-// and raw files whose layout is given on the command line. Every reader keeps the index-to-world affine and
+// Volume import: NIfTI-1 and NIfTI-2 (.nii, .nii.gz, .hdr/.img; one 3-D volume of a 4-D/5-D file), NRRD
+// (.nrrd attached, .nhdr detached; raw and gzip; both endians), MetaImage (.mha, .mhd) and raw files whose
+// layout is given on the command line. Every reader keeps the index-to-world affine and
 // throws InputError naming the file, the header field and the expected form on bad input.
 
 #include "base/volume.h"
@@ -35,7 +36,7 @@ struct VolumeReadOptions {
 
 VolumeData readVolume(const std::filesystem::path& path, const VolumeReadOptions& options = {});
 
-VolumeData readNifti(const std::filesystem::path& path);
+VolumeData readNifti(const std::filesystem::path& path, int volumeIndex);  // app/io/nifti.h (default 0 there)
 VolumeData readNrrd(const std::filesystem::path& path);
 VolumeData readRaw(const std::filesystem::path& path, const RawLayout& layout);
 

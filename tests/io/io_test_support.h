@@ -1,6 +1,9 @@
 #pragma once
 // Writing small volume files for the parser tests.
 
+#include "base/error.h"
+
+#include <gtest/gtest.h>
 #include <zlib.h>
 
 #include <glm/glm.hpp>
@@ -13,6 +16,18 @@
 #include <vector>
 
 namespace curette::test {
+
+// Runs `read` and expects an InputError that names `file` and `field`.
+template <typename Read>
+void expectInputError(Read&& read, const std::string& file, const std::string& field) {
+    try {
+        read();
+        ADD_FAILURE() << "expected an InputError naming " << field;
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.file(), file);
+        EXPECT_EQ(e.field(), field) << e.what();
+    }
+}
 
 inline std::filesystem::path scratchDirectory() {
     std::filesystem::path dir = std::filesystem::temp_directory_path() / ("curette-io-" + std::to_string(::getpid()));

@@ -51,4 +51,11 @@ TransferFunction rampTransferFunction(double lo, double hi, double alpha) {
     return tf;
 }
 
+double blobField(glm::dvec3 p) {
+    const glm::dvec4 centres[] = {{-6, -4, 2, 9}, {7, 5, -3, 7}, {2, -8, -6, 5}, {-3, 9, 8, 6}};
+    double v = 0;
+    for (const glm::dvec4& c : centres) v += 230.0 * std::exp(-glm::dot(p - glm::dvec3(c), p - glm::dvec3(c)) / (2 * c.w * c.w));
+    return std::min(v, 255.0);
+}
+
 }  // namespace curette::test

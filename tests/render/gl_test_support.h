@@ -21,6 +21,9 @@ VolumeData makeVolume(glm::ivec3 dims, const glm::dmat4& indexToWorld, ScalarTyp
 // An axis-aligned volume of `dims` 1 mm voxels centred on the world origin.
 glm::dmat4 centredAffine(glm::ivec3 dims, glm::dvec3 spacing = glm::dvec3(1.0));
 
+// A smooth field of four Gaussian blobs in a 40 mm box around the origin, values 0..255.
+double blobField(glm::dvec3 p);
+
 // A simple TF over [0, 255]: grey ramp colour, opacity ramp from `lo` (0) to `hi` (alpha).
 TransferFunction rampTransferFunction(double lo, double hi, double alpha);
 

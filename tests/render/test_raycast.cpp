@@ -39,13 +39,8 @@ FrameDescription frameLookingAt(glm::dvec3 target, double distance, double azimu
     return f;
 }
 
-// A smooth blobby field: a few Gaussian blobs in a 40 mm box, values 0..255.
-double blobs(glm::dvec3 p) {
-    const glm::dvec4 centres[] = {{-6, -4, 2, 9}, {7, 5, -3, 7}, {2, -8, -6, 5}, {-3, 9, 8, 6}};
-    double v = 0;
-    for (const glm::dvec4& c : centres) v += 230.0 * std::exp(-glm::dot(p - glm::dvec3(c), p - glm::dvec3(c)) / (2 * c.w * c.w));
-    return std::min(v, 255.0);
-}
+// The blobby field of the GL tests (gl_test_support.h).
+double blobs(glm::dvec3 p) { return test::blobField(p); }
 
 TransferFunction blobTransferFunction() {
     TransferFunction tf;

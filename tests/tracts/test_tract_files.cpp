@@ -193,7 +193,6 @@ TEST(Tck, MalformedFilesNameTheirField) {
     expectError(text("mrtrix tracks\ndatatype: Float32LE\nEND\n"), "file");
     expectError(text("mrtrix tracks\ndatatype: Float32LE\nfile: . 999999\nEND\n"), "file");
     expectError(text("mrtrix tracks\ndatatype: Float32LE\nfile: . 50\n"), "header");
-    expectError(makeTck("Float32LE", tracks, true, "5"), "count");
     auto truncated = good;
     truncated.resize(truncated.size() - 24);  // drop the NaN delimiter and the Inf terminator
     expectError(truncated, "data");
