@@ -12,7 +12,7 @@ namespace curette {
 struct VolumeStatistics {
     double min = 0, max = 0, mean = 0, standardDeviation = 0;
     double nonZeroFraction = 0;                       // voxels != 0 (physical value)
-    std::array<double, 5> percentiles{};              // 1, 25, 50, 75, 99 %, from a 4096-bin histogram
+    std::array<double, 5> percentiles{};              // 1, 25, 50, 75, 99 %: data values (nearest rank)
     std::vector<std::uint64_t> histogram;             // `bins` equal bins over [min, max]
 };
 

@@ -1,0 +1,42 @@
+// `curette info`'s statistics: percentiles are data values. They were bin centres of a 4096-bin histogram, so
+// the AAL label map (integers, mostly 0) showed "1%: 0.01416" where the value is 0.
+#include "app/volume_statistics.h"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+namespace curette {
+namespace {
+
+TEST(VolumeStatistics, PercentilesOfAnIntegerVolumeAreItsValues) {
+    glm::ivec3 dims(10, 10, 10);
+    std::vector<std::uint8_t> samples(1000, 0);
+    for (std::size_t i = 900; i < 1000; ++i) samples[i] = static_cast<std::uint8_t>(100 + (i % 7));  // labels 100..106
+    VolumeData v = buildVolume("labels", dims, ScalarType::UInt8, samples.data(), false, 1.0, 0.0, glm::dmat4(1.0));
+    VolumeStatistics s = computeStatistics(v);
+    EXPECT_EQ(s.percentiles[0], 0.0);   // 1 %
+    EXPECT_EQ(s.percentiles[2], 0.0);   // median
+    for (double p : s.percentiles) EXPECT_EQ(p, std::round(p)) << "a percentile of integers is an integer";
+    EXPECT_GE(s.percentiles[4], 100.0);  // 99 %: inside the labels
+    EXPECT_LE(s.percentiles[4], 106.0);
+}
+
+TEST(VolumeStatistics, PercentilesAreNearestRankOfTheSortedValues) {
+    glm::ivec3 dims(100, 1, 1);
+    std::vector<float> samples(100);
+    std::iota(samples.begin(), samples.end(), 1.0f);  // 1..100, shuffled below
+    for (std::size_t i = 0; i < 100; i += 3) std::swap(samples[i], samples[99 - i]);
+    VolumeData v = buildVolume("ramp", dims, ScalarType::Float32, reinterpret_cast<const std::uint8_t*>(samples.data()), false, 2.0, 1.0,
+                               glm::dmat4(1.0));
+    VolumeStatistics s = computeStatistics(v);
+    // Physical values 2 x + 1 for x = 1..100; nearest rank: 1 % -> x = 1, 25 % -> 25, 50 % -> 50, 75 % -> 75, 99 % -> 99.
+    EXPECT_DOUBLE_EQ(s.percentiles[0], 3.0);
+    EXPECT_DOUBLE_EQ(s.percentiles[1], 51.0);
+    EXPECT_DOUBLE_EQ(s.percentiles[2], 101.0);
+    EXPECT_DOUBLE_EQ(s.percentiles[3], 151.0);
+    EXPECT_DOUBLE_EQ(s.percentiles[4], 199.0);
+}
+
+}  // namespace
+}  // namespace curette
