@@ -108,9 +108,9 @@ void ClipMeshSet::setDilatedMapsNeeded(bool needed) {
 }
 
 double ClipMeshSet::kernelRadiusMm(int index) const {
-    // Derivation (the map term of the dilation radius; the volume terms are derived in
-    // AmbientOcclusion::dilationRadiusMm, docs/architecture.md "The CAO exactness contract"): a point s inside the mesh and a voxel v within R of it
-    // map to pixels at most |v - s|_xy + sqrt(2) px apart (each lies within sqrt(2)/2 px of its pixel centre),
+    // Derivation of the map term of the dilation radius (the volume terms are derived in
+    // AmbientOcclusion::dilationRadiusMm; docs/architecture.md "The CAO exactness contract"): a point s inside
+    // the mesh and a voxel v within R of it map to pixels at most |v - s|_xy + sqrt(2) px apart (each lies within sqrt(2)/2 px of its pixel centre),
     // so a kernel of radius R + sqrt(2) px over pixel centres covers every such pair; a small epsilon absorbs
     // float rounding of the map transforms and depth comparisons.
     double px = camera(index).pixelMm();

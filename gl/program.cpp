@@ -27,7 +27,8 @@ std::string readShaderFile(const std::string& name) {
     }
     for (const EmbeddedShader& shader : embeddedShaders())
         if (shader.name == name) return std::string(shader.source);
-    throw SystemError("shader " + name + " is not embedded (add it to render/CMakeLists.txt)");
+    throw SystemError("shader " + name + " is not embedded (shaders/CMakeLists.txt embeds every *.glsl, *.comp, *.vert and "
+                      "*.frag in shaders/: is the name right, and was CMake re-run?)");
 }
 
 struct Expander {

@@ -27,13 +27,13 @@ static_assert(std::size(kPasses) == static_cast<std::size_t>(Pass::Count));
 const PassInfo& passInfo(Pass pass) { return kPasses[static_cast<std::size_t>(pass)]; }
 std::span<const PassInfo> allPasses() { return kPasses; }
 
-bool Freshness::precomputedCurrent() const {
-    return hasPrecomputed_ && precomputed_.volume == current_.volume && precomputed_.transferFunction == current_.transferFunction &&
-           precomputed_.laoSettings == current_.laoSettings;
+bool Freshness::precomputedCurrent(const InputVersions& now) const {
+    return precomputed_ && precomputed_->volume == now.volume && precomputed_->transferFunction == now.transferFunction &&
+           precomputed_->laoSettings == now.laoSettings;
 }
 
-bool Freshness::ambientCurrent(ShadingMode mode) const {
-    return precomputedCurrent() && hasAmbient_ && ambient_ == current_ && ambientMode_ == mode;
+bool Freshness::ambientCurrent(const InputVersions& now, ShadingMode mode) const {
+    return precomputedCurrent(now) && ambient_ && *ambient_ == now && ambientMode_ == mode;
 }
 
 FramePlan planFrame(const PlanInputs& in) {

@@ -10,6 +10,7 @@
 #include "render/shading_mode.h"
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -47,23 +48,21 @@ struct InputVersions {
     bool operator==(const InputVersions&) const = default;
 };
 
+// `now` is always the renderer's current versions; Freshness keeps only what each product was computed from.
 class Freshness {
 public:
-    InputVersions& current() { return current_; }
-    const InputVersions& current() const { return current_; }
     // V_PAO: volume, TF and LAO settings.
-    bool precomputedCurrent() const;
+    bool precomputedCurrent(const InputVersions& now) const;
     // V_AO (and V_o, V_m): V_PAO's inputs, the clip meshes and the mode (cao and lao write the same V_AO but
     // visit different voxels, so a mode change reruns IV and V).
-    bool ambientCurrent(ShadingMode mode) const;
-    void markPrecomputed() { precomputed_ = current_, hasPrecomputed_ = true, hasAmbient_ = false; }
-    void markAmbient(ShadingMode mode) { ambient_ = current_, ambientMode_ = mode, hasAmbient_ = true; }
-    void forgetAmbientOcclusion() { hasPrecomputed_ = hasAmbient_ = false; }
+    bool ambientCurrent(const InputVersions& now, ShadingMode mode) const;
+    void markPrecomputed(const InputVersions& now) { precomputed_ = now, ambient_.reset(); }
+    void markAmbient(const InputVersions& now, ShadingMode mode) { ambient_ = now, ambientMode_ = mode; }
+    void forgetAmbientOcclusion() { precomputed_.reset(), ambient_.reset(); }
 
 private:
-    InputVersions current_, precomputed_, ambient_;
+    std::optional<InputVersions> precomputed_, ambient_;
     ShadingMode ambientMode_ = ShadingMode::Solid;
-    bool hasPrecomputed_ = false, hasAmbient_ = false;
 };
 
 // What the scene has this frame, and what of it is current.

@@ -26,18 +26,18 @@ void Renderer::setLaoSettings(const LaoSettings& settings) {
     bool aoChanged = !(comparable == laoSettings_);
     bool scaleChanged = settings.ambientScale != laoSettings_.ambientScale;
     laoSettings_ = settings;
-    if (scaleChanged) ++tubesVersion_;   // not an AO input, but the image changes
+    if (scaleChanged) ++appearanceVersion_;   // not an AO input, but the image changes
     if (!aoChanged) return;
     // The clip maps leave room for the LAO reach in every mode, so every mode clips identically.
     clip_.setDilationRadiusMm(AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()));
     ao_.reset();  // buffers depend on the settings (directions, list); reallocated at the next AO frame
-    ++freshness_.current().laoSettings;
+    ++versions_.laoSettings;
     freshness_.forgetAmbientOcclusion();
 }
 
 void Renderer::setTransferFunction(const TransferFunction& tf) {
     tf_ = std::make_unique<TransferFunctionTexture>(tf, volume_.valueScale(), volume_.valueOffset(), volume_.hasNoData());
-    ++freshness_.current().transferFunction;  // V_PAO and V_AO depend on the TF (the reference implementation's bug 4)
+    ++versions_.transferFunction;  // V_PAO and V_AO depend on the TF (the reference implementation's bug 4)
     updateOccupancy();
 }
 
@@ -71,23 +71,28 @@ void Renderer::ensureOutput(glm::ivec2 size) {
 void Renderer::setTubes(const TubeVertices& vertices, const TubeShading& shading) {
     tubes_ = std::make_unique<TubeSet>(vertices);
     tubeShading_ = shading;
-    ++tubesVersion_;
+    ++appearanceVersion_;
 }
 
 void Renderer::setTubeShading(const TubeShading& shading) {
     tubeShading_ = shading;
-    ++tubesVersion_;
+    ++appearanceVersion_;
 }
 
 void Renderer::clearTubes() {
     tubes_.reset();
-    ++tubesVersion_;
+    ++appearanceVersion_;
 }
 
 InputVersions Renderer::currentVersions() const {
-    InputVersions v = freshness_.current();
+    InputVersions v = versions_;
     v.clipMeshes = clip_.version();
     return v;
+}
+
+bool Renderer::dilatedMapsWanted(ShadingMode mode) const {
+    const ShadingModeTraits& t = traits(mode);
+    return t.ambientOcclusion ? t.dilatedMaps : clip_.dilatedMapsNeeded();
 }
 
 bool Renderer::tubesInView(const FrameDescription& frame) const {
@@ -111,25 +116,22 @@ bool Renderer::tubesInView(const FrameDescription& frame) const {
 }
 
 PlanInputs Renderer::planInputs(const FrameDescription& frame) const {
-    const ShadingModeTraits& mode = traits(frame.shading);
-    Freshness freshness = freshness_;
-    freshness.current().clipMeshes = clip_.version();
+    InputVersions now = currentVersions();
     PlanInputs in;
     in.shading = frame.shading;
     in.clipMeshes = clip_.count();
-    // Only cao needs the dilated maps; the other modes keep whatever maps were drawn.
-    in.clipMapsCurrent = clip_.mapsCurrent(mode.ambientOcclusion ? mode.dilatedMaps : clip_.dilatedMapsNeeded());
+    in.clipMapsCurrent = clip_.mapsCurrent(dilatedMapsWanted(frame.shading));
     in.tubes = tubes_ != nullptr;
     in.tubesInView = tubesInView(frame);
-    in.precomputedCurrent = ao_ && freshness.precomputedCurrent();
-    in.ambientCurrent = ao_ && freshness.ambientCurrent(frame.shading);
+    in.precomputedCurrent = ao_ && freshness_.precomputedCurrent(now);
+    in.ambientCurrent = ao_ && freshness_.ambientCurrent(now, frame.shading);
     return in;
 }
 
 FramePlan Renderer::plan(const FrameDescription& frame) const { return planFrame(planInputs(frame)); }
 
 bool Renderer::showing(const FrameDescription& frame) const {
-    return shownFrame_ && *shownFrame_ == frame && shownVersions_ == currentVersions() && shownTubesVersion_ == tubesVersion_;
+    return shownFrame_ && *shownFrame_ == frame && shownVersions_ == currentVersions() && shownAppearanceVersion_ == appearanceVersion_;
 }
 
 void Renderer::render(const FrameDescription& frame) {
@@ -138,7 +140,6 @@ void Renderer::render(const FrameDescription& frame) {
         throw InputError("<frame>", "size", "between 1x1 and the GL maximum texture size",
                          std::to_string(frame.size.x) + "x" + std::to_string(frame.size.y));
     ensureOutput(frame.size);
-    freshness_.current().clipMeshes = clip_.version();
     lastPlan_ = plan(frame);
     // A rigid motion changes only the clipping cameras: upload them when the maps are not redrawn anyway.
     if (!lastPlan_.runs(Pass::ClipMaps)) clip_.uploadCameras();
@@ -149,24 +150,24 @@ void Renderer::render(const FrameDescription& frame) {
     }
     shownFrame_ = frame;
     shownVersions_ = currentVersions();
-    shownTubesVersion_ = tubesVersion_;
+    shownAppearanceVersion_ = appearanceVersion_;
 }
 
 void Renderer::run(Pass pass, const FrameDescription& frame) {
     switch (pass) {
         case Pass::ClipMaps:
-            if (usesAmbientOcclusion(frame.shading)) clip_.setDilatedMapsNeeded(traits(frame.shading).dilatedMaps);
+            clip_.setDilatedMapsNeeded(dilatedMapsWanted(frame.shading));
             clip_.update();
             return;
         case Pass::LaoPrecompute:
             if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_);
             ao_->precompute(*tf_);
-            freshness_.markPrecomputed();
+            freshness_.markPrecomputed(currentVersions());
             return;
         case Pass::VoxelClipping: ao_->clipVoxels(*tf_, clip_, frame.shading); return;
         case Pass::LaoRecompute:
             ao_->recomputeLao(*tf_);
-            freshness_.markAmbient(frame.shading);
+            freshness_.markAmbient(currentVersions(), frame.shading);
             return;
         case Pass::TubeGBuffer: tubes_->drawGBuffer(frame, clip_, gbuffer_); return;
         case Pass::RayCast: runRayCast(frame); return;

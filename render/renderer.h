@@ -76,7 +76,10 @@ public:
 
 private:
     PlanInputs planInputs(const FrameDescription& frame) const;
+    // The versions of everything V_PAO and V_AO are computed from; the clip meshes' from the set itself.
     InputVersions currentVersions() const;
+    // Whether this frame wants the dilated maps: cao does; lao does not; the other modes keep what is drawn.
+    bool dilatedMapsWanted(ShadingMode mode) const;
     bool tubesInView(const FrameDescription& frame) const;
     void run(Pass pass, const FrameDescription& frame);
     void runRayCast(const FrameDescription& frame);
@@ -91,12 +94,15 @@ private:
     clip::ClipMeshSet clip_;
     LaoSettings laoSettings_;
     std::unique_ptr<AmbientOcclusion> ao_;
+    InputVersions versions_;         // volume, TF and LAO settings (clipMeshes unused: see currentVersions)
     Freshness freshness_;            // what V_PAO and V_AO were computed from
-    std::uint64_t tubesVersion_ = 1;
+    // Inputs of the image that no AO product depends on (tubes, tube shading, the ambient scale): with the
+    // frame and currentVersions(), what showing() compares.
+    std::uint64_t appearanceVersion_ = 1;
     FramePlan lastPlan_;
     std::optional<FrameDescription> shownFrame_;
     InputVersions shownVersions_;
-    std::uint64_t shownTubesVersion_ = 0;
+    std::uint64_t shownAppearanceVersion_ = 0;
     gl::Texture occupancy_;
     gl::Texture output_;
     glm::ivec2 outputSize_{0};

@@ -120,7 +120,6 @@ int replay(const Arguments& args) {
         if (!render || n % static_cast<std::size_t>(every) != 0) continue;
         step.syncTo(renderer->clipMeshes());
         FrameDescription frame = step.frame();
-        frame.camera = f.camera;
         frame.size = size.value_or(f.size);
         frame.shading = f.shading;
         renderer->collectTimings();
