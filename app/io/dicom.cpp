@@ -336,6 +336,32 @@ std::optional<FileHeader> headerOf(const gdcm::Scanner& scanner, const std::stri
     return h;
 }
 
+// Every JPEG-LS frame header (SOF55: FF F7, length, P, Y, X, Nf; T.87 C.2.2) in the fragments must give this
+// image's rows, columns and samples, at most `bitsAllocated` bits, and there must be one per frame.
+void checkJpegLsFrames(const gdcm::DataElement& pixelData, unsigned columns, unsigned rows, unsigned frames, unsigned samples,
+                       unsigned bitsAllocated, const std::string& name) {
+    const gdcm::SequenceOfFragments* fragments = pixelData.GetSequenceOfFragments();
+    unsigned headers = 0;
+    for (unsigned f = 0; fragments && f < fragments->GetNumberOfFragments(); ++f) {
+        const gdcm::ByteValue* value = fragments->GetFragment(f).GetByteValue();
+        if (!value) continue;
+        const auto* p = reinterpret_cast<const std::uint8_t*>(value->GetPointer());
+        const std::size_t n = static_cast<std::uint32_t>(value->GetLength());
+        for (std::size_t i = 0; i + 10 <= n; ++i) {
+            if (p[i] != 0xFF || p[i + 1] != 0xF7) continue;  // in JPEG-LS scan data FF is never followed by a byte >= 0x80
+            unsigned precision = p[i + 4], y = (p[i + 5] << 8) | p[i + 6], x = (p[i + 7] << 8) | p[i + 8], components = p[i + 9];
+            if (x != columns || y != rows || components != samples || precision < 2 || precision > bitsAllocated)
+                throw InputError(name, "PixelData", "JPEG-LS frames of " + std::to_string(columns) + " x " + std::to_string(rows) + " x " +
+                                                        std::to_string(samples) + " samples of at most " + std::to_string(bitsAllocated) + " bits",
+                                 "a frame header of " + std::to_string(x) + " x " + std::to_string(y) + " x " + std::to_string(components) +
+                                     " samples of " + std::to_string(precision) + " bits");
+            ++headers;
+        }
+    }
+    if (headers != frames)
+        throw InputError(name, "PixelData", std::to_string(frames) + " JPEG-LS frame headers (one per frame)", std::to_string(headers));
+}
+
 bool endsWithDcm(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -633,6 +659,11 @@ DecodedImage decodeFile(const fs::path& file, int columns, int rows, unsigned fr
             throw InputError(name, "PixelData", "compressed data that can hold " + std::to_string(bytes) + " bytes",
                              fmt(have) + " bytes (a ratio above " + fmt(kMaxCompressionRatio) + ")");
     }
+
+    // JPEG-LS: GDCM 3.0.21's codec asserts (aborts the process) when a stream's own frame header (SOF55, ITU-T
+    // T.87 C.2.2) promises more samples than Rows x Columns. Every frame's header must describe this image.
+    if (syntax == gdcm::TransferSyntax::JPEGLSLossless || syntax == gdcm::TransferSyntax::JPEGLSNearLossless)
+        checkJpegLsFrames(pixelData, columns, rows, frames, format.GetSamplesPerPixel(), format.GetBitsAllocated(), name);
 
     DecodedImage decoded;
     decoded.samples.resize(bytes);

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <iterator>
 
@@ -708,6 +709,31 @@ TEST(DicomDispatch, FoldersDcmNamesAndTheDicmPrefixAreDicom) {
     EXPECT_TRUE(io::looksLikeDicom(kPydicomData / "dicomdirtests/98892001/CT5N/2062"));  // no extension: DICM
     EXPECT_TRUE(io::looksLikeDicom("/nonexistent/x.DCM"));
     EXPECT_FALSE(io::looksLikeDicom(kPydicomData / "README.txt"));
+}
+
+}  // namespace
+}  // namespace curette
+
+namespace curette {
+namespace {
+
+// GDCM's JPEG-LS codec asserts (the process aborts) when a stream's frame header promises more samples than
+// Rows x Columns; the fuzz target found it in CI. Such a file is now an InputError naming the mismatch.
+TEST(DicomSynthetic, AJpegLsFrameLargerThanTheImageIsRefusedBeforeGdcmDecodesIt) {
+    std::ifstream in(std::filesystem::path(CURETTE_SOURCE_DIR) / "tests/fuzz/corpus/dicom/ct5n_jpegls.dcm", std::ios::binary);
+    std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 200u);
+    std::filesystem::path good = test::scratchDirectory() / "jpegls-good.dcm";
+    test::writeBytes(good, bytes);
+    EXPECT_NO_THROW(io::readVolume(good)) << "the seed itself reads";
+    const std::uint8_t marker[2] = {0xFF, 0xF7};
+    auto sof = std::search(bytes.begin(), bytes.end(), std::begin(marker), std::end(marker));
+    ASSERT_NE(sof, bytes.end()) << "the seed is JPEG-LS";
+    sof[7] = 0x01;  // X (columns) high byte: 16 -> 272 columns in the stream, 16 in the DICOM header
+    std::filesystem::path bad = test::scratchDirectory() / "jpegls-too-wide.dcm";
+    test::writeBytes(bad, bytes);
+    std::string message = errorOf([&] { io::readVolume(bad); });
+    EXPECT_NE(message.find("JPEG-LS frames of 16 x 16"), std::string::npos) << message;
 }
 
 }  // namespace
