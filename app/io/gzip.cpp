@@ -61,4 +61,35 @@ std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std:
     return out;
 }
 
+std::vector<std::uint8_t> gzipCompress(std::span<const std::uint8_t> bytes, int level) {
+    z_stream stream{};
+    // 16 + MAX_WBITS: write a gzip header and trailer rather than zlib's.
+    if (deflateInit2(&stream, std::clamp(level, 0, 9), Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+        throw SystemError("zlib could not initialise compression");
+    std::vector<std::uint8_t> out;
+    std::uint8_t chunk[1 << 16];
+    std::size_t consumed = 0;
+    int status = Z_OK;
+    while (status != Z_STREAM_END) {
+        // zlib counts in uInt: feed at most 1 GiB at a time.
+        std::size_t feed = std::min<std::size_t>(bytes.size() - consumed, std::size_t(1) << 30);
+        stream.next_in = const_cast<Bytef*>(bytes.data() + consumed);
+        stream.avail_in = static_cast<uInt>(feed);
+        bool last = consumed + feed == bytes.size();
+        do {
+            stream.next_out = chunk;
+            stream.avail_out = sizeof chunk;
+            status = deflate(&stream, last ? Z_FINISH : Z_NO_FLUSH);
+            if (status == Z_STREAM_ERROR) {
+                deflateEnd(&stream);
+                throw SystemError("zlib failed while compressing");
+            }
+            out.insert(out.end(), chunk, chunk + (sizeof chunk - stream.avail_out));
+        } while (stream.avail_out == 0);
+        consumed += feed - stream.avail_in;
+    }
+    deflateEnd(&stream);
+    return out;
+}
+
 }  // namespace curette::io

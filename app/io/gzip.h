@@ -1,6 +1,6 @@
 #pragma once
 // gzip decompression (RFC 1952, through zlib), including files of several concatenated members, with a
-// limit so a small file cannot claim gigabytes.
+// limit so a small file cannot claim gigabytes; and compression into one gzip member, for the writers.
 
 #include <cstdint>
 #include <span>
@@ -16,5 +16,9 @@ bool isGzip(std::span<const std::uint8_t> bytes);
 // With stopAfter > 0, returns as soon as that many bytes are out (to read a header before sizing the whole).
 std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes,
                                  std::uint64_t stopAfter = 0);
+
+// Deflates `bytes` into a single gzip member (zlib level 0..9; 6 is zlib's default). Throws SystemError
+// when zlib fails (out of memory).
+std::vector<std::uint8_t> gzipCompress(std::span<const std::uint8_t> bytes, int level = 6);
 
 }  // namespace curette::io
