@@ -1,5 +1,6 @@
 #include "render/reference/lao_reference.h"
 
+#include "clip/coverage.h"
 #include "render/volume_geometry.h"
 
 #include <cmath>
@@ -31,16 +32,13 @@ VoxelClipping clipVoxels(const VolumeData& volume, const TransferFunction& tf, c
                                  texel(v + glm::ivec3(0, 0, 1)) - texel(v - glm::ivec3(0, 0, 1)));
                     alpha *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
                 }
-                int visible = inside(world(c)) ? 0 : 1;
-                for (int corner = 0; corner < 8; ++corner) {
-                    glm::dvec3 o((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1, (corner & 4) ? 1 : -1);
-                    visible += inside(world(c + o)) ? 0 : 1;
-                }
+                // Algorithm 2 lines 3-10 through the one CPU definition of the sample count (clip/coverage.h).
+                const int samples = static_cast<int>(offsets.size()) + 9;
+                int visible = samples - clip::insideSampleCount(inside, volume.indexToWorld, c, offsets);
                 if (visible == 0) {
                     alpha = 0;
-                } else if (visible < 9) {
-                    for (const glm::dvec3& o : offsets) visible += inside(world(c + o)) ? 0 : 1;
-                    alpha *= double(visible) / double(offsets.size() + 9);
+                } else if (visible < samples) {
+                    alpha *= double(visible) / double(samples);
                 }
                 std::size_t index = volume.linearIndex(i, j, k);
                 result.opacity.values[index] = alpha;

@@ -19,7 +19,8 @@ struct VoxelClipping {
 };
 
 // Algorithm 2 for every voxel with the same sample offsets as the GPU (antiAliasingOffsets: the N extra
-// offsets in index units, curette::antiAliasingOffsets). `dilated` may be empty (LAO baseline: every visible voxel is affected).
+// offsets in index units, clip::antiAliasingOffsets; the count of samples inside is clip::insideSampleCount).
+// `dilated` may be empty (LAO baseline: every visible voxel is affected).
 VoxelClipping clipVoxels(const VolumeData& volume, const TransferFunction& tf, const InsideTest& inside,
                          const InsideTest& dilated, const std::vector<glm::dvec3>& antiAliasingOffsets);
 

@@ -12,16 +12,19 @@ namespace curette::layers {
 namespace {
 
 // Lowest first. A folder may include itself and the folders listed for it; input sits beside gl, clip and
-// render and sees only base; tests see everything.
+// render and sees only base; plan (the carve as a surgical plan, CPU only) sees base and clip's CPU geometry,
+// never gl or render, and render sees plan (its removal probe produces plan's removal field); tests see
+// everything.
 const std::map<std::string, std::set<std::string>>& allowed() {
     static const std::map<std::string, std::set<std::string>> table{
         {"base", {"base"}},
         {"gl", {"base", "gl"}},
         {"clip", {"base", "gl", "clip"}},
-        {"render", {"base", "gl", "clip", "render"}},
+        {"plan", {"base", "clip", "plan"}},
+        {"render", {"base", "gl", "clip", "plan", "render"}},
         {"input", {"base", "input"}},
-        {"app", {"base", "gl", "clip", "render", "input", "app"}},
-        {"tests", {"base", "gl", "clip", "render", "input", "app", "tests"}},
+        {"app", {"base", "gl", "clip", "plan", "render", "input", "app"}},
+        {"tests", {"base", "gl", "clip", "plan", "render", "input", "app", "tests"}},
     };
     return table;
 }

@@ -1,0 +1,76 @@
+#pragma once
+// The removal field: for each voxel of a box of the scan grid, how many of step IV's 9 + N clip samples
+// (CAO Algorithm 2: centre, eight diagonal corners, then N anti-aliasing offsets where those nine disagree)
+// lie inside a clip mesh. count / (9 + N) is the fraction of the voxel the carve removes: the complement of
+// the visible fraction Algorithm 2 line 10 scales the opacity by. The GPU pass writes exactly this (same
+// samples, same clip test as the renderer); removalFieldCpu is its CPU oracle through clip::insideSampleCount.
+
+#include "clip/rigid_pose.h"
+#include "clip/triangle_mesh.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace curette::plan {
+
+// Whether a world point (RAS mm) lies inside the clip region (the union of the posed meshes).
+using InsideTest = std::function<bool(glm::dvec3 world)>;
+
+// A box of voxels of a grid: voxels origin .. origin + size - 1.
+struct VoxelBox {
+    glm::ivec3 origin{0};
+    glm::ivec3 size{0};
+    std::size_t voxelCount() const {
+        return static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * static_cast<std::size_t>(size.z);
+    }
+    bool contains(glm::ivec3 v) const {
+        return glm::all(glm::greaterThanEqual(v, origin)) && glm::all(glm::lessThan(v, origin + size));
+    }
+};
+
+struct RemovalField {
+    glm::ivec3 gridDims{0};            // the scan grid
+    glm::dmat4 indexToWorld{1.0};      // its voxel centre -> world RAS mm
+    glm::ivec3 origin{0}, size{0};     // the box of the grid the field covers; outside it nothing is removed
+    int samplesPerVoxel = 9;           // 9 + N
+    std::vector<std::uint16_t> insideSamples;  // size.x * size.y * size.z, x fastest, each in [0, samplesPerVoxel]
+
+    VoxelBox box() const { return {origin, size}; }
+    // Index into insideSamples of a voxel of the box (global grid index).
+    std::size_t boxIndex(glm::ivec3 globalIndex) const {
+        glm::ivec3 l = globalIndex - origin;
+        return (static_cast<std::size_t>(l.z) * static_cast<std::size_t>(size.y) + static_cast<std::size_t>(l.y)) *
+                   static_cast<std::size_t>(size.x) + static_cast<std::size_t>(l.x);
+    }
+    // count / (9 + N) inside the box, 0 outside it.
+    double removedFraction(glm::ivec3 globalIndex) const;
+    // Throws InputError unless the sizes agree, the box lies in the grid and every count is in range.
+    void validate() const;
+};
+
+// The CPU oracle of the GPU pass: Algorithm 2's sample count for every voxel of the box (clipped to the grid).
+// `offsets` are the N anti-aliasing offsets (clip::antiAliasingOffsets(N)).
+RemovalField removalFieldCpu(glm::ivec3 dims, const glm::dmat4& indexToWorld, glm::ivec3 origin, glm::ivec3 size,
+                             const InsideTest& inside, const std::vector<glm::dvec3>& offsets);
+
+// A clip mesh as the renderer places it: geometry in local mm, scaled per axis, then posed rigidly.
+struct PosedMesh {
+    std::shared_ptr<const clip::TriangleMesh> geometry;
+    clip::RigidPose pose;
+    glm::dvec3 scale{1.0};
+};
+
+// The union of the posed meshes: inside when clip::containsPoint(mesh, local) for any of them, with
+// local = inverse(pose) * world / scale. A bounding-box rejection per mesh keeps far points cheap.
+InsideTest insideAnyMesh(std::vector<PosedMesh> meshes);
+
+// The box of grid voxels whose samples can reach a posed mesh: the index-space bounds of the meshes' world
+// bounding boxes, grown by one voxel (a voxel's samples lie up to one index step from its centre) and one
+// more for rounding, clamped to the grid. Empty (size 0) when no mesh overlaps the grid.
+VoxelBox boxAroundMeshes(const std::vector<PosedMesh>& meshes, glm::ivec3 dims, const glm::dmat4& indexToWorld);
+
+}  // namespace curette::plan

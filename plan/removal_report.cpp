@@ -1,0 +1,323 @@
+#include "plan/removal_report.h"
+
+#include "base/error.h"
+#include "plan/distance_transform.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace curette::plan {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+
+std::string labelName(const LabelTable* table, int id) {
+    if (table)
+        if (const LabelEntry* e = table->find(id)) return e->name;
+    return "label " + std::to_string(id);
+}
+
+// Trilinear interpolation of the distance (not its square) at a world point; points beyond the grid take
+// the value at the nearest grid point.
+struct DistanceSampler {
+    const std::vector<double>* squared = nullptr;
+    glm::ivec3 dims{0};
+    glm::dmat4 worldToIndex{1.0};
+
+    double at(glm::ivec3 v) const {
+        return std::sqrt((*squared)[(static_cast<std::size_t>(v.z) * static_cast<std::size_t>(dims.y) + static_cast<std::size_t>(v.y)) *
+                                        static_cast<std::size_t>(dims.x) + static_cast<std::size_t>(v.x)]);
+    }
+    double operator()(glm::dvec3 world) const {
+        glm::dvec3 index = glm::clamp(glm::dvec3(worldToIndex * glm::dvec4(world, 1.0)), glm::dvec3(0.0), glm::dvec3(dims - 1));
+        glm::ivec3 base = glm::min(glm::ivec3(glm::floor(index)), glm::max(dims - 2, glm::ivec3(0)));
+        glm::dvec3 w = index - glm::dvec3(base);
+        double sum = 0;
+        for (int c = 0; c < 8; ++c) {
+            glm::ivec3 o((c & 1) ? 1 : 0, (c & 2) ? 1 : 0, (c & 4) ? 1 : 0);
+            glm::ivec3 v = glm::min(base + o, dims - 1);
+            double weight = (o.x ? w.x : 1 - w.x) * (o.y ? w.y : 1 - w.y) * (o.z ? w.z : 1 - w.z);
+            if (weight > 0) sum += weight * at(v);
+        }
+        return sum;
+    }
+};
+
+Tractogram subsetStreamlines(const Tractogram& in, const std::vector<std::uint8_t>& keep) {
+    Tractogram out;
+    out.source = in.source;
+    out.scalarNames = in.scalarNames;
+    out.propertyNames = in.propertyNames;
+    const std::size_t scalarsPerPoint = in.scalarNames.size(), propertiesPerStreamline = in.propertyNames.size();
+    for (std::size_t s = 0; s < in.streamlineCount(); ++s) {
+        if (!keep[s]) continue;
+        const std::size_t first = in.offsets[s], end = in.offsets[s + 1];
+        out.points.insert(out.points.end(), in.points.begin() + static_cast<std::ptrdiff_t>(first),
+                          in.points.begin() + static_cast<std::ptrdiff_t>(end));
+        if (scalarsPerPoint && in.scalars.size() == in.points.size() * scalarsPerPoint)
+            out.scalars.insert(out.scalars.end(), in.scalars.begin() + static_cast<std::ptrdiff_t>(first * scalarsPerPoint),
+                               in.scalars.begin() + static_cast<std::ptrdiff_t>(end * scalarsPerPoint));
+        if (propertiesPerStreamline && in.properties.size() == in.streamlineCount() * propertiesPerStreamline)
+            out.properties.insert(out.properties.end(),
+                                  in.properties.begin() + static_cast<std::ptrdiff_t>(s * propertiesPerStreamline),
+                                  in.properties.begin() + static_cast<std::ptrdiff_t>((s + 1) * propertiesPerStreamline));
+        out.offsets.push_back(static_cast<std::uint32_t>(out.points.size()));
+    }
+    return out;
+}
+
+// The intrusion depth of label `id`: max over voxels of R and the label of the distance to the nearest centre
+// not of the label. The transform runs on the bounding box of those voxels grown by a pad, with everything
+// outside the grid counting as "not of the label". A value is exact when it does not exceed the distance to
+// the nearest centre beyond the sub-box (a nearer feature cannot lie out there); otherwise the pad doubles.
+double intrusionDepthMm(const LabelMap& labels, std::uint16_t id, const std::vector<std::uint8_t>& removedRegion,
+                        glm::ivec3 lo, glm::ivec3 hi, glm::dvec3 spacing) {
+    const glm::ivec3 dims = labels.dims;
+    for (int pad = 4;; pad *= 2) {
+        const glm::ivec3 origin = lo - pad, size = hi - lo + 1 + 2 * pad;
+        const VoxelBox box{origin, size};
+        std::vector<std::uint8_t> notLabel(box.voxelCount(), 1);
+        std::size_t at = 0;
+        for (int k = origin.z; k < origin.z + size.z; ++k)
+            for (int j = origin.y; j < origin.y + size.y; ++j)
+                for (int i = origin.x; i < origin.x + size.x; ++i, ++at)
+                    if (i >= 0 && j >= 0 && k >= 0 && i < dims.x && j < dims.y && k < dims.z)
+                        notLabel[at] = labels.id(i, j, k) != id ? 1 : 0;
+        const std::vector<double> d2 = squaredDistanceTransformMm(size, spacing, notLabel);
+        // The sub-box reaches past the grid on every side: everything beyond it is "not of the label" but
+        // farther than the ring just outside the grid, so every value is exact.
+        const bool coversGrid = glm::all(glm::lessThan(origin, glm::ivec3(0))) && glm::all(glm::greaterThan(origin + size, dims));
+        double deepest2 = 0;
+        bool exact = true;
+        for (int k = lo.z; k <= hi.z; ++k)
+            for (int j = lo.y; j <= hi.y; ++j)
+                for (int i = lo.x; i <= hi.x; ++i) {
+                    const std::size_t index = labels.linearIndex(i, j, k);
+                    if (!removedRegion[index] || labels.ids[index] != id) continue;
+                    const glm::ivec3 local = glm::ivec3(i, j, k) - origin;
+                    const double value = d2[(static_cast<std::size_t>(local.z) * static_cast<std::size_t>(size.y) +
+                                             static_cast<std::size_t>(local.y)) * static_cast<std::size_t>(size.x) +
+                                            static_cast<std::size_t>(local.x)];
+                    deepest2 = std::max(deepest2, value);
+                    glm::dvec3 beyond = glm::min(glm::dvec3(local + 1), glm::dvec3(size - local)) * spacing;
+                    const double reach = std::min({beyond.x, beyond.y, beyond.z});
+                    if (value > reach * reach) exact = false;
+                }
+        if (exact || coversGrid) return std::sqrt(deepest2);
+    }
+}
+
+void checkSameGrid(const std::string& what, glm::ivec3 dims, const glm::dmat4& a, const VolumeData& volume) {
+    if (dims != volume.dims) throw InputError(what, "dims", "the scan's grid (resample onto it first)");
+    double worst = 0;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 3; ++r) worst = std::max(worst, std::abs(a[c][r] - volume.indexToWorld[c][r]));
+    if (worst > 1e-6) throw InputError(what, "index_to_world", "the scan's affine (resample onto it first)");
+}
+
+}  // namespace
+
+std::vector<std::string> Report::warnings() const {
+    std::vector<std::string> out;
+    char line[512];
+    for (const StructureRow& s : structures)
+        if (s.isProtected && s.touched) {
+            std::snprintf(line, sizeof line, "WARNING: protected structure %s/%s (id %d) touched: %.3f mL removed, %.1f mm deep",
+                          s.labelSet.c_str(), s.name.c_str(), s.id, s.removedMl, s.intrusionDepthMm);
+            out.emplace_back(line);
+        }
+    for (const BundleRow& b : bundles)
+        if (b.isProtected && b.cut > 0) {
+            std::snprintf(line, sizeof line, "WARNING: protected bundle %s cut: %llu of %llu streamlines, %.1f mm removed",
+                          b.name.c_str(), static_cast<unsigned long long>(b.cut), static_cast<unsigned long long>(b.streamlines),
+                          b.removedLengthMm);
+            out.emplace_back(line);
+        }
+    return out;
+}
+
+Report computeReport(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
+                     const RemovalField& field, const std::vector<LabelSet>& labelSets,
+                     const std::vector<BundleInput>& bundles) {
+    const Clock::time_point start = Clock::now();
+    field.validate();
+    checkSameGrid("<removal field>", field.gridDims, field.indexToWorld, volume);
+    for (const LabelSet& set : labelSets) {
+        if (!set.labels) throw InputError("<label set " + set.name + ">", "labels", "a label map");
+        checkSameGrid(set.labels->source, set.labels->dims, set.labels->indexToWorld, volume);
+    }
+
+    Report report;
+    report.volumeSource = volume.source;
+    report.tissue = settings.tissue;
+    report.opacityThreshold = settings.opacityThreshold;
+    report.dims = volume.dims;
+    report.spacingMm = gridSpacingMm(volume.indexToWorld);
+    report.voxelVolumeMl = std::abs(glm::determinant(glm::dmat3(volume.indexToWorld))) / 1000.0;
+    report.samplesPerVoxel = field.samplesPerVoxel;
+    report.fieldBox = field.box();
+
+    // Tissue and the removed fraction over the field box (nothing is removed outside it).
+    Clock::time_point phase = Clock::now();
+    const VoxelBox box = field.box();
+    const std::vector<std::uint8_t> tissue =
+        tissueInBox(volume, tf, settings, labelSets.empty() ? nullptr : labelSets.front().labels, box);
+    std::vector<std::uint8_t> removedRegion(volume.voxelCount(), 0);
+    std::uint64_t removedSamples = 0;  // sum of t(v) * count(v): the total in units of voxel / (9 + N)
+    {
+        std::size_t at = 0;
+        for (int k = box.origin.z; k < box.origin.z + box.size.z; ++k)
+            for (int j = box.origin.y; j < box.origin.y + box.size.y; ++j)
+                for (int i = box.origin.x; i < box.origin.x + box.size.x; ++i, ++at) {
+                    if (!tissue[at] || field.insideSamples[at] == 0) continue;
+                    removedSamples += field.insideSamples[at];
+                    ++report.touchedVoxels;
+                    if (2 * int(field.insideSamples[at]) >= field.samplesPerVoxel) {
+                        removedRegion[volume.linearIndex(i, j, k)] = 1;
+                        ++report.removedRegionVoxels;
+                    }
+                }
+    }
+    report.removedMl = double(removedSamples) / double(field.samplesPerVoxel) * report.voxelVolumeMl;
+    report.timings.tissueMs = msSince(phase);
+
+    // One distance transform of R over the whole grid serves every margin.
+    phase = Clock::now();
+    std::vector<double> distanceToRemoved2;
+    if (report.removedRegionVoxels > 0 && (!labelSets.empty() || !bundles.empty()))
+        distanceToRemoved2 = squaredDistanceTransformMm(volume.dims, report.spacingMm, removedRegion);
+    report.timings.distanceMs = msSince(phase);
+
+    // Per label set: counts and closest approach in one pass over the grid, removal sums in one over the box.
+    for (const LabelSet& set : labelSets) {
+        phase = Clock::now();
+        const LabelMap& labels = *set.labels;
+        int maxId = 0;
+        for (std::uint16_t id : labels.ids) maxId = std::max(maxId, int(id));
+        for (int id : set.protectedIds) maxId = std::max(maxId, id);
+        const std::size_t ids = static_cast<std::size_t>(maxId) + 1;
+        std::vector<std::uint64_t> voxels(ids, 0), touched(ids, 0), removedSamplesOf(ids, 0);
+        std::vector<double> closest2(ids, kInfinity);
+        std::vector<glm::ivec3> regionLo(ids, glm::ivec3(std::numeric_limits<int>::max())), regionHi(ids, glm::ivec3(-1));
+        if (distanceToRemoved2.empty()) {
+            for (std::uint16_t id : labels.ids) ++voxels[id];
+        } else {
+            for (std::size_t v = 0; v < labels.ids.size(); ++v) {
+                const std::uint16_t id = labels.ids[v];
+                ++voxels[id];
+                closest2[id] = std::min(closest2[id], distanceToRemoved2[v]);
+            }
+        }
+        std::size_t at = 0;
+        for (int k = box.origin.z; k < box.origin.z + box.size.z; ++k)
+            for (int j = box.origin.y; j < box.origin.y + box.size.y; ++j)
+                for (int i = box.origin.x; i < box.origin.x + box.size.x; ++i, ++at) {
+                    if (!tissue[at] || field.insideSamples[at] == 0) continue;
+                    const std::size_t index = labels.linearIndex(i, j, k);
+                    const std::uint16_t id = labels.ids[index];
+                    removedSamplesOf[id] += field.insideSamples[at];
+                    ++touched[id];
+                    if (removedRegion[index]) {
+                        regionLo[id] = glm::min(regionLo[id], glm::ivec3(i, j, k));
+                        regionHi[id] = glm::max(regionHi[id], glm::ivec3(i, j, k));
+                    }
+                }
+        std::vector<StructureRow> rows;
+        std::vector<bool> isProtected(ids, false);
+        for (int id : set.protectedIds)
+            if (id > 0) isProtected[static_cast<std::size_t>(id)] = true;
+        for (std::size_t id = 1; id < ids; ++id) {
+            if (!touched[id] && !isProtected[id]) continue;
+            StructureRow row;
+            row.labelSet = set.name;
+            row.id = int(id);
+            row.name = labelName(set.table, row.id);
+            row.isProtected = isProtected[id];
+            row.voxels = voxels[id];
+            row.touchedVoxels = touched[id];
+            row.volumeMl = double(voxels[id]) * report.voxelVolumeMl;
+            row.removedMl = double(removedSamplesOf[id]) / double(field.samplesPerVoxel) * report.voxelVolumeMl;
+            row.share = row.volumeMl > 0 ? row.removedMl / row.volumeMl : 0.0;
+            row.touched = touched[id] > 0;
+            row.marginMm = row.touched ? 0.0 : std::sqrt(closest2[id]);
+            rows.push_back(std::move(row));
+        }
+        report.timings.structuresMs += msSince(phase);
+
+        phase = Clock::now();
+        for (StructureRow& row : rows) {
+            const std::size_t id = static_cast<std::size_t>(row.id);
+            if (regionHi[id].x >= 0)
+                row.intrusionDepthMm = intrusionDepthMm(labels, static_cast<std::uint16_t>(row.id), removedRegion, regionLo[id],
+                                                        regionHi[id], report.spacingMm);
+        }
+        std::stable_sort(rows.begin(), rows.end(), [](const StructureRow& a, const StructureRow& b) {
+            return a.removedMl != b.removedMl ? a.removedMl > b.removedMl : a.id < b.id;
+        });
+        report.structures.insert(report.structures.end(), rows.begin(), rows.end());
+        report.timings.intrusionMs += msSince(phase);
+    }
+
+    // Bundles: cut flags, lengths (trapezoid rule on the inside flags, plan/tract_probe.h) and margins.
+    phase = Clock::now();
+    DistanceSampler distance{&distanceToRemoved2, volume.dims, glm::inverse(volume.indexToWorld)};
+    // The trilinear interpolant of a 1-Lipschitz function sampled on an orthogonal grid changes by at most
+    // sqrt(3) per mm: after a probe at distance d, the next (d - best) / sqrt(3) mm of the streamline cannot
+    // come closer than the best so far, so they are skipped (the result is the same as probing every point).
+    const double lipschitz = std::sqrt(3.0);
+    for (const BundleInput& in : bundles) {
+        if (!in.tracts) throw InputError("<bundle " + in.name + ">", "tracts", "a tractogram");
+        const Tractogram& tracts = *in.tracts;
+        const TractProbe& probe = in.probe;
+        if (probe.streamlineOffsets.size() != tracts.streamlineCount() + 1 || probe.insideFlags.size() != probe.points.size() ||
+            (!probe.streamlineOffsets.empty() && probe.streamlineOffsets.back() != probe.points.size()))
+            throw InputError(tracts.source, "probe", "tractProbePoints of this tractogram with one inside flag per point");
+        BundleRow row;
+        row.name = in.name;
+        row.isProtected = in.isProtected;
+        row.streamlines = tracts.streamlineCount();
+        row.marginMm = kInfinity;
+        std::vector<std::uint8_t> cut(tracts.streamlineCount(), 0);
+        for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
+            const std::uint32_t first = probe.streamlineOffsets[s], end = probe.streamlineOffsets[s + 1];
+            for (std::uint32_t p = first; p < end; ++p) {
+                if (probe.insideFlags[p]) cut[s] = 1;
+                if (p > first) {
+                    const double length = glm::length(probe.points[p] - probe.points[p - 1]);
+                    row.totalLengthMm += length;
+                    row.removedLengthMm += length * 0.5 * double(probe.insideFlags[p] + probe.insideFlags[p - 1]);
+                }
+            }
+            if (cut[s]) {
+                ++row.cut;
+                row.marginMm = 0;
+            } else if (!distanceToRemoved2.empty() && row.marginMm > 0) {
+                double skip = 0;
+                for (std::uint32_t p = first; p < end; ++p) {
+                    if (p > first) skip -= glm::length(probe.points[p] - probe.points[p - 1]);
+                    if (skip > 0) continue;
+                    const double d = distance(probe.points[p]);
+                    row.marginMm = std::min(row.marginMm, d);
+                    skip = (d - row.marginMm) / lipschitz;
+                }
+            }
+        }
+        row.share = row.streamlines ? double(row.cut) / double(row.streamlines) : 0.0;
+        row.cutTracts = subsetStreamlines(tracts, cut);
+        for (std::uint8_t& c : cut) c = c ? 0 : 1;
+        row.sparedTracts = subsetStreamlines(tracts, cut);
+        report.bundles.push_back(std::move(row));
+    }
+    report.timings.bundlesMs = msSince(phase);
+    report.timings.totalMs = msSince(start);
+    return report;
+}
+
+}  // namespace curette::plan

@@ -1,0 +1,150 @@
+#include "plan/report_output.h"
+
+#include "base/atomic_file.h"
+#include "base/error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <system_error>
+
+namespace curette::plan {
+
+namespace {
+
+nlohmann::json distanceOrNull(double mm) { return std::isfinite(mm) ? nlohmann::json(mm) : nlohmann::json(nullptr); }
+
+std::string number(double x) {
+    if (!std::isfinite(x)) return {};
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.6g", x);
+    return buffer;
+}
+
+const char* boolean(bool b) { return b ? "true" : "false"; }
+
+std::string row(std::initializer_list<std::string> fields) {
+    std::string line;
+    for (const std::string& f : fields) {
+        if (!line.empty()) line += ',';
+        line += f;
+    }
+    return line + "\r\n";
+}
+
+std::string marginText(double mm) {
+    if (!std::isfinite(mm)) return "-";
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.1f", mm);
+    return buffer;
+}
+
+}  // namespace
+
+std::string csvField(const std::string& text) {
+    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (char c : text) {
+        if (c == '"') quoted += '"';
+        quoted += c;
+    }
+    return quoted + "\"";
+}
+
+std::string reportJson(const Report& r) {
+    nlohmann::json j;
+    j["schema"] = "curette.report/1";
+    j["volume"] = {{"source", r.volumeSource},
+                   {"dims", {r.dims.x, r.dims.y, r.dims.z}},
+                   {"spacing_mm", {r.spacingMm.x, r.spacingMm.y, r.spacingMm.z}},
+                   {"voxel_volume_ml", r.voxelVolumeMl}};
+    j["tissue"] = {{"rule", tissueRuleName(r.tissue)}, {"opacity_threshold", r.opacityThreshold}};
+    j["field"] = {{"origin", {r.fieldBox.origin.x, r.fieldBox.origin.y, r.fieldBox.origin.z}},
+                  {"size", {r.fieldBox.size.x, r.fieldBox.size.y, r.fieldBox.size.z}},
+                  {"samples_per_voxel", r.samplesPerVoxel}};
+    j["removed_ml"] = r.removedMl;
+    j["touched_voxels"] = r.touchedVoxels;
+    j["removed_region_voxels"] = r.removedRegionVoxels;
+    j["structures"] = nlohmann::json::array();
+    for (const StructureRow& s : r.structures)
+        j["structures"].push_back({{"label_set", s.labelSet}, {"id", s.id}, {"name", s.name}, {"protected", s.isProtected},
+                                   {"touched", s.touched}, {"voxels", s.voxels}, {"touched_voxels", s.touchedVoxels},
+                                   {"volume_ml", s.volumeMl}, {"removed_ml", s.removedMl}, {"share_fraction", s.share},
+                                   {"intrusion_depth_mm", s.intrusionDepthMm}, {"margin_mm", distanceOrNull(s.marginMm)}});
+    j["bundles"] = nlohmann::json::array();
+    for (const BundleRow& b : r.bundles)
+        j["bundles"].push_back({{"name", b.name}, {"protected", b.isProtected}, {"streamlines", b.streamlines},
+                                {"cut_streamlines", b.cut}, {"share_fraction", b.share}, {"total_length_mm", b.totalLengthMm},
+                                {"removed_length_mm", b.removedLengthMm}, {"margin_mm", distanceOrNull(b.marginMm)}});
+    j["warnings"] = r.warnings();
+    j["timings_ms"] = {{"tissue_ms", r.timings.tissueMs},         {"distance_ms", r.timings.distanceMs},
+                       {"structures_ms", r.timings.structuresMs}, {"intrusion_ms", r.timings.intrusionMs},
+                       {"bundles_ms", r.timings.bundlesMs},       {"total_ms", r.timings.totalMs}};
+    return j.dump(2) + "\n";
+}
+
+std::string structuresCsv(const Report& r) {
+    std::string out = row({"label_set", "id", "name", "protected", "touched", "voxels", "touched_voxels", "volume_ml",
+                           "removed_ml", "share_fraction", "intrusion_depth_mm", "margin_mm"});
+    for (const StructureRow& s : r.structures)
+        out += row({csvField(s.labelSet), std::to_string(s.id), csvField(s.name), boolean(s.isProtected), boolean(s.touched),
+                    std::to_string(s.voxels), std::to_string(s.touchedVoxels), number(s.volumeMl), number(s.removedMl),
+                    number(s.share), number(s.intrusionDepthMm), number(s.marginMm)});
+    return out;
+}
+
+std::string bundlesCsv(const Report& r) {
+    std::string out = row({"name", "protected", "streamlines", "cut_streamlines", "share_fraction", "total_length_mm",
+                           "removed_length_mm", "margin_mm"});
+    for (const BundleRow& b : r.bundles)
+        out += row({csvField(b.name), boolean(b.isProtected), std::to_string(b.streamlines), std::to_string(b.cut),
+                    number(b.share), number(b.totalLengthMm), number(b.removedLengthMm), number(b.marginMm)});
+    return out;
+}
+
+void writeReportFiles(const Report& report, const std::filesystem::path& directory) {
+    std::error_code error;
+    std::filesystem::create_directories(directory, error);
+    if (error) throw SystemError("cannot create " + directory.string() + ": " + error.message());
+    writeFileAtomically(directory / "report.json", reportJson(report));
+    writeFileAtomically(directory / "structures.csv", structuresCsv(report));
+    writeFileAtomically(directory / "bundles.csv", bundlesCsv(report));
+}
+
+std::string reportSummary(const Report& r) {
+    std::string out;
+    char line[512];
+    std::snprintf(line, sizeof line, "removed %.2f mL of tissue (%llu voxels touched, voxel %.3g x %.3g x %.3g mm, tissue rule %s)\n",
+                  r.removedMl, static_cast<unsigned long long>(r.touchedVoxels), r.spacingMm.x, r.spacingMm.y, r.spacingMm.z,
+                  tissueRuleName(r.tissue));
+    out += line;
+    if (!r.structures.empty()) {
+        std::snprintf(line, sizeof line, "  %-32s %10s %10s %7s %9s %9s\n", "structure", "volume mL", "removed mL", "share",
+                      "depth mm", "margin mm");
+        out += line;
+        for (const StructureRow& s : r.structures) {
+            std::string name = s.labelSet.empty() ? s.name : s.labelSet + "/" + s.name;
+            if (s.isProtected) name += " [protected]";
+            std::snprintf(line, sizeof line, "  %-32.32s %10.2f %10.3f %6.1f%% %9.1f %9s\n", name.c_str(), s.volumeMl, s.removedMl,
+                          100.0 * s.share, s.intrusionDepthMm, marginText(s.marginMm).c_str());
+            out += line;
+        }
+    }
+    if (!r.bundles.empty()) {
+        std::snprintf(line, sizeof line, "  %-32s %10s %10s %7s %9s %9s\n", "bundle", "streamlines", "cut", "share",
+                      "cut mm", "margin mm");
+        out += line;
+        for (const BundleRow& b : r.bundles) {
+            std::string name = b.isProtected ? b.name + " [protected]" : b.name;
+            std::snprintf(line, sizeof line, "  %-32.32s %10llu %10llu %6.1f%% %9.1f %9s\n", name.c_str(),
+                          static_cast<unsigned long long>(b.streamlines), static_cast<unsigned long long>(b.cut), 100.0 * b.share,
+                          b.removedLengthMm, marginText(b.marginMm).c_str());
+            out += line;
+        }
+    }
+    for (const std::string& w : r.warnings()) out += w + "\n";
+    return out;
+}
+
+}  // namespace curette::plan

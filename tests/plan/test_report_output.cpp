@@ -1,0 +1,99 @@
+// report.json (schema, units in keys, null for infinite margins), the CSVs (header, RFC 4180 quoting) and
+// the terminal summary with its WARNING lines.
+#include "plan/report_output.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace curette::plan {
+namespace {
+
+Report sample() {
+    Report r;
+    r.volumeSource = "head.nii.gz";
+    r.dims = {181, 217, 181};
+    r.spacingMm = glm::dvec3(1.0);
+    r.voxelVolumeMl = 0.001;
+    r.samplesPerVoxel = 41;
+    r.removedMl = 12.5;
+    r.touchedVoxels = 14000;
+    StructureRow a;
+    a.labelSet = "aal";
+    a.id = 3;
+    a.name = "Frontal, \"Sup\" L";
+    a.isProtected = true;
+    a.touched = true;
+    a.removedMl = 1.25;
+    a.volumeMl = 25;
+    a.share = 0.05;
+    a.intrusionDepthMm = 4.5;
+    StructureRow b;
+    b.labelSet = "aal";
+    b.id = 9;
+    b.name = "Far";
+    b.isProtected = true;
+    b.marginMm = std::numeric_limits<double>::infinity();
+    r.structures = {a, b};
+    BundleRow t;
+    t.name = "CST left";
+    t.isProtected = true;
+    t.streamlines = 100;
+    t.cut = 7;
+    t.share = 0.07;
+    t.removedLengthMm = 30;
+    r.bundles = {t};
+    return r;
+}
+
+TEST(ReportOutput, JsonHasTheSchemaUnitsAndNullForInfiniteMargins) {
+    nlohmann::json j = nlohmann::json::parse(reportJson(sample()));
+    EXPECT_EQ(j["schema"], "curette.report/1");
+    EXPECT_EQ(j["removed_ml"], 12.5);
+    EXPECT_EQ(j["volume"]["voxel_volume_ml"], 0.001);
+    EXPECT_EQ(j["structures"][0]["name"], "Frontal, \"Sup\" L");
+    EXPECT_EQ(j["structures"][0]["intrusion_depth_mm"], 4.5);
+    EXPECT_TRUE(j["structures"][1]["margin_mm"].is_null());
+    EXPECT_EQ(j["bundles"][0]["cut_streamlines"], 7);
+    EXPECT_EQ(j["warnings"].size(), 2u);
+    EXPECT_TRUE(j["timings_ms"].contains("total_ms"));
+}
+
+TEST(ReportOutput, CsvQuotesNamesPerRfc4180) {
+    EXPECT_EQ(csvField("plain"), "plain");
+    EXPECT_EQ(csvField("a,b"), "\"a,b\"");
+    EXPECT_EQ(csvField("say \"hi\""), "\"say \"\"hi\"\"\"");
+    EXPECT_EQ(csvField("two\nlines"), "\"two\nlines\"");
+    const std::string csv = structuresCsv(sample());
+    EXPECT_EQ(csv.substr(0, csv.find("\r\n")),
+              "label_set,id,name,protected,touched,voxels,touched_voxels,volume_ml,removed_ml,share_fraction,intrusion_depth_mm,margin_mm");
+    EXPECT_NE(csv.find("aal,3,\"Frontal, \"\"Sup\"\" L\",true,true,0,0,25,1.25,0.05,4.5,0\r\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("aal,9,Far,true,false,0,0,0,0,0,0,\r\n"), std::string::npos) << "an infinite margin is empty: " << csv;
+    const std::string bundles = bundlesCsv(sample());
+    EXPECT_NE(bundles.find("CST left,true,100,7,0.07,0,30,0\r\n"), std::string::npos) << bundles;
+}
+
+TEST(ReportOutput, SummaryWarnsAboutProtectedTouchesAndFilesAreWritten) {
+    const std::string summary = reportSummary(sample());
+    EXPECT_NE(summary.find("removed 12.50 mL"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("WARNING: protected structure aal/Frontal, \"Sup\" L (id 3) touched"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("WARNING: protected bundle CST left cut: 7 of 100"), std::string::npos) << summary;
+    EXPECT_EQ(summary.find("Far (id 9) touched"), std::string::npos);
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "curette_plan_report_test";
+    std::filesystem::remove_all(dir);
+    writeReportFiles(sample(), dir / "nested");
+    for (const char* name : {"report.json", "structures.csv", "bundles.csv"})
+        EXPECT_TRUE(std::filesystem::exists(dir / "nested" / name)) << name;
+    std::ifstream in(dir / "nested" / "report.json");
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_EQ(text.str(), reportJson(sample()));
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace curette::plan
