@@ -251,7 +251,8 @@ void ClipMeshSet::renderMaps(int index) {
     glBindTextureUnit(binding::clipDepth, depthMaps_.name());
 
     // Layers: 0 front 1, 1 back 1, 2 front 2 (peeled behind 0), 3 back 2 (peeled behind 1), and a probe
-    // front 3 (peeled behind 2) that only tells whether the mesh needs more than two intervals.
+    // front 3 (peeled behind 2) that tells whether the mesh needs more than two intervals (then layer 3 is
+    // redrawn as the farthest back face, below).
     for (int layer = 0; layer < 5; ++layer) {
         bool front = layer % 2 == 0;
         const float clearDepth = 1.0f;
@@ -263,9 +264,25 @@ void ClipMeshSet::renderMaps(int index) {
         glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
         if (layer == 2) m.intervals = anyFinite(scratch_.name(), resolution_) ? 2 : 1;
         if (layer == 4) {
-            if (anyFinite(scratch_.name(), resolution_))
+            m.deeperThanTwoIntervals = anyFinite(scratch_.name(), resolution_);
+            if (m.deeperThanTwoIntervals) {
                 log::warn("clip mesh \"" + m.name + "\" has more than two depth intervals seen from its clipping camera "
                           "(local +z); beyond the second it clips like its hull (CAO section 3.4, step II)");
+                // Back 2 becomes the farthest back face, so interval 2 runs from front 2 to the mesh's last
+                // exit: the third and later intervals (and the gaps between them) are clipped, as the hull would
+                // clip them, instead of being left as holes. Pixels with two intervals keep their back 2 (it
+                // is their farthest back face); pixels with one have no front 2, so no interval 2.
+                const float farthestClear = 0.0f, backClear[4] = {-kInfinity, 0, 0, 0};
+                glClearNamedFramebufferfv(framebuffer_.name(), GL_COLOR, 0, backClear);
+                glClearNamedFramebufferfv(framebuffer_.name(), GL_DEPTH, 0, &farthestClear);
+                glDepthFunc(GL_GREATER);
+                glCullFace(GL_FRONT);
+                depthProgram_.set("peelAgainst", -1);
+                glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+                glDepthFunc(GL_LESS);
+                glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
+                                   base + 3, resolution_, resolution_, 1);
+            }
             break;
         }
         glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,

@@ -58,6 +58,9 @@ public:
     const TriangleMesh* geometry(int index) const { return meshes_[static_cast<std::size_t>(index)].geometry.get(); }
     const ClippingCamera& camera(int index) const { return meshes_[static_cast<std::size_t>(index)].camera; }
     int intervals(int index) const { return meshes_[static_cast<std::size_t>(index)].intervals; }
+    // Whether some map pixel of mesh `index` sees more than two intervals: interval 2 then ends at the
+    // farthest back face (beyond the second interval the mesh clips like its hull).
+    bool deeperThanTwoIntervals(int index) const { return meshes_[static_cast<std::size_t>(index)].deeperThanTwoIntervals; }
     int resolution() const { return resolution_; }
     double dilationRadiusMm() const { return dilationRadiusMm_; }
     // The radius the dilation kernel uses for mesh `index`: R plus sqrt(2) map pixels plus a rounding margin.
@@ -99,6 +102,7 @@ private:
         std::string name;
         ClippingCamera camera;
         int intervals = 1;
+        bool deeperThanTwoIntervals = false;
         bool clipsTubes = false;
         bool mapsDirty = true;
         bool dilatedDirty = true;

@@ -14,6 +14,7 @@ gl::Program& SlabPass::program(ShadingMode mode, bool tubes, const TransferFunct
     gl::Defines defines;
     SampleShadingPiece::addDefines(defines, mode);
     if (tubes) defines.emplace_back("HAS_TUBES", "1");
+    if (!clampOcclusion_) defines.emplace_back("OCCLUSION_UNCLAMPED", "1");
     tf.addDefines(defines);
     return programs_.get(defines);
 }
@@ -70,6 +71,7 @@ void SlabPass::run(const SlabInputs& in) {
         glBindTextureUnit(binding::tubeDepth, tubes->depth());
         glBindImageTexture(binding::imagePartialOcclusion, tubes->partialOcclusion(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
         p.set("geometryOpacity", static_cast<float>(in.geometryOpacity));
+        p.set("tubeThicknessMm", static_cast<float>(std::max(in.tubeThicknessMm, 1e-3)));
     }
     setLightingUniforms(p, frame, in.tf.material());
     CameraRayPiece{frame}.apply(p);

@@ -23,7 +23,8 @@ struct SlabInputs {
     SampleShadingPiece shading;           // the mode's colour; V_AO and its scale in lao/cao
     GLuint eyeBuffer = 0;                 // RGBA32F, frame.size: the image
     GBuffer* tubes = nullptr;             // a filled G-buffer: tubes take part, the partial occlusion is written
-    double geometryOpacity = 0.0;         // what a tube injects into the occlusion buffer (seed 000 Algorithm 3)
+    double geometryOpacity = 0.0;         // what a tube crossing absorbs in the occlusion buffer (seed 000 Algorithm 3)
+    double tubeThicknessMm = 1.0;         // the depth it absorbs that over (dos_slice.comp)
 };
 
 class SlabPass {
@@ -36,6 +37,9 @@ public:
     int slicesLastFrame() const { return slices_; }
     // The occlusion buffer after the last slice (tests: all channels must stay in [0, 1]).
     std::vector<glm::vec2> readOcclusion() const;
+    // Tests only: false stores the occlusion buffer without the final clamp to [0, 1] (a separate program
+    // variant; the default one is untouched), so readOcclusion() shows what the update computed.
+    void setClampOcclusion(bool clamp) { clampOcclusion_ = clamp; }
     std::size_t gpuBytes() const;
 
 private:
@@ -47,6 +51,7 @@ private:
     glm::ivec2 size_{0};
     int slices_ = 0;
     int last_ = 0;
+    bool clampOcclusion_ = true;
 };
 
 }  // namespace curette

@@ -22,7 +22,9 @@ struct TubeVertices {
 
 // How tubes take part in the combined occlusion (seed 000) and how they are lit.
 struct TubeShading {
-    double geometryOpacity = 0.9;      // opacity a tube injects into the occlusion buffer (Algorithm 3)
+    double geometryOpacity = 0.9;      // opacity of one crossing of a tube in the occlusion buffer (Algorithm 3)
+    double thicknessMm = 1.0;          // the view depth a tube fills behind its surface there (its diameter;
+                                       // configureRenderer sets twice the scene's largest tube radius)
     double vicinityDistanceMm = 3.0;   // l_vicinity: the vicinity radius is l_vicinity tan(theta) (section 3.1.5)
     int vicinitySamples = 64;          // Poisson-disk samples (the paper: up to 118)
     double depthBiasMm = 0.5;          // an occluding neighbour must be this much nearer (Algorithm 5)

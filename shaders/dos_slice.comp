@@ -30,13 +30,21 @@ uniform float ambientRadiance;     // La: the ambient light of dos shading (seed
 uniform float earlyTerminationAlpha;
 
 #ifdef HAS_TUBES
-// Tubes (seed 000): behind a tube surface the slice takes the tube's opacity in the occlusion buffer
-// (Algorithm 3: geometry shadows the volume), and the volume contributes to the eye buffer only in front
-// of the surface (Algorithm 2). At the first slice behind a surface, the occlusion reaching it is recorded
-// (Algorithm 4: the partial occlusion buffer).
+// Tubes (seed 000): a tube shadows the volume behind it (Algorithm 3: geometry in the occlusion buffer), and
+// the volume contributes to the eye buffer only in front of the surface (Algorithm 2). The G-buffer holds
+// only the nearest surface, so a tube is taken to fill the view depths [s, s + T] behind its surface s, T its
+// diameter, with an extinction per millimetre that makes the whole crossing absorb geometryOpacity:
+//     alpha(segment) = 1 - (1 - geometryOpacity)^(overlap / T),
+// overlap the depth the slice's interval [z_k, z_k + d] shares with [s, s + T]. The slices' alphas then
+// compose to geometryOpacity whatever the slice distance (the per-slice injection it replaces darkened the
+// shadow with every extra slice behind the surface), and the volume behind the tube still occludes.
+// The slice whose interval holds s records the occlusion reaching the surface (Algorithm 4, the partial
+// occlusion buffer), interpolated in depth between this slice's value and the next one's (seed 000 eq. 3),
+// so it is continuous along a tube that runs in depth instead of a staircase at the slices.
 layout(binding = BINDING_TUBE_DEPTH) uniform sampler2D tubeDepth;
 layout(r32f, binding = IMAGE_PARTIAL_OCCLUSION) uniform writeonly image2D partialOcclusion;
 uniform float geometryOpacity;
+uniform float tubeThicknessMm;     // T
 #endif
 
 void main() {
@@ -100,14 +108,23 @@ void main() {
     // This slice attenuates the light reaching every later slice; the geometry channel sees tubes only.
     vec2 sliceAlpha = vec2(alpha, 0.0);
 #ifdef HAS_TUBES
-    if (behindSurface) sliceAlpha = vec2(geometryOpacity);
-    // Algorithm 4 and eq. 1-3: at the first slice behind the surface, the occlusion at the surface's depth,
-    // between the previous buffer at this pixel and its cone average one slice on.
-    if (surfaceDepth > 0.0 && behindSurface && sliceDepth - sliceDistance < surfaceDepth) {
-        float ratio = clamp((surfaceDepth - (sliceDepth - sliceDistance)) / sliceDistance, 0.0, 1.0);
-        imageStore(partialOcclusion, pixel, vec4(mix(occlusionBefore.x, blurred.x, ratio)));
+    if (surfaceDepth > 0.0) {
+        float overlap = max(min(sliceDepth + sliceDistance, surfaceDepth + tubeThicknessMm) - max(sliceDepth, surfaceDepth), 0.0);
+        float tubeAlpha = 1.0 - pow(1.0 - geometryOpacity, overlap / tubeThicknessMm);
+        sliceAlpha = vec2(1.0 - (1.0 - alpha) * (1.0 - tubeAlpha), tubeAlpha);
+        // The surface lies in this slice's interval: the light reaching it, between this slice's value at
+        // z_k and the volume-attenuated cone average at z_k + d (the tube's own opacity not yet applied).
+        if (sliceDepth <= surfaceDepth && surfaceDepth < sliceDepth + sliceDistance) {
+            float ratio = (surfaceDepth - sliceDepth) / sliceDistance;
+            imageStore(partialOcclusion, pixel, vec4(mix(occlusionBefore.x, blurred.x * (1.0 - alpha), ratio)));
+        }
     }
 #endif
     vec2 next = blurred * (1.0 - sliceAlpha);
+#ifdef OCCLUSION_UNCLAMPED
+    // Tests only (SlabPass::setClampOcclusion(false)): the value as computed, so a test sees one outside [0, 1].
+    imageStore(occlusionNext, pixel, vec4(next, 0.0, 0.0));
+#else
     imageStore(occlusionNext, pixel, vec4(clamp(next, 0.0, 1.0), 0.0, 0.0));
+#endif
 }

@@ -37,7 +37,8 @@ uint indexFromVoxel(ivec3 v, ivec3 size) { return uint(v.x) + uint(size.x) * (ui
 uniform ivec3 regionOrigin;
 uniform ivec3 regionSize;
 bool regionVoxel(uint id, out ivec3 v) {
-    if (id >= uint(regionSize.x * regionSize.y * regionSize.z)) return false;
+    // In uint: a box of more than 2^31 voxels must not wrap (AmbientOcclusion refuses more than 2^32 - 1).
+    if (id >= uint(regionSize.x) * uint(regionSize.y) * uint(regionSize.z)) return false;
     v = regionOrigin + voxelFromIndex(id, regionSize);
     return true;
 }

@@ -13,4 +13,7 @@ void main() {
     worldDirection = normalOrTangent;
     surfaceColor = color;
     gl_Position = viewProjection * vec4(position, 1.0);
+    // The passes that read the G-buffer index it by the ray caster's pixels, whose row 0 is the top of the
+    // picture (pixel_ray.glsl); GL rasterises row 0 at the bottom, so mirror y to share one pixel grid.
+    gl_Position.y = -gl_Position.y;
 }

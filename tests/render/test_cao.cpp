@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <optional>
 #include <random>
 
 namespace curette {
@@ -28,6 +30,18 @@ double blobs(glm::dvec3 p) {
     return std::min(v, 255.0);
 }
 
+// What a CAO test scene is made of: the volume (dims, affine, field), the TF and the LAO settings.
+struct CaoSpec {
+    glm::ivec3 dims{28};
+    std::optional<glm::dmat4> affine{};   // unset: 1 mm voxels centred on the origin
+    std::function<double(glm::dvec3)> field = blobs;
+    TransferFunction tf = test::rampTransferFunction(30, 180, 0.3);
+    const char* pattern = "14";
+    int samples = 7;
+    double stepMm = 1.0;
+    LaoSettings::Dispatch dispatch = LaoSettings::Dispatch::Compacted;
+};
+
 // A small scene: 28^3 voxels of 1 mm, LAO with K = 14, M = 7 (reach 6 mm), so a few hundred AO updates
 // stay fast on llvmpipe.
 struct CaoScene {
@@ -35,19 +49,23 @@ struct CaoScene {
     TransferFunction tf;
     std::unique_ptr<Renderer> renderer;
     FrameDescription frame;
-    explicit CaoScene(glm::ivec3 dims = glm::ivec3(28), LaoSettings::Dispatch dispatch = LaoSettings::Dispatch::Compacted) {
+    explicit CaoScene(glm::ivec3 dims = glm::ivec3(28), LaoSettings::Dispatch dispatch = LaoSettings::Dispatch::Compacted)
+        : CaoScene(CaoSpec{.dims = dims, .dispatch = dispatch}) {}
+    explicit CaoScene(const CaoSpec& spec) {
         glContext();
-        volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, blobs);
-        tf = test::rampTransferFunction(30, 180, 0.3);
+        volume = test::makeVolume(spec.dims, spec.affine ? *spec.affine : test::centredAffine(spec.dims), ScalarType::UInt8, spec.field);
+        tf = spec.tf;
         renderer = std::make_unique<Renderer>(glContext(), volume, tf);
         LaoSettings lao;
-        parseLaoPattern("14", lao.directions);
-        lao.samples = 7;
-        lao.stepMm = 1.0;
+        parseLaoPattern(spec.pattern, lao.directions);
+        lao.samples = spec.samples;
+        lao.stepMm = spec.stepMm;
         lao.antiAliasingSamples = 16;
-        lao.dispatch = dispatch;
+        lao.dispatch = spec.dispatch;
         renderer->setLaoSettings(lao);
-        frame.camera.fit(glm::dvec3(0), 0.9 * glm::length(glm::dvec3(dims)) / 2);
+        const VolumeGeometry& g = renderer->geometry();
+        if (spec.affine) frame.camera.fit(g.worldCenter(), 0.9 * g.boundingRadiusMm());
+        else frame.camera.fit(glm::dvec3(0), 0.9 * glm::length(glm::dvec3(spec.dims)) / 2);
         frame.camera.azimuthDeg = 30;
         frame.camera.elevationDeg = 20;
         frame.size = {48, 48};
@@ -84,54 +102,274 @@ void expectBitIdentical(const CaoScene::Result& lao, const CaoScene::Result& cao
         << what << ": images differ";
 }
 
-// The contract: over 50 random poses each of a sphere, a box and a torus (some partly outside the volume),
-// and of two overlapping meshes, CAO gives V_AO and images bit-identical to recomputing LAO everywhere.
-// The two step-V variants (compacted list, full grid) are both held to it.
-TEST(Cao, EqualsFullLaoBitForBitOverRandomPoses) {
-    for (auto dispatch : {LaoSettings::Dispatch::Compacted, LaoSettings::Dispatch::FullGrid}) {
-        CaoScene scene(glm::ivec3(28), dispatch);
-        std::mt19937 random(dispatch == LaoSettings::Dispatch::Compacted ? 1 : 2);
-        struct Shape {
-            const char* name;
-            std::shared_ptr<const clip::TriangleMesh> mesh;
-        };
-        const Shape shapes[] = {{"sphere", std::make_shared<const clip::TriangleMesh>(clip::makeSphere(7.0, 3))},
-                                {"box", std::make_shared<const clip::TriangleMesh>(clip::makeBox(glm::dvec3(12, 9, 7)))},
-                                {"torus", std::make_shared<const clip::TriangleMesh>(clip::makeTorus(8.0, 3.0, 48, 24))}};
-        int poses = dispatch == LaoSettings::Dispatch::Compacted ? 50 : 10;
-        std::uint64_t recomputed = 0, total = 0;
-        for (const Shape& shape : shapes) {
-            clip::ClipMeshSet& set = scene.renderer->clipMeshes();
+std::size_t differingVoxels(const CaoScene::Result& lao, const CaoScene::Result& cao) {
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < lao.ambient.size() && i < cao.ambient.size(); ++i) differing += lao.ambient[i] != cao.ambient[i];
+    return differing;
+}
+
+// Two renderers over the same volume, TF, LAO settings and meshes: `cao` only ever runs CAO (so voxels
+// outside the box it visits hold what its own earlier updates wrote), `lao` is constructed fresh and only ever
+// runs full LAO (every voxel recomputed, nothing carried over from CAO).
+struct CaoAgainstFreshLao {
+    CaoScene cao, lao;
+    explicit CaoAgainstFreshLao(const CaoSpec& spec) : cao(spec), lao(spec) {}
+    // Applies the same change to both renderers' meshes.
+    template <typename F>
+    void meshes(F&& change) {
+        change(cao.renderer->clipMeshes());
+        change(lao.renderer->clipMeshes());
+    }
+    struct Frame {
+        CaoScene::Result lao, cao;
+    };
+    Frame render() {
+        Frame f;
+        f.cao = cao.render(ShadingMode::Cao);
+        f.lao = lao.render(ShadingMode::Lao);
+        return f;
+    }
+};
+
+struct Shape {
+    const char* name;
+    std::shared_ptr<const clip::TriangleMesh> mesh;
+};
+
+struct PropertyCounts {
+    std::uint64_t recomputed = 0, total = 0;   // voxels CAO recomputed, voxels full LAO recomputed
+    int updates = 0, partial = 0;              // CAO updates, and those that visited less than the whole volume
+};
+
+// Random poses of each shape, then of two overlapping meshes (the first two shapes), CAO against fresh
+// full LAO, bit for bit.
+PropertyCounts expectCaoEqualsFreshLaoOverRandomPoses(const CaoSpec& spec, const std::vector<Shape>& shapes, unsigned seed, int poses,
+                                                      double extent, const std::string& label) {
+    CaoAgainstFreshLao pair(spec);
+    std::mt19937 random(seed);
+    PropertyCounts counts;
+    auto count = [&](const CaoAgainstFreshLao::Frame& f) {
+        const AmbientOcclusionStats& stats = pair.cao.renderer->ambientOcclusion()->lastStats();
+        counts.recomputed += f.cao.recomputed;
+        counts.total += f.lao.recomputed;
+        ++counts.updates;
+        counts.partial += stats.dispatched < stats.voxels;
+    };
+    for (const Shape& shape : shapes) {
+        pair.meshes([&](clip::ClipMeshSet& set) {
             set.clear();
             set.add(shape.mesh, glm::dvec3(1.0), {}, shape.name);
-            for (int i = 0; i < poses; ++i) {
-                set.setPose(0, randomPose(random, 28.0));
-                CaoScene::Result lao = scene.render(ShadingMode::Lao);
-                CaoScene::Result cao = scene.render(ShadingMode::Cao);
-                expectBitIdentical(lao, cao, std::string(shape.name) + " pose " + std::to_string(i));
-                recomputed += cao.recomputed;
-                total += lao.recomputed;
-                if (HasFailure()) return;
-            }
-        }
-        // Two overlapping meshes (the union of clipped and of dilated regions, section 3.6).
-        clip::ClipMeshSet& set = scene.renderer->clipMeshes();
-        set.clear();
-        set.add(shapes[0].mesh, glm::dvec3(1.0), {}, "sphere");
-        set.add(shapes[1].mesh, glm::dvec3(1.0), {}, "box");
+        });
         for (int i = 0; i < poses; ++i) {
-            clip::RigidPose a = randomPose(random, 28.0), b = a;
-            b.position += glm::dvec3(5, -3, 2);
-            b.orientation = randomPose(random, 1.0).orientation;
+            clip::RigidPose pose = randomPose(random, extent);
+            pair.meshes([&](clip::ClipMeshSet& set) { set.setPose(0, pose); });
+            CaoAgainstFreshLao::Frame f = pair.render();
+            expectBitIdentical(f.lao, f.cao, label + ", " + shape.name + " pose " + std::to_string(i));
+            count(f);
+            if (::testing::Test::HasFailure()) return counts;
+        }
+    }
+    // Two overlapping meshes (the union of clipped and of dilated regions, section 3.6).
+    pair.meshes([&](clip::ClipMeshSet& set) {
+        set.clear();
+        set.add(shapes[0].mesh, glm::dvec3(1.0), {}, shapes[0].name);
+        set.add(shapes[1].mesh, glm::dvec3(1.0), {}, shapes[1].name);
+    });
+    for (int i = 0; i < poses; ++i) {
+        clip::RigidPose a = randomPose(random, extent), b = a;
+        b.position += glm::dvec3(5, -3, 2);
+        b.orientation = randomPose(random, 1.0).orientation;
+        pair.meshes([&](clip::ClipMeshSet& set) {
             set.setPose(0, a);
             set.setPose(1, b);
-            expectBitIdentical(scene.render(ShadingMode::Lao), scene.render(ShadingMode::Cao), "two meshes pose " + std::to_string(i));
-            if (HasFailure()) return;
-        }
-        std::printf("[ cao ] %s: CAO recomputed %.1f%% of what full LAO recomputed\n",
-                    dispatch == LaoSettings::Dispatch::Compacted ? "compacted" : "full grid", 100.0 * static_cast<double>(recomputed) / static_cast<double>(total));
-        EXPECT_LT(recomputed, total) << "CAO must skip voxels";
+        });
+        CaoAgainstFreshLao::Frame f = pair.render();
+        expectBitIdentical(f.lao, f.cao, label + ", two meshes pose " + std::to_string(i));
+        count(f);
+        if (::testing::Test::HasFailure()) break;
     }
+    return counts;
+}
+
+std::vector<Shape> standardShapes(double size) {
+    return {{"sphere", std::make_shared<const clip::TriangleMesh>(clip::makeSphere(7.0 * size, 3))},
+            {"box", std::make_shared<const clip::TriangleMesh>(clip::makeBox(size * glm::dvec3(12, 9, 7)))},
+            {"torus", std::make_shared<const clip::TriangleMesh>(clip::makeTorus(8.0 * size, 3.0 * size, 48, 24))}};
+}
+
+// The contract: over 50 random poses each of a sphere, a box and a torus (some partly outside the volume),
+// and of two overlapping meshes, CAO gives V_AO and images bit-identical to recomputing LAO everywhere. The
+// LAO side runs in a second, freshly constructed renderer that never runs CAO, and the CAO renderer never
+// runs LAO: outside the box a CAO update visits, V_AO must already hold what full LAO writes because CAO's
+// own earlier updates left it so. In the 28^3 scene every map box covers the volume; the 40^3 scene with a
+// shorter reach and smaller meshes makes most updates visit a box inside it, so a CAO that forgets the last
+// update's region (stale clipped voxels where the mesh was) fails here. The two step-V variants (compacted
+// list, full grid) are both held to it.
+TEST(Cao, EqualsFullLaoBitForBitOverRandomPoses) {
+    struct Config {
+        const char* name;
+        CaoSpec spec;
+        double shapeSize, extent;
+        unsigned seed;
+        int poses;
+    };
+    CaoSpec large{.dims = glm::ivec3(40), .samples = 4};
+    CaoSpec largeFullGrid = large;
+    largeFullGrid.dispatch = LaoSettings::Dispatch::FullGrid;
+    const Config configs[] = {{"compacted", CaoSpec{}, 1.0, 28.0, 1, 50},
+                              {"full grid", CaoSpec{.dispatch = LaoSettings::Dispatch::FullGrid}, 1.0, 28.0, 2, 10},
+                              {"compacted, 40^3 reach 3 mm", large, 0.5, 40.0, 3, 20},
+                              {"full grid, 40^3 reach 3 mm", largeFullGrid, 0.5, 40.0, 4, 8}};
+    for (const Config& c : configs) {
+        PropertyCounts counts = expectCaoEqualsFreshLaoOverRandomPoses(c.spec, standardShapes(c.shapeSize), c.seed, c.poses, c.extent, c.name);
+        if (HasFailure()) return;
+        std::printf("[ cao ] %s: CAO recomputed %.1f%% of what full LAO recomputed; %d of %d updates visited less than the volume\n",
+                    c.name, 100.0 * static_cast<double>(counts.recomputed) / static_cast<double>(counts.total), counts.partial, counts.updates);
+        EXPECT_LT(counts.recomputed, counts.total) << "CAO must skip voxels";
+        if (c.spec.dims.x == 40) {
+            EXPECT_GT(counts.partial, counts.updates / 2) << c.name << ": most updates must visit a box inside the volume";
+        }
+    }
+}
+
+// The index-to-world affine of an anisotropic, oblique grid: spacing 0.6 x 0.9 x 2.5 mm, turned 20 degrees
+// about an oblique axis, centred near (not on) the origin.
+glm::dmat4 obliqueAffine(glm::ivec3 dims) {
+    glm::dmat4 turn = glm::mat4_cast(glm::angleAxis(glm::radians(20.0), glm::normalize(glm::dvec3(1.0, 2.0, 3.0))));
+    glm::dmat4 shift(1.0);
+    shift[3] = glm::dvec4(0.7, -0.4, 0.3, 1.0);
+    return shift * turn * test::centredAffine(dims, glm::dvec3(0.6, 0.9, 2.5));
+}
+
+// Blobs over a field with opacity everywhere in a 60 mm box, so clipping changes LAO wherever a mesh goes.
+double waves(glm::dvec3 p) {
+    return std::min(255.0, 110.0 + 80.0 * std::sin(0.45 * p.x) * std::sin(0.35 * p.y + 1.0) * std::sin(0.3 * p.z + 2.0) + 0.5 * blobs(p));
+}
+
+CaoSpec obliqueSpec(LaoSettings::Dispatch dispatch) {
+    CaoSpec spec;
+    spec.dims = glm::ivec3(40, 36, 24);   // 24 x 32 x 60 mm: map boxes (R = 9 mm) fit inside along the long axis
+    spec.affine = obliqueAffine(spec.dims);
+    spec.field = waves;
+    spec.stepMm = 0.7;                    // different from every spacing and from the cell diagonal (2.72 mm)
+    spec.samples = 6;                     // reach 3.5 mm
+    spec.dispatch = dispatch;
+    return spec;
+}
+
+// The contract on an anisotropic, oblique grid with an LAO step unlike any spacing: the dilation radius
+// (cell diagonal of a sheared cell), the map box and the visited region are all derived from the affine, and
+// CAO must still equal fresh full LAO bit for bit, over several seeds of random poses.
+TEST(Cao, EqualsFreshLaoOnAnisotropicObliqueGrids) {
+    for (auto dispatch : {LaoSettings::Dispatch::Compacted, LaoSettings::Dispatch::FullGrid}) {
+        bool compacted = dispatch == LaoSettings::Dispatch::Compacted;
+        std::uint64_t recomputed = 0, total = 0;
+        int partial = 0, updates = 0;
+        for (unsigned seed : compacted ? std::vector<unsigned>{31, 32, 33} : std::vector<unsigned>{34}) {
+            PropertyCounts counts = expectCaoEqualsFreshLaoOverRandomPoses(
+                obliqueSpec(dispatch), standardShapes(0.8), seed, 12, 40.0, std::string(compacted ? "compacted" : "full grid") + " seed " + std::to_string(seed));
+            if (HasFailure()) return;
+            recomputed += counts.recomputed;
+            total += counts.total;
+            partial += counts.partial;
+            updates += counts.updates;
+        }
+        std::printf("[ cao ] oblique %s: CAO recomputed %.1f%% of what full LAO recomputed; %d of %d updates visited less than the volume\n",
+                    compacted ? "compacted" : "full grid", 100.0 * static_cast<double>(recomputed) / static_cast<double>(total), partial, updates);
+        EXPECT_LT(recomputed, total) << "CAO must skip voxels";
+        EXPECT_GT(partial, updates / 8) << "updates must also visit boxes inside the volume";
+    }
+}
+
+// A scene where the dilation radius R = reach + 2 cell diagonals and the kernel's sqrt(2) map pixels are
+// both needed, not just safe. Every term of the derivation (render/ambient_occlusion.cpp, clip/clip_mesh_set.cpp
+// kernelRadiusMm) is made to reach its bound along one line:
+//  - a 1 mm grid turned so its cell diagonal (1, 1, 1) points along world +x, and one LAO direction
+//    (Fibonacci K = 1: world +x, no jitter), M = 2, step 1.1 cell diagonals: the only LAO sample q of voxel v
+//    lies at v + 1.1 (1, 1, 1) (index), and its trilinear footprint reaches the corner u = v + (2, 2, 2);
+//  - only the lattice plane of u is opaque (alpha 1 per mm), so V_AO(v) = (1 + (1 - V_o(u) f^3)^e) / 2 with
+//    f = 0.1: it changes (by ~2.5 R16 steps) when V_o(u) drops by one clip sample of 25;
+//  - a box whose -x face lies just before s = u + (1, 1, 1), u's corner clip sample: s is clipped, v is
+//    |s - v| = 3 cell diagonals = 5.196 mm from it, R = 5.369 mm;
+//  - the face is parallel to the box's clipping camera axis, so the map pixels quantise the distance: a
+//    kernel covers v only if floor(kernel / px) px >= 5.196 mm when s sits just past a pixel edge.
+// Box sizes (map pixel 0.36-0.45 mm) and offsets along x (one lattice step) are scanned. The correct radius
+// must give CAO == fresh LAO everywhere; a radius one cell diagonal short, or a kernel without the sqrt(2)
+// pixel term (injected: the radius is set so kernelRadiusMm equals R + epsilon; the renderer sets the
+// radius only at construction and in setLaoSettings, so it stays), must break it somewhere. Measured: the
+// correct radius 0 of 135 configurations differ, one cell diagonal short 122 of 135, no pixel term 11 of 135.
+constexpr double kSqrt3 = 1.7320508075688772;
+
+glm::dmat4 cellDiagonalAlongX(glm::ivec3 dims) {
+    glm::dvec3 from = glm::normalize(glm::dvec3(1.0)), to(1.0, 0.0, 0.0);
+    glm::dquat turn = glm::angleAxis(std::acos(glm::dot(from, to)), glm::normalize(glm::cross(from, to)));
+    return glm::mat4_cast(turn) * test::centredAffine(dims);
+}
+
+// World x of lattice plane i + j + k = level of cellDiagonalAlongX(24^3) (planes 1/sqrt(3) mm apart).
+double latticePlaneX(int level) { return (level - 3 * 11.5) / kSqrt3; }
+
+CaoSpec tightSpec() {
+    CaoSpec spec;
+    spec.dims = glm::ivec3(24);
+    spec.affine = cellDiagonalAlongX(spec.dims);
+    const double opaqueX = latticePlaneX(30);   // the plane of the voxels u
+    spec.field = [opaqueX](glm::dvec3 p) { return std::abs(p.x - opaqueX) < 0.2 ? 255.0 : 0.0; };
+    spec.tf.color = {{0, glm::dvec3(0.8)}};
+    spec.tf.opacity = {{0, 0.0}, {254, 0.0}, {255, 1.0}};
+    spec.pattern = "fib1";
+    spec.samples = 2;
+    spec.stepMm = 1.1 * kSqrt3;
+    return spec;
+}
+
+TEST(Cao, DilationRadiusIsTightEnoughToMatter) {
+    const double clippedPlaneX = latticePlaneX(33);   // the plane of the corner samples s = u + (1, 1, 1)
+    enum Variant { Correct, OneCellDiagonalShort, NoPixelTerm };
+    const char* names[] = {"correct radius", "radius one cell diagonal short", "kernel without the sqrt(2) pixel term"};
+    int failing[3] = {0, 0, 0}, configurations = 0;
+    for (Variant variant : {Correct, OneCellDiagonalShort, NoPixelTerm}) {
+        configurations = 0;
+        for (double side = 11.0; side <= 15.01; side += 0.5) {
+            CaoAgainstFreshLao pair(tightSpec());
+            const VolumeGeometry& g = pair.cao.renderer->geometry();
+            const double R = AmbientOcclusion::dilationRadiusMm(pair.cao.renderer->laoSettings(), g);
+            // The scene needs R >= 3 cell diagonals (the chain v -> s); R = 3.1 of them today.
+            if (side == 11.0 && variant == Correct) std::printf("[ cao tight ] R %.4f mm, |s - v| %.4f mm\n", R, 3 * kSqrt3);
+            auto box = std::make_shared<const clip::TriangleMesh>(clip::makeBox(glm::dvec3(8.0, side, 12.0)));
+            pair.meshes([&](clip::ClipMeshSet& set) { set.add(box, glm::dvec3(1.0), clip::RigidPose{glm::dvec3(clippedPlaneX + 4.0, 0, 0), {}}, "box"); });
+            clip::ClipMeshSet& caoSet = pair.cao.renderer->clipMeshes();
+            double radius = R;
+            if (variant == OneCellDiagonalShort) radius = R - g.cellDiagonalMm();
+            if (variant == NoPixelTerm) {
+                // The radius whose kernel is what kernelRadiusMm(R) would be without sqrt(2) px (the pixel size
+                // depends on the radius through the map margin: a few fixed-point steps).
+                const double target = R + 1e-3 * R + 1e-3;
+                for (int step = 0; step < 6; ++step) {
+                    caoSet.setDilationRadiusMm(radius);
+                    caoSet.update();
+                    radius += target - caoSet.kernelRadiusMm(0);
+                }
+            }
+            pair.meshes([&](clip::ClipMeshSet& set) { set.setDilationRadiusMm(radius); });
+            caoSet.update();
+            for (double shift = 0.0; shift < 0.59; shift += 0.04, ++configurations) {
+                clip::RigidPose pose{glm::dvec3(clippedPlaneX + 4.0 - shift, 0.3, -0.2), {}};
+                pair.meshes([&](clip::ClipMeshSet& set) { set.setPose(0, pose); });
+                CaoAgainstFreshLao::Frame f = pair.render();
+                std::size_t differing = differingVoxels(f.lao, f.cao);
+                failing[variant] += differing > 0;
+                if (variant == Correct) {
+                    expectBitIdentical(f.lao, f.cao, "box side " + std::to_string(side) + " shift " + std::to_string(shift));
+                    if (HasFailure()) return;
+                }
+            }
+        }
+        std::printf("[ cao tight ] %s: CAO != fresh LAO in %d of %d configurations\n", names[variant], failing[variant], configurations);
+    }
+    EXPECT_EQ(failing[Correct], 0);
+    EXPECT_GT(failing[OneCellDiagonalShort], 0) << "shrinking R by a cell diagonal must break CAO == LAO in this scene";
+    EXPECT_GT(failing[NoPixelTerm], 0) << "dropping the sqrt(2) pixel term must break CAO == LAO in this scene";
 }
 
 // A CAO update visits only the box around this frame's and the last frame's meshes. Over a path a user could
@@ -362,7 +600,11 @@ TEST(Cao, DegenerateScaleAndTooManyMeshesAreClearErrors) {
     } catch (const InputError& e) {
         EXPECT_EQ(e.field(), "scale");
     }
-    for (int i = 0; i < clip::ClipMeshSet::maxMeshes; ++i) set.add(sphere, glm::dvec3(1.0), {}, "m" + std::to_string(i));
+    for (int i = 0; i < clip::ClipMeshSet::maxMeshes; ++i) {
+        std::string name = "m";
+        name += std::to_string(i);
+        set.add(sphere, glm::dvec3(1.0), {}, name);
+    }
     try {
         set.add(sphere, glm::dvec3(1.0), {}, "one too many");
         FAIL() << "the mesh limit must be enforced";

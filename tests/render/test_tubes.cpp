@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -85,6 +86,31 @@ TransferFunction whiteTransferFunction(double slabAlpha, double denseAlpha) {
     return tf;
 }
 
+// The G-buffer and the ray-cast image share one pixel grid with row 0 at the top (pixel_ray.glsl): a tube
+// above the camera's target appears in the upper half of the image, in every mode that draws tubes. (The
+// G-buffer was rasterised with GL's row 0 at the bottom, so tubes away from the image centre were mirrored
+// vertically: in a scene looking at an off-centre target they floated above the head.)
+TEST(Tubes, ATubeAboveTheTargetIsInTheUpperHalfOfTheImage) {
+    glm::ivec3 dims(32);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [](glm::dvec3) { return 0.0; });
+    Renderer renderer(glContext(), volume, whiteTransferFunction(0.15, 0.15));
+    renderer.setTubes(straightTube(glm::dvec3(0, 0, 8), glm::dvec3(1, 0, 0), 12.0, 1.5, glm::vec4(1, 0, 0, 1)), TubeShading{});
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong, ShadingMode::Dos}) {
+        renderer.render(frontFrame(mode));
+        Image image = renderer.readImage();
+        std::vector<float> depth = renderer.gbuffer().readDepth();
+        int upper = 0, lower = 0;
+        for (int y = 0; y < 48; ++y)
+            for (int x = 0; x < 48; ++x) {
+                bool tube = image.at(x, y).a > 0.5f && image.at(x, y).r > 2.0f * image.at(x, y).g;
+                (y < 24 ? upper : lower) += tube;
+                EXPECT_EQ(tube, depth[static_cast<std::size_t>(y * 48 + x)] > 0) << shadingModeName(mode) << " pixel " << x << ", " << y;
+            }
+        EXPECT_GT(upper, 20) << shadingModeName(mode);
+        EXPECT_EQ(lower, 0) << shadingModeName(mode) << ": the tube is mirrored below the centre";
+    }
+}
+
 // Geometry to volume (Fig. 2 c): a tube in front of a uniform slab darkens a disc of the slab behind it,
 // and only there.
 TEST(Tubes, TubeDarkensTheVolumeBehindItAndOnlyThere) {
@@ -160,6 +186,74 @@ TEST(Tubes, DenseLayerInFrontDarkensTheTubeAndClippingItRestores) {
     double restored = partialAtTube(renderer);
     EXPECT_LT(shadowed, unshadowed - 0.02) << "the layer must shadow the tube";
     EXPECT_NEAR(restored, unshadowed, 1e-6) << "with the layer clipped away the tube receives what it does without it";
+}
+
+// A tube's shadow on the volume does not depend on the slice distance: its opacity is an extinction over
+// its depth (dos_slice.comp), not an injection per slice behind its surface. The shadow, summed over the
+// image (the cone blur spreads it differently for each d but keeps its sum), is the same for d and d / 2.
+TEST(Tubes, ATubesShadowIsTheSameForHalfTheSliceDistance) {
+    glm::ivec3 dims(32);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
+                                         [](glm::dvec3 p) { return p.y < 2.0 ? 60.0 : 0.0; });
+    TubeVertices tube = straightTube(glm::dvec3(0, 6, 0), glm::dvec3(0, 0, 1), 6.0, 1.5, glm::vec4(1));
+    TubeShading shading;
+    shading.geometryOpacity = 0.3;   // far from saturating, so extra slices would show
+    shading.thicknessMm = 3.0;
+    auto shadowSum = [&](double d) {
+        Renderer renderer(glContext(), volume, whiteTransferFunction(0.15, 0.15));
+        FrameDescription frame = frontFrame(ShadingMode::Dos);
+        frame.dos.sliceDistanceMm = d;
+        renderer.render(frame);
+        Image without = renderer.readImage();
+        renderer.setTubes(tube, shading);
+        renderer.render(frame);
+        Image with = renderer.readImage();
+        std::vector<float> depth = renderer.gbuffer().readDepth();
+        double sum = 0;
+        for (std::size_t i = 0; i < depth.size(); ++i)
+            if (depth[i] == 0) sum += without.pixels[i].r - with.pixels[i].r;  // the slab, where the tube is not
+        return sum;
+    };
+    double full = shadowSum(1.0), half = shadowSum(0.5);
+    std::printf("[ tubes ] shadow summed over the image: d = 1 mm %.4f, d = 0.5 mm %.4f\n", full, half);
+    ASSERT_GT(full, 0.5) << "the tube must shadow the slab";
+    EXPECT_NEAR(half / full, 1.0, 0.1);
+}
+
+// The occlusion a tube receives (the partial occlusion buffer) is continuous along a tube that runs in
+// depth: interpolated between the slices around its surface (seed 000 eq. 3), not constant within a slice
+// and jumping at the next.
+TEST(Tubes, PartialOcclusionIsContinuousAlongATubeTiltedInDepth) {
+    glm::ivec3 dims(32);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [](glm::dvec3) { return 60.0; });
+    const double alphaUnit = 0.05, d = 2.0;
+    Renderer renderer(glContext(), volume, whiteTransferFunction(alphaUnit, alphaUnit));
+    renderer.setTubes(straightTube(glm::dvec3(0, 0, 0), glm::dvec3(1, -0.6, 0), 24.0, 0.8, glm::vec4(1)), TubeShading{});
+    FrameDescription frame = frontFrame(ShadingMode::Dos);
+    frame.dos.sliceDistanceMm = d;
+    frame.dos.gridSize = 1;
+    frame.size = {96, 96};
+    renderer.render(frame);
+    std::vector<float> depth = renderer.gbuffer().readDepth();
+    std::vector<float> partial(depth.size());
+    glGetTextureImage(renderer.gbuffer().partialOcclusion(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(partial.size() * 4), partial.data());
+    // Along the row through the tube's axis, sorted by depth.
+    std::vector<std::pair<float, float>> row;
+    for (int x = 0; x < frame.size.x; ++x) {
+        std::size_t i = static_cast<std::size_t>(48 * frame.size.x + x);
+        if (depth[i] > 0) row.emplace_back(depth[i], partial[i]);
+    }
+    std::sort(row.begin(), row.end());
+    ASSERT_GT(row.size(), 40u);
+    ASSERT_GT(row.back().first - row.front().first, 4 * d) << "the tube must cross several slices in depth";
+    const double perSlice = 1.0 - std::pow(1.0 - alphaUnit, d);  // what one slice of the medium takes away
+    double largestJump = 0;
+    for (std::size_t i = 1; i < row.size(); ++i) {
+        EXPECT_LE(row[i].second, row[i - 1].second + 1e-6) << "deeper receives no more light";
+        largestJump = std::max(largestJump, double(row[i - 1].second - row[i].second));
+    }
+    std::printf("[ tubes ] partial occlusion along the tube: largest step %.4f, one slice takes %.4f\n", largestJump, perSlice * row.front().second);
+    EXPECT_LT(largestJump, 0.5 * perSlice * row.front().second) << "a staircase jumps by a whole slice's attenuation";
 }
 
 // Geometry to geometry (Fig. 2 b): a tube crossing in front of another darkens it nearby (vicinity term).
