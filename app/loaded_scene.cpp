@@ -5,6 +5,8 @@
 #include "base/error.h"
 #include "base/log.h"
 
+#include <algorithm>
+
 namespace curette {
 
 LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath) {
@@ -20,12 +22,15 @@ LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath) {
         throw;
     }
     for (const SceneTubes& t : loaded.scene.tubes) loaded.tracts.push_back(io::readTractogram(t.path));
+    loaded.labels = loadSceneLabels(loaded.scene, loaded.volume);
     return loaded;
 }
 
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
     const Scene& scene = loaded.scene;
     renderer.setLaoSettings(scene.lao);
+    LabelRendering labels = labelRendering(loaded.labels);
+    if (!labels.ids.empty()) renderer.setLabels(std::make_unique<LabelOverlay>(loaded.volume.dims, labels.ids, labels.styles));
     syncClipMeshes(InteractionState::fromScene(scene), renderer.clipMeshes());
     if (scene.tubes.empty()) {
         renderer.clearTubes();
@@ -46,7 +51,11 @@ void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
         all.colors.insert(all.colors.end(), v.colors.begin(), v.colors.end());
         for (std::uint32_t index : v.indices) all.indices.push_back(base + index);
     }
-    renderer.setTubes(all, scene.tubeShading);
+    TubeShading shading = scene.tubeShading;
+    double radius = 0;
+    for (const SceneTubes& t : scene.tubes) radius = std::max(radius, t.settings.radiusMm);
+    shading.thicknessMm = 2.0 * radius;  // the depth a tube fills behind its surface in the slab pass
+    renderer.setTubes(all, shading);
 }
 
 ShadingMode parseShadingOption(const std::string& option, const std::string& text) {

@@ -2,6 +2,7 @@
 // A scene with its volume read from disk: the common first step of render, view, bench and replay.
 
 #include "app/scene.h"
+#include "app/scene_labels.h"
 #include "render/renderer.h"
 #include "base/tractogram.h"
 #include "base/volume.h"
@@ -12,11 +13,12 @@ struct LoadedScene {
     Scene scene;
     VolumeData volume;
     std::vector<Tractogram> tracts;   // one per scene.tubes entry
+    std::vector<LoadedLabelSet> labels;  // one per scene.labels entry, on the scan grid
 };
 
 LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
 
-// Hands the scene's LAO settings, clip meshes (through the session step's one path, app/session_step.h) and
+// Hands the scene's LAO settings, labels, clip meshes (through the session step's one path, app/session_step.h) and
 // tubes to a renderer made for its volume: every command that renders a scene goes through here, so they all
 // render the same thing.
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer);

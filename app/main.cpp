@@ -25,10 +25,16 @@ const char* kUsage =
     "         [--frames N] [--fps F] [--report-hz F] [--seed N] [--mapping F] [--unplug FRAME]\n"
     "  replay F.jsonl                   re-render a session headless, frame by frame\n"
     "         [--out DIR] [--every N] [--check] [--from-reports] [--no-render] [--lenient] [--size WxH]\n"
-    "  bench raycast|cao|dos --scene S  speed with the error against the CPU reference next to it\n"
+    "         [--report]                 with --out: the removal report every Nth frame, removal.csv/.png\n"
+    "  report --scene S --out DIR       what the carve removes (mL, per structure, per tract bundle, margins)\n"
+    "         [--session F --frame N] [--lps] [--no-exports]\n"
+    "                                   and the plan's exports: labelmap (.nii.gz, .seg.nrrd), cavity\n"
+    "                                   surface (STL, glTF), plan scene, cut and spared tracts (.tck)\n"
+    "  bench raycast|cao|dos|ismos --scene S  speed with the error against the CPU reference next to it\n"
     "  bench input                      report parsing throughput and report-to-pose latency\n"
+    "  bench report --scene S           the removal report's time per stage, and its GPU inputs vs the CPU oracle\n"
     "\n"
-    "shading modes: solid, phong, lao, cao, dos\n"
+    "shading modes: solid, phong, lao, cao, dos, ismos\n"
     "exit codes: 0 success, 2 bad input (the message names file, field and expected form),\n"
     "            3 system problem (GL driver, disk), 1 a failed check or anything else\n";
 
@@ -48,6 +54,7 @@ int main(int argc, char** argv) {
         if (command == "bench") return curette::commands::bench(args);
         if (command == "record") return curette::commands::record(args);
         if (command == "replay") return curette::commands::replay(args);
+        if (command == "report") return curette::commands::report(args);
         std::fprintf(stderr, "curette: unknown command \"%s\"\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const curette::InputError& e) {

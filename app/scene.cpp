@@ -7,6 +7,8 @@
 #include "base/error.h"
 #include "base/json_reader.h"
 
+#include <cstring>
+
 namespace curette {
 
 namespace fs = std::filesystem;
@@ -21,6 +23,14 @@ ScalarType parseScalarType(const JsonReader& r) {
     if (name == "int32") return ScalarType::Int32;
     if (name == "float32") return ScalarType::Float32;
     return ScalarType::Float64;
+}
+
+// "AF_L.trk" -> "AF_L", "aal.nii.gz" -> "aal": what a file is called in a report.
+std::string fileStem(const fs::path& path) {
+    std::string name = path.filename().string();
+    for (const char* suffix : {".gz", ".nii", ".nrrd", ".trk", ".tck", ".trx", ".mha", ".mhd"})
+        if (name.size() > std::strlen(suffix) && name.ends_with(suffix)) name.resize(name.size() - std::strlen(suffix));
+    return name;
 }
 
 fs::path resolvePath(const fs::path& scene, const std::string& path) {
@@ -84,7 +94,7 @@ void parseCamera(const JsonReader& r, CameraSpec& camera) {
     r.finish();
 }
 
-Light parseLight(const JsonReader& r) {
+Light parseLight(const JsonReader& r, IsmosLightShape& shape) {
     Light light;
     light.direction = r.at("direction").vec3();
     if (glm::length(light.direction) < 1e-9) r.at("direction").fail("a non-zero direction");
@@ -94,6 +104,12 @@ Light parseLight(const JsonReader& r) {
     if (auto i = r.find("intensity")) intensity = i->number(0, 100);
     light.color = color * intensity;
     if (auto s = r.find("space")) light.cameraSpace = s->oneOf({"camera", "world"}) == "camera";
+    if (auto d = r.find("disk_radius")) shape.diskRadius = d->number(0, 10);
+    if (auto spot = r.find("spot")) {
+        shape.spotAngleDeg = spot->at("angle_deg").number(0.1, 180);
+        if (auto t = spot->find("target")) shape.spotTarget = t->vec3();
+        spot->finish();
+    }
     r.finish();
     return light;
 }
@@ -166,8 +182,56 @@ SceneTubes parseTubes(const JsonReader& r, const fs::path& sceneFile) {
     }
     if (s.coloring == TubeSettings::Coloring::Scalar && s.scalarName.empty())
         throw InputError(sceneFile.string(), r.path() + ".scalar", "the name of a per-point scalar for \"color\": \"scalar\"", "nothing");
+    t.name = fileStem(t.path);
+    if (auto v = r.find("name")) t.name = v->string();
+    if (auto v = r.find("protected")) t.protectedBundle = v->boolean();
     r.finish();
     return t;
+}
+
+// Ids (numbers) or names (strings), kept as text until the table is read.
+std::vector<std::string> idsOrNames(const JsonReader& r) {
+    std::vector<std::string> out;
+    for (const JsonReader& e : r.elements())
+        out.push_back(e.isNumber() ? std::to_string(e.integer(0, 65535)) : e.string());
+    return out;
+}
+
+SceneLabels parseLabels(const JsonReader& r, const fs::path& sceneFile) {
+    SceneLabels l;
+    l.jsonPath = r.path();
+    l.path = resolvePath(sceneFile, r.at("path").string());
+    l.name = fileStem(l.path);
+    if (auto v = r.find("name")) l.name = v->string();
+    if (auto v = r.find("table")) l.table = resolvePath(sceneFile, v->string());
+    if (auto v = r.find("colors")) l.colors = resolvePath(sceneFile, v->string());
+    if (auto v = r.find("opacity")) l.opacity = v->number(0, 1);
+    if (auto v = r.find("show")) {
+        if (v->isArray()) {
+            l.show = SceneLabels::Show::Listed;
+            l.shown = idsOrNames(*v);
+        } else {
+            std::string how = v->oneOf({"all", "protected", "none"});
+            l.show = how == "all" ? SceneLabels::Show::All : how == "none" ? SceneLabels::Show::None : SceneLabels::Show::Protected;
+        }
+    }
+    if (auto v = r.find("protected")) l.protectedLabels = idsOrNames(*v);
+    if (auto v = r.find("protected_color")) l.protectedColor = v->vec3(0, 1);
+    r.finish();
+    return l;
+}
+
+ReportSpec parseReport(const JsonReader& r) {
+    ReportSpec spec;
+    if (auto v = r.find("tissue")) {
+        std::string t = v->oneOf({"opacity", "labels", "all"});
+        spec.tissue = t == "opacity" ? ReportSpec::Tissue::Opacity : t == "labels" ? ReportSpec::Tissue::Labels : ReportSpec::Tissue::All;
+    }
+    if (auto v = r.find("opacity_threshold")) spec.opacityThreshold = v->number(0, 1);
+    if (auto v = r.find("tissue_labels")) spec.tissueLabels = idsOrNames(*v);
+    if (auto v = r.find("tract_step_mm")) spec.tractStepMm = v->number(0.01, 10);
+    r.finish();
+    return spec;
 }
 
 void parseTubeRendering(const JsonReader& r, Scene& scene) {
@@ -190,6 +254,26 @@ DosSettings parseDos(const JsonReader& r) {
     if (auto v = r.find("ambient")) d.ambientRadiance = v->number(0, 100);
     r.finish();
     return d;
+}
+
+IsmosSettings parseIsmos(const JsonReader& r) {
+    IsmosSettings s;
+    if (auto v = r.find("occlusion")) s.partial = v->oneOf({"partial", "full"}) == "partial";
+    if (auto v = r.find("opacity")) s.fit = v->oneOf({"exact", "fit"}) == "fit";
+    if (auto v = r.find("layers")) s.layers = v->integer(1, 4);
+    if (auto v = r.find("blend_layers")) s.blendLayers = v->boolean();
+    if (auto v = r.find("light_samples")) s.lightSamples = v->integer(1, 1024);
+    if (auto v = r.find("test_points")) s.testPoints = v->integer(1, 4096);
+    if (auto v = r.find("hemisphere_radius")) s.hemisphereRadius = v->number(0.01, 100);
+    if (auto v = r.find("disk_radius")) s.diskRadius = v->number(0, 10);
+    if (auto v = r.find("ambient")) s.ambient = v->number(0, 1);
+    if (auto v = r.find("opacity_threshold")) s.opacityThreshold = v->number(0, 1);
+    if (auto v = r.find("depth_bias")) s.depthBias = v->number(0, 1);
+    if (auto v = r.find("falloff")) s.falloff = v->boolean();
+    if (auto v = r.find("light_positions")) s.sphere = v->oneOf({"hemisphere", "sphere"}) == "sphere";
+    if (auto v = r.find("base")) s.base = v->oneOf({"phong", "solid"}) == "solid" ? ShadingMode::Solid : ShadingMode::Phong;
+    r.finish();
+    return s;
 }
 
 }  // namespace
@@ -216,6 +300,7 @@ Scene parseScene(std::string_view text, const fs::path& path) {
     }
 
     if (auto c = root.find("camera")) parseCamera(*c, scene.camera);
+    std::vector<IsmosLightShape> lightShapes;   // ISMOS per-light keys, kept beside the lights
     if (auto s = root.find("shading")) {
         auto mode = parseShadingMode(s->isString() ? s->string() : "");
         if (!mode) s->fail("one of " + shadingModeList());
@@ -223,7 +308,11 @@ Scene parseScene(std::string_view text, const fs::path& path) {
     }
     if (auto lights = root.find("lights")) {
         scene.lights.clear();
-        for (const JsonReader& l : lights->elements(0, 4)) scene.lights.push_back(parseLight(l));
+        for (const JsonReader& l : lights->elements(0, 4)) {
+            IsmosLightShape shape;
+            scene.lights.push_back(parseLight(l, shape));
+            lightShapes.push_back(shape);
+        }
     }
     if (auto image = root.find("image")) {
         if (auto w = image->find("width")) scene.imageSize.x = w->integer(1, 16384);
@@ -247,6 +336,13 @@ Scene parseScene(std::string_view text, const fs::path& path) {
         for (const JsonReader& t : tubes->elements(0, 64)) scene.tubes.push_back(parseTubes(t, path));
     if (auto r = root.find("tube_rendering")) parseTubeRendering(*r, scene);
     if (auto d = root.find("dos")) scene.dos = parseDos(*d);
+    if (auto i = root.find("ismos")) scene.ismos = parseIsmos(*i);
+    scene.ismos.lightShapes = lightShapes;
+    if (auto labels = root.find("labels"))
+        for (const JsonReader& l : labels->elements(0, 8)) scene.labels.push_back(parseLabels(l, path));
+    if (auto r = root.find("report")) scene.report = parseReport(*r);
+    if (scene.report.tissue == ReportSpec::Tissue::Labels && scene.labels.empty())
+        throw InputError(path.string(), "report.tissue", "\"opacity\" or \"all\" in a scene without labels", "\"labels\"");
     root.finish();
     return scene;
 }
@@ -279,6 +375,7 @@ FrameDescription initialFrame(const Scene& scene, const VolumeGeometry& geometry
     frame.lights = scene.lights;
     frame.raycast = scene.raycast;
     frame.dos = scene.dos;
+    frame.ismos = scene.ismos;
     return frame;
 }
 

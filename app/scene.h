@@ -12,7 +12,7 @@
 //   "transfer_function": "tf.json" | "tf.vp" | { inline TF, see assets/tf/README.md },
 //   "camera": {"target": "center" | [x,y,z], "distance_mm": "fit" | number, "azimuth_deg": 0,
 //              "elevation_deg": 0, "fov_deg": 30},
-//   "shading": "solid" | "phong" | "lao" | "cao" | "dos",
+//   "shading": "solid" | "phong" | "lao" | "cao" | "dos" | "ismos",
 //   "lights": [{"direction": [x,y,z], "color": [r,g,b], "intensity": 1, "space": "camera" | "world"}],
 //   "image": {"width": 512, "height": 512, "background": [r,g,b,a]},
 //   "raycast": {"step_mm": 0 (auto), "early_termination": 0.99, "jitter_seed": 0, "skip_empty_space": true},
@@ -28,8 +28,23 @@
 //   "tube_rendering": {"mode": "tubes" | "lines", "geometry_opacity": 0.9, "vicinity_distance_mm": 3,
 //                      "vicinity_samples": 64, "depth_bias_mm": 0.5, "line_diffuse_exponent": 2,
 //                      "material": {"ambient": .25, "diffuse": .75, "specular": .35, "specular_power": 32}},
-//   "dos": {"cone_angle_deg": 60, "grid": 3, "slice_distance_mm": 0 (auto), "ambient": 1.0}
+//   "dos": {"cone_angle_deg": 60, "grid": 3, "slice_distance_mm": 0 (auto), "ambient": 1.0},
+//   "ismos": {"occlusion": "partial" | "full", "opacity": "exact" | "fit", "layers": 4, "blend_layers": true,
+//             "light_samples": 16, "test_points": 32, "hemisphere_radius": 2.0, "disk_radius": 0.2,
+//             "ambient": 0.3, "opacity_threshold": 0.5, "depth_bias": 0.01, "falloff": false,
+//             "light_positions": "hemisphere" | "sphere", "base": "phong" | "solid"}   (render/frame.h)
+//   lights also take "disk_radius": d (ISMOS, texture units) and "spot": {"angle_deg": 20,
+//             "target": [x,y,z] world mm (default: the volume's centre)},
+//   "labels": [{"path": "aal.nii.gz" (an integer volume on its own grid), "name": "AAL" (default: file stem),
+//               "table": "aal.nii.txt" (names and colours, app/io/label_table.h; default: the sibling
+//                        X.nii.txt, X.txt or X.ctbl when one exists), "colors": "aal.nii.lut" (overrides colours),
+//               "opacity": 0.5 (per unit length when shown), "show": "all" | "protected" | "none" | [ids or names],
+//               "protected": [ids or names], "protected_color": [r, g, b] (default: the table's colours)}],
+//                                                                       (at most 8 sets)
+//   "report": {"tissue": "opacity" | "labels" | "all", "opacity_threshold": 0.02,
+//              "tissue_labels": [ids or names of the first label set] (default: all its labels), "tract_step_mm": 0.25}
 // }
+// Tube entries also take "name" (default: file stem) and "protected": true (the report's margins and warnings).
 
 #include "app/io/volume_file.h"
 #include "clip/rigid_pose.h"
@@ -63,6 +78,31 @@ struct SceneClipMesh {
 struct SceneTubes {
     std::filesystem::path path;
     TubeSettings settings;
+    std::string name;            // the bundle's name in the report
+    bool protectedBundle = false;
+};
+
+// A label volume beside the scan. Ids and names are resolved against the table when the scene is loaded
+// (app/scene_labels.h), so the scene keeps what the user wrote.
+struct SceneLabels {
+    std::string name;
+    std::filesystem::path path;
+    std::optional<std::filesystem::path> table, colors;
+    double opacity = 0.5;
+    enum class Show { All, Protected, None, Listed } show = Show::All;
+    std::vector<std::string> shown;       // Show::Listed: ids or names
+    std::vector<std::string> protectedLabels;
+    std::optional<glm::dvec3> protectedColor;
+    std::string jsonPath;                 // "labels[0]", for messages
+};
+
+// What the removal report counts as tissue (plan/removal_report.h): by default the voxels the TF makes
+// visible (opacity per unit length above a threshold), which is what the planner sees removed.
+struct ReportSpec {
+    enum class Tissue { Opacity, Labels, All } tissue = Tissue::Opacity;
+    double opacityThreshold = 0.02;
+    std::vector<std::string> tissueLabels;   // Tissue::Labels: ids or names of the first label set (empty: all)
+    double tractStepMm = 0.25;
 };
 
 struct Scene {
@@ -83,6 +123,9 @@ struct Scene {
     bool tubesAsLines = false;
     TubeShading tubeShading;
     DosSettings dos;
+    IsmosSettings ismos;
+    std::vector<SceneLabels> labels;
+    ReportSpec report;
 };
 
 // Reads and validates a scene file (and the TF file it names); throws InputError naming the key.

@@ -19,6 +19,12 @@ inline constexpr unsigned tubeDepth = 11;
 inline constexpr unsigned tubeColor = 12;
 inline constexpr unsigned tubeNormal = 13;
 inline constexpr unsigned partialOcclusion = 14;
+inline constexpr unsigned labelIds = 15;
+inline constexpr unsigned labelStyles = 16;
+inline constexpr unsigned ismosLayerFront = 17;
+inline constexpr unsigned ismosLayerAlpha = 18;
+inline constexpr unsigned ismosLayerBack = 19;
+inline constexpr unsigned ismosFit = 20;
 
 inline constexpr unsigned imageOutput = 0;
 inline constexpr unsigned imageOpacity = 1;
@@ -27,6 +33,10 @@ inline constexpr unsigned imageAmbient = 3;
 inline constexpr unsigned imageDilation = 4;
 inline constexpr unsigned imageOcclusionNext = 5;
 inline constexpr unsigned imagePartialOcclusion = 6;
+inline constexpr unsigned imageIsmosLayerFront = 7;
+inline constexpr unsigned imageIsmosLayerAlpha = 8;
+inline constexpr unsigned imageIsmosLayerBack = 9;
+inline constexpr unsigned imageIsmosFit = 10;
 
 inline constexpr unsigned ssboSampleCounter = 0;
 inline constexpr unsigned ssboLaoDirections = 1;
@@ -34,6 +44,10 @@ inline constexpr unsigned ssboRecomputeList = 3;
 inline constexpr unsigned ssboDispatch = 4;
 inline constexpr unsigned ssboAntiAliasing = 5;
 inline constexpr unsigned ssboPoissonDisk = 8;
+inline constexpr unsigned ssboProbePoints = 6;
+inline constexpr unsigned ssboProbeResults = 7;
+inline constexpr unsigned ssboRemovalCounts = 9;
+inline constexpr unsigned ssboIsmosLightSamples = 10;
 
 inline constexpr unsigned uboClipMeshes = 0;
 

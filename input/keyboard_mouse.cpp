@@ -14,6 +14,7 @@ std::vector<Action> KeyboardMapper::update(const KeyboardMouseState& s, double d
     const char* modes[] = {"solid", "phong", "lao", "cao", "dos"};
     for (int m = 0; m < 5; ++m)
         if (edge(static_cast<Key>(static_cast<int>(Key::Digit1) + m))) actions.push_back(SetShading{modes[m]});
+    if (edge(Key::Digit6)) actions.push_back(SetShading{"ismos"});
     if (edge(Key::C)) actions.push_back(CycleShading{});
     if (edge(Key::F9)) actions.push_back(ToggleRecording{});
     if (edge(Key::P) || edge(Key::F12)) actions.push_back(Screenshot{});

@@ -3,7 +3,7 @@
 // GLFW each frame (and records it), and this turns it into actions for the selected mesh. Fixed keys:
 // W/S forward/back, A/D left/right, Q/E down/up (camera frame); Up/Down pitch, Left/Right yaw,
 // PageUp/PageDown roll; right-drag moves in the view plane; Tab next mesh; R reset; Insert add; Delete
-// remove; 1-5 solid/phong/lao/cao/dos; C cycle shading; F9 recording; P or F12 screenshot.
+// remove; 1-5 solid/phong/lao/cao/dos (ismos: C cycle); C cycle shading; F9 recording; P or F12 screenshot.
 
 #include "input/actions.h"
 
@@ -13,7 +13,9 @@ namespace curette::input {
 
 enum class Key : int {
     W, A, S, D, Q, E, Up, Down, Left, Right, PageUp, PageDown, Tab, R, Insert, Delete, Digit1, Digit2, Digit3, Digit4,
-    Digit5, C, F9, P, F12, Count
+    Digit5, C, F9, P, F12,
+    Digit6,   // after the others: recorded sessions store keys as bits, and old ones keep their meaning
+    Count
 };
 
 struct KeyboardMouseState {

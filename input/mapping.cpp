@@ -16,7 +16,7 @@ namespace {
 const std::vector<std::string> kGamepadAxes = {"left_x", "left_y", "right_x", "right_y", "left_trigger", "right_trigger", "triggers", "shoulders"};
 const std::vector<std::string> kSixDofAxes = {"tx", "ty", "tz", "rx", "ry", "rz"};
 const std::vector<std::string> kActions = {"cycle_mesh", "cycle_shading", "reset_pose", "add_mesh", "remove_mesh", "toggle_recording",
-                                           "screenshot", "shading:solid", "shading:phong", "shading:lao", "shading:cao", "shading:dos"};
+                                           "screenshot", "shading:solid", "shading:phong", "shading:lao", "shading:cao", "shading:dos", "shading:ismos"};
 const std::vector<std::string> kFamilies = {"gamepad", "dualshock4", "dualsense", "switch_pro", "xbox_bt", "spacemouse"};
 
 bool familyMatches(const std::string& wanted, DeviceFamily family) {

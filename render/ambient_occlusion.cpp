@@ -3,6 +3,7 @@
 #include "base/error.h"
 #include "base/progress.h"
 #include "gl/bindings.h"
+#include "render/mesh_voxel_box.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -29,17 +30,6 @@ gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label,
 
 }  // namespace
 
-std::vector<glm::dvec3> antiAliasingOffsets(int count) {
-    auto halton = [](int index, int base) {
-        double f = 1, r = 0;
-        for (int i = index; i > 0; i /= base) f /= base, r += f * (i % base);
-        return r;
-    };
-    std::vector<glm::dvec3> offsets;
-    for (int i = 1; i <= count; ++i) offsets.emplace_back(2 * halton(i, 2) - 1, 2 * halton(i, 3) - 1, 2 * halton(i, 5) - 1);
-    return offsets;
-}
-
 AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings) : volume_(volume), settings_(settings) {
     if (settings.samples < 1 || settings.samples > 1024)
         throw InputError("<lao settings>", "samples", "an integer in [1, 1024]", std::to_string(settings.samples));
@@ -49,6 +39,9 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
         throw InputError("<lao settings>", "antialiasing_samples", "an integer in [0, 256]",
                          std::to_string(settings.antiAliasingSamples));
     glm::ivec3 dims = volume.geometry().dims;
+    // Step V numbers voxels as 32-bit uints (lao_common.glsl, the recompute list).
+    if (std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z) > 0xFFFFFFFFull)
+        throw SystemError("the volume has more than 2^32 - 1 voxels, more than step V can number; lao and cao need a smaller volume");
     opacity_ = makeVolumeTexture(dims, GL_R16, "V_o (clipped opacity)", true);
     mask_ = makeVolumeTexture(dims, GL_R8UI, "V_m (categories)", false);
     precomputed_ = makeVolumeTexture(dims, GL_R16, "V_PAO (unclipped LAO)", false);
@@ -111,27 +104,9 @@ void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
 }
 
 AmbientOcclusion::VoxelRegion AmbientOcclusion::meshRegion(const clip::ClipMeshSet& clip) const {
-    const VolumeGeometry& g = volume_.geometry();
-    glm::dmat4 worldToIndex = g.worldToIndex();
-    // A voxel is a or b only if one of its clip samples (within a cell diagonal) or its centre falls in a map
-    // box; 1 mm and two voxels more absorb rounding of the map transforms.
-    double padMm = g.cellDiagonalMm() + 1.0;
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    for (int i = 0; i < clip.count(); ++i) {
-        clip::ClipMeshSet::WorldBox box = clip.mapBoxWorldBounds(i);
-        for (int corner = 0; corner < 8; ++corner) {
-            glm::dvec3 world((corner & 1) ? box.max.x + padMm : box.min.x - padMm, (corner & 2) ? box.max.y + padMm : box.min.y - padMm,
-                             (corner & 4) ? box.max.z + padMm : box.min.z - padMm);
-            glm::dvec3 index(worldToIndex * glm::dvec4(world, 1.0));
-            lo = glm::min(lo, index);
-            hi = glm::max(hi, index);
-        }
-    }
-    if (clip.count() == 0 || !glm::all(glm::lessThanEqual(lo, hi))) return {};
-    glm::dvec3 dims(g.dims);
-    glm::dvec3 first = glm::clamp(glm::floor(lo) - 2.0, glm::dvec3(0.0), dims);
-    glm::dvec3 end = glm::clamp(glm::ceil(hi) + 3.0, glm::dvec3(0.0), dims);
-    return {glm::ivec3(first), glm::max(glm::ivec3(end) - glm::ivec3(first), glm::ivec3(0))};
+    // The voxels a clip sample of which can fall in a map box (render/mesh_voxel_box.h).
+    plan::VoxelBox box = voxelBoxAroundMeshes(volume_.geometry(), clip);
+    return {box.origin, box.size};
 }
 
 void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,

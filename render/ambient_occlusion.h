@@ -14,6 +14,7 @@
 // and in the compacted variant a recompute list of 4 bytes per voxel.
 
 #include "clip/clip_mesh_set.h"
+#include "clip/coverage.h"
 #include "gl/program.h"
 #include "render/gpu_resources.h"
 #include "render/gpu_volume.h"
@@ -27,10 +28,8 @@
 
 namespace curette {
 
-// The N extra anti-aliasing offsets of step IV (Algorithm 2, line 9) in voxel index units: Halton points
-// (bases 2, 3, 5) in [-1, 1]^3, fixed so every run classifies the same. One definition for the GPU buffer and
-// the CPU twin.
-std::vector<glm::dvec3> antiAliasingOffsets(int count);
+// The N extra anti-aliasing offsets of step IV (Algorithm 2, line 9), defined in clip/coverage.h.
+using clip::antiAliasingOffsets;
 
 struct AmbientOcclusionStats {
     std::uint64_t voxels = 0;

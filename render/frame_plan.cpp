@@ -20,6 +20,11 @@ const PassInfo kPasses[] = {
     {Pass::SlabPass, "slab pass", "DOS Algorithms 1, 3; DOS+geometry Algorithms 2-4",
      {R::Volume, R::TransferFunction, R::GradientOpacity, R::ClipMaps, R::Ambient, R::GBuffer}, {R::OcclusionBuffers, R::GBuffer, R::OutputImage}, false},
     {Pass::Composite, "composite + vicinity", "DOS+geometry Algorithms 5-6", {R::GBuffer, R::OutputImage}, {R::OutputImage}, false},
+    {Pass::IsmosRayCast, "ISMOS 1 ray casting + layers", "ISMOS sec. 3.5-3.6: colour, 4 depth layers, transmittance fit",
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::Occupancy, R::ClipMaps, R::GBuffer},
+     {R::OutputImage, R::IsmosLayers, R::IsmosLayerBacks, R::IsmosFit}, false},
+    {Pass::IsmosOcclusion, "ISMOS 2 occlusion", "ISMOS sec. 3.3-3.7: full/partial occlusion, eq. 1-5, 13-16",
+     {R::IsmosLayers, R::IsmosLayerBacks, R::IsmosFit, R::IsmosLightSamples, R::OutputImage}, {R::OutputImage}, true},
 };
 static_assert(std::size(kPasses) == static_cast<std::size_t>(Pass::Count));
 }  // namespace
@@ -52,6 +57,10 @@ FramePlan planFrame(const PlanInputs& in) {
             case R::LaoDirections: return mode.ambientOcclusion;
             case R::TubeGeometry:
             case R::GBuffer: return tubes;
+            case R::IsmosLayers:
+            case R::IsmosLightSamples: return in.shading == ShadingMode::Ismos;
+            case R::IsmosLayerBacks: return in.shading == ShadingMode::Ismos && in.ismosExact;
+            case R::IsmosFit: return in.shading == ShadingMode::Ismos && in.ismosFit;
             default: return true;
         }
     };
@@ -72,13 +81,24 @@ FramePlan planFrame(const PlanInputs& in) {
             add(Pass::LaoRecompute);
         }
     }
-    if (tubes) {
+    if (tubes && in.shading == ShadingMode::Ismos) {
+        // Seed 003 with tubes: the ray cast stops at the tube surface, which becomes an opaque layer; the
+        // compositor lays the lit tube behind the volume, then the occlusion pass shades both.
+        add(Pass::TubeGBuffer);
+        add(Pass::IsmosRayCast);
+        add(Pass::Composite);
+        add(Pass::IsmosOcclusion);
+    } else if (tubes) {
         // Seed 000 Algorithm 1: G-buffer, slab pass, composite.
         add(Pass::TubeGBuffer);
         add(Pass::SlabPass);
         add(Pass::Composite);
     } else if (mode.slabPass) {
         add(Pass::SlabPass);
+    } else if (in.shading == ShadingMode::Ismos) {
+        // Seed 003: nothing precomputed, so a TF change or a moved light costs these two passes and no more.
+        add(Pass::IsmosRayCast);
+        add(Pass::IsmosOcclusion);
     } else {
         add(Pass::RayCast);
     }

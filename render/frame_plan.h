@@ -26,6 +26,8 @@ enum class Pass {
     RayCast,         // step VI
     SlabPass,        // seed 001 Algorithms 1, 3; seed 000 Algorithms 2-4
     Composite,       // seed 000 Algorithms 5, 6
+    IsmosRayCast,    // seed 003 pass 1: ray casting with depth layers and the transmittance fit
+    IsmosOcclusion,  // seed 003 pass 2: image-space occlusion, sections 3.3-3.7
     Count
 };
 
@@ -74,6 +76,8 @@ struct PlanInputs {
     bool tubesInView = false;      // ... and they may cover a pixel of this frame
     bool precomputedCurrent = false;
     bool ambientCurrent = false;
+    bool ismosExact = false;       // ismos: exact layer opacities (the layer backs) ...
+    bool ismosFit = false;         // ... or the transmittance fit
 };
 
 struct PlannedPass {

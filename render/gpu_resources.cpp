@@ -10,6 +10,7 @@ constexpr ResourceInfo kResources[] = {
     {Resource::TransferFunction, "transfer function", "RGBA32F 1D", "colour and opacity per unit length over the value range"},
     {Resource::GradientOpacity, "gradient opacity", "R32F 1D", "opacity factor over the gradient magnitude"},
     {Resource::Occupancy, "occupancy bricks", "R8 3D", "per 8^3 brick: may any sample there be non-transparent"},
+    {Resource::LabelVolume, "label volume", "R16UI 3D + RGBA32F 1D", "labels.glsl: label ids on the scan grid, a style per id"},
     {Resource::ClipMeshGeometry, "clip mesh geometry", "vertex + index buffers", "every clip mesh, scaled, in its local frame"},
     {Resource::ClipMaps, "clip maps (depth + dilated arrays)", "R32F 2D arrays", "steps II-III: Z and D maps of every mesh"},
     {Resource::ClippedOpacity, "V_o (clipped opacity)", "R16 3D", "step IV: opacity after anti-aliased clipping"},
@@ -22,6 +23,10 @@ constexpr ResourceInfo kResources[] = {
     {Resource::GBuffer, "G-buffer + partial occlusion", "RGBA16F x2, R32F x2, D32F", "tube colour, normal, depth; occlusion at the surface"},
     {Resource::OcclusionBuffers, "DOS occlusion buffers (2, ping-pong)", "RG32F 2D x2", "the slab pass's cone-blurred visibility"},
     {Resource::OutputImage, "output image", "RGBA32F 2D", "the frame"},
+    {Resource::IsmosLayers, "ISMOS depth layers + opacities", "RGBA32F 2D x2", "seed 003 sec. 3.6: z = 1 - depth of 4 layer fronts, their opacity"},
+    {Resource::IsmosLayerBacks, "ISMOS layer backs", "RGBA32F 2D", "exact partial occlusion: where each layer ends"},
+    {Resource::IsmosFit, "ISMOS transmittance fit", "R32F 2D", "seed 003 eq. 10: beta of T(z) ~ exp(-beta z^2)"},
+    {Resource::IsmosLightSamples, "ISMOS light samples", "vec4 buffer", "seed 003 sec. 3.2: N points per light disk"},
 };
 static_assert(rowsInEnumOrder(kResources, &ResourceInfo::id, Resource::Count), "kResources is indexed by Resource");
 }  // namespace

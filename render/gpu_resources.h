@@ -14,6 +14,7 @@ enum class Resource {
     TransferFunction,  // colour and opacity table
     GradientOpacity,   // gradient-opacity table
     Occupancy,         // empty-space-skipping bricks
+    LabelVolume,       // label ids on the scan grid and their styles (scenes with labels only)
     ClipMeshGeometry,  // clip-mesh vertex and index buffers
     ClipMaps,          // steps II-III: depth maps and dilated maps of every mesh
     ClippedOpacity,    // V_o
@@ -26,6 +27,10 @@ enum class Resource {
     GBuffer,           // tube G-buffer and the partial-occlusion buffer
     OcclusionBuffers,  // the slab pass's ping-pong DOS occlusion buffers
     OutputImage,       // the frame's RGBA
+    IsmosLayers,       // ISMOS: layer fronts and opacities (pass 1 -> pass 2)
+    IsmosLayerBacks,   // ISMOS: layer backs (exact partial occlusion only)
+    IsmosFit,          // ISMOS: beta of the transmittance fit (alpha_app only)
+    IsmosLightSamples, // ISMOS: the N samples of every light disk, texture space
     Count
 };
 

@@ -37,7 +37,22 @@ void Renderer::setLaoSettings(const LaoSettings& settings) {
 
 void Renderer::setTransferFunction(const TransferFunction& tf) {
     tf_ = std::make_unique<TransferFunctionTexture>(tf, volume_.valueScale(), volume_.valueOffset(), volume_.hasNoData());
+    tf_->attachLabels(labels_.get());
     ++versions_.transferFunction;  // V_PAO and V_AO depend on the TF (the reference implementation's bug 4)
+    updateOccupancy();
+}
+
+void Renderer::setLabels(std::unique_ptr<LabelOverlay> labels) {
+    labels_ = std::move(labels);
+    tf_->attachLabels(labels_.get());
+    ++versions_.transferFunction;  // the labels are part of the classification
+    updateOccupancy();
+}
+
+void Renderer::setLabelStyles(const std::vector<glm::vec4>& styles) {
+    if (!labels_) return;
+    labels_->setStyles(styles);
+    ++versions_.transferFunction;
     updateOccupancy();
 }
 
@@ -51,6 +66,11 @@ void Renderer::updateOccupancy() {
     const std::vector<glm::vec2>& ranges = volume_.brickRanges();
     std::vector<std::uint8_t> flags(ranges.size());
     for (std::size_t i = 0; i < ranges.size(); ++i) flags[i] = tf_->maxOpacity(ranges[i].x, ranges[i].y) > 0.0f ? 255 : 0;
+    // ... and no shown label lies in it (a label raises the opacity of transparent tissue).
+    if (labels_) {
+        std::vector<std::uint8_t> labelled = labels_->occupiedBricks(grid, GpuVolume::brickSize);
+        for (std::size_t i = 0; i < flags.size(); ++i) flags[i] = std::max(flags[i], labelled[i]);
+    }
     if (!occupancy_) {
         occupancy_ = gl::createTexture(GL_TEXTURE_3D);
         glTextureStorage3D(occupancy_.name(), 1, GL_R8, grid.x, grid.y, grid.z);
@@ -125,6 +145,8 @@ PlanInputs Renderer::planInputs(const FrameDescription& frame) const {
     in.tubesInView = tubesInView(frame);
     in.precomputedCurrent = ao_ && freshness_.precomputedCurrent(now);
     in.ambientCurrent = ao_ && freshness_.ambientCurrent(now, frame.shading);
+    in.ismosExact = frame.ismos.partial && !frame.ismos.fit;
+    in.ismosFit = frame.ismos.partial && frame.ismos.fit;
     return in;
 }
 
@@ -173,14 +195,31 @@ void Renderer::run(Pass pass, const FrameDescription& frame) {
         case Pass::RayCast: runRayCast(frame); return;
         case Pass::SlabPass: runSlabPass(frame, lastPlan_.runs(Pass::TubeGBuffer)); return;
         case Pass::Composite: runComposite(frame); return;
+        case Pass::IsmosRayCast:
+            if (!ismos_) ismos_ = std::make_unique<IsmosPass>();
+            runRayCast(frame, true);
+            return;
+        case Pass::IsmosOcclusion:
+            ismos_->runOcclusion(frame, ismosSpaceOf(frame), volume_.geometry().worldCenter(), output_.name());
+            return;
         case Pass::Count: break;
     }
     throw SystemError("frame plan: a pass without code");
 }
 
-void Renderer::runRayCast(const FrameDescription& frame) {
+IsmosSpace Renderer::ismosSpaceOf(const FrameDescription& frame) const {
+    return ismosSpace(frame, volume_.geometry().worldCenter(), volume_.geometry().boundingRadiusMm());
+}
+
+void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
+    // ISMOS pass 1 is this ray caster shading with the mode's base (phong or solid) plus the layer outputs;
+    // every other mode compiles without ISMOS_LAYERS, so its program is unchanged.
+    ShadingMode shading = ismosLayers ? frame.ismos.base : frame.shading;
     gl::Defines defines;
-    SampleShadingPiece::addDefines(defines, frame.shading);
+    SampleShadingPiece::addDefines(defines, shading);
+    bool tubes = ismosLayers && lastPlan_.runs(Pass::TubeGBuffer);
+    if (ismosLayers) IsmosPass::addLayerDefines(defines, frame.ismos);
+    if (tubes) defines.emplace_back("ISMOS_TUBES", "1");
     if (countSamples_) defines.emplace_back("COUNT_SAMPLES", "1");
     tf_->addDefines(defines);
     gl::Program& p = raycastPrograms_.get(defines);
@@ -189,8 +228,10 @@ void Renderer::runRayCast(const FrameDescription& frame) {
     VolumePiece{volume_}.apply(p);
     tf_->apply(p);
     clip_.apply(p);
-    SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ao_ ? ao_->ambientTexture() : 0}.apply(p);
+    SampleShadingPiece{shading, laoSettings_.ambientScale, ao_ ? ao_->ambientTexture() : 0}.apply(p);
     setLightingUniforms(p, frame, tf_->material());
+    if (ismosLayers) ismos_->applyLayers(p, frame, ismosSpaceOf(frame), resolveStepMm(frame.raycast));
+    if (tubes) glBindTextureUnit(binding::tubeDepth, gbuffer_.depth());
     p.set("stepMm", static_cast<float>(resolveStepMm(frame.raycast)));
     p.set("earlyTerminationAlpha", static_cast<float>(frame.raycast.earlyTerminationAlpha));
     p.set("jitterSeed", static_cast<unsigned>(frame.raycast.jitterSeed));
@@ -216,7 +257,7 @@ void Renderer::runSlabPass(const FrameDescription& frame, bool withTubes) {
     // Without tubes only dos comes here (all rays advance slice by slice together); with tubes every mode.
     GLuint ambient = usesAmbientOcclusion(frame.shading) && ao_ ? ao_->ambientTexture() : 0;
     slab_.run(SlabInputs{frame, volume_, *tf_, clip_, SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ambient}, output_.name(),
-                         withTubes ? &gbuffer_ : nullptr, withTubes ? tubeShading_.geometryOpacity : 0.0});
+                         withTubes ? &gbuffer_ : nullptr, withTubes ? tubeShading_.geometryOpacity : 0.0, tubeShading_.thicknessMm});
     slabUsed_ = true;
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
@@ -293,6 +334,7 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
         {Resource::Occupancy, static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y) * static_cast<std::size_t>(grid.z), {}},
         {Resource::OutputImage, static_cast<std::size_t>(outputSize_.x) * static_cast<std::size_t>(outputSize_.y) * 16u, {}},
     };
+    if (labels_) list.push_back({Resource::LabelVolume, labels_->gpuBytes(), {}});
     if (clip_.count() > 0) {
         list.push_back({Resource::ClipMeshGeometry, clip_.geometryBytes(), {}});
         list.push_back({Resource::ClipMaps, clip_.gpuBytes(), {}});
@@ -300,6 +342,8 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
     if (ao_)
         for (const GpuAllocation& a : ao_->allocations()) list.push_back(a);
     if (slabUsed_) list.push_back({Resource::OcclusionBuffers, slab_.gpuBytes(), {}});
+    if (ismos_)
+        for (const GpuAllocation& a : ismos_->allocations()) list.push_back(a);
     if (tubes_) {
         list.push_back({Resource::TubeGeometry, tubes_->gpuBytes(), tubes_->lines() ? "line vertex buffers" : "triangle vertex buffers"});
         list.push_back({Resource::GBuffer, gbuffer_.gpuBytes(), {}});

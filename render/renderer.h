@@ -13,6 +13,7 @@
 #include "render/gpu_resources.h"
 #include "render/gpu_volume.h"
 #include "render/image.h"
+#include "render/ismos_pass.h"
 #include "render/slab_pass.h"
 #include "render/transfer_function_texture.h"
 #include "render/tube_set.h"
@@ -29,6 +30,11 @@ public:
     ~Renderer();
 
     void setTransferFunction(const TransferFunction& tf);
+    // Label volumes in the classification (shaders/labels.glsl): ids on the scan grid and a style per id.
+    // Like the TF, they are inputs of V_PAO and V_AO (the AO modes see the labels' opacity).
+    void setLabels(std::unique_ptr<LabelOverlay> labels);
+    void setLabelStyles(const std::vector<glm::vec4>& styles);
+    const LabelOverlay* labels() const { return labels_.get(); }
     // LAO settings for lao/cao shading; a change recomputes V_PAO on the next AO frame.
     void setLaoSettings(const LaoSettings& settings);
     const LaoSettings& laoSettings() const { return laoSettings_; }
@@ -38,6 +44,10 @@ public:
     // The AO pipeline, allocated at the first lao/cao frame (null before: a scene allocates what it uses).
     const AmbientOcclusion* ambientOcclusion() const { return ao_.get(); }
     const SlabPass& slabPass() const { return slab_; }
+    // The ISMOS passes' state (layers, light samples), allocated at the first ismos frame (null before).
+    const IsmosPass* ismos() const { return ismos_.get(); }
+    // The frame's ISMOS texture-space box (render/ismos_model.h).
+    IsmosSpace ismosSpaceOf(const FrameDescription& frame) const;
     // Tubes (or illuminated lines) in world millimetres; a scene with tubes in view renders through the
     // G-buffer, the slab pass and the compositor in every shading mode.
     void setTubes(const TubeVertices& vertices, const TubeShading& shading);
@@ -82,7 +92,7 @@ private:
     bool dilatedMapsWanted(ShadingMode mode) const;
     bool tubesInView(const FrameDescription& frame) const;
     void run(Pass pass, const FrameDescription& frame);
-    void runRayCast(const FrameDescription& frame);
+    void runRayCast(const FrameDescription& frame, bool ismosLayers = false);
     void runSlabPass(const FrameDescription& frame, bool withTubes);
     void runComposite(const FrameDescription& frame);
     void updateOccupancy();
@@ -91,10 +101,12 @@ private:
     gl::Context& context_;
     GpuVolume volume_;
     std::unique_ptr<TransferFunctionTexture> tf_;
+    std::unique_ptr<LabelOverlay> labels_;
     clip::ClipMeshSet clip_;
     LaoSettings laoSettings_;
     std::unique_ptr<AmbientOcclusion> ao_;
-    InputVersions versions_;         // volume, TF and LAO settings (clipMeshes unused: see currentVersions)
+    InputVersions versions_;         // volume, classification (TF and labels) and LAO settings (clipMeshes
+                                     // unused: see currentVersions)
     Freshness freshness_;            // what V_PAO and V_AO were computed from
     // Inputs of the image that no AO product depends on (tubes, tube shading, the ambient scale): with the
     // frame and currentVersions(), what showing() compares.
@@ -117,6 +129,7 @@ private:
     GBuffer gbuffer_;
     gl::Program compositeProgram_;
     gl::Buffer poissonDisk_;
+    std::unique_ptr<IsmosPass> ismos_;
     int poissonCount_ = 0;
 };
 

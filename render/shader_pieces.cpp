@@ -25,6 +25,9 @@ void VolumePiece::apply(gl::Program& p) const {
 }
 
 void SampleShadingPiece::addDefines(gl::Defines& defines, ShadingMode mode) {
+    // ismos colours samples as its base does (the ray caster passes the base itself; the slab pass, which
+    // runs ismos frames with tubes, gets phong, the default base).
+    if (mode == ShadingMode::Ismos) mode = ShadingMode::Phong;
     defines.emplace_back("SHADING", std::to_string(static_cast<int>(mode)));
 }
 

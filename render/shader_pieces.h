@@ -12,6 +12,7 @@
 //   shade_sample.glsl            SampleShadingPiece (below)
 //   phong.glsl                   setLightingUniforms (render/lighting.h)
 //   clip_test.glsl               clip::ClipMeshSet::apply (clip/clip_mesh_set.h)
+//   ismos_layers.glsl            IsmosPass::applyLayers (render/ismos_pass.h); ismos_occlusion.comp: IsmosPass
 
 #include "gl/program.h"
 #include "render/frame.h"

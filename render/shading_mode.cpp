@@ -14,6 +14,7 @@ constexpr ShadingModeTraits kModes[] = {
     {ShadingMode::Lao, "lao", true, false, false, true, "ambient from LAO recomputed for every voxel (CAO's baseline)"},
     {ShadingMode::Cao, "cao", true, true, false, true, "ambient from Contextual Ambient Occlusion (seed 002)"},
     {ShadingMode::Dos, "dos", false, false, true, true, "directional occlusion shading (seed 001), slab pass"},
+    {ShadingMode::Ismos, "ismos", false, false, false, false, "image-space multidirectional occlusion (seed 003) over phong"},
 };
 static_assert(rowsInEnumOrder(kModes, &ShadingModeTraits::mode, ShadingMode::Count), "kModes is indexed by ShadingMode");
 }  // namespace

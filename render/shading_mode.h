@@ -11,7 +11,7 @@
 
 namespace curette {
 
-enum class ShadingMode { Solid = 0, Phong = 1, Lao = 2, Cao = 3, Dos = 4, Count };
+enum class ShadingMode { Solid = 0, Phong = 1, Lao = 2, Cao = 3, Dos = 4, Ismos = 5, Count };
 
 struct ShadingModeTraits {
     ShadingMode mode;

@@ -91,6 +91,7 @@ float TransferFunctionTexture::maxOpacity(float texelLo, float texelHi) const {
 
 void TransferFunctionTexture::addDefines(gl::Defines& defines) const {
     if (useGradientOpacity_) defines.emplace_back("GRADIENT_OPACITY", "1");
+    if (labels_) labels_->addDefines(defines);
 }
 
 void TransferFunctionTexture::apply(gl::Program& p) const {
@@ -99,6 +100,7 @@ void TransferFunctionTexture::apply(gl::Program& p) const {
     p.set("tfUnitLengthMm", unitLengthMm_);
     glBindTextureUnit(binding::transferFunction, texture_.name());
     glBindTextureUnit(binding::gradientOpacity, gradientTexture_.name());
+    if (labels_) labels_->apply(p);
 }
 
 }  // namespace curette

@@ -16,6 +16,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 #include "base/transfer_function.h"
+#include "render/label_overlay.h"
 
 #include <vector>
 
@@ -45,8 +46,11 @@ public:
 
     // The binder of shaders/transfer_function.glsl: adds the defines it needs (GRADIENT_OPACITY when the TF
     // has one) to `defines`; apply() sets its uniforms on a program compiled with them and binds the tables.
+    // With label volumes attached, classification includes them (shaders/labels.glsl): the defines and
+    // bindings of the LabelOverlay come along, so no pass that classifies can forget them.
     void addDefines(gl::Defines& defines) const;
     void apply(gl::Program& program) const;
+    void attachLabels(const LabelOverlay* labels) { labels_ = labels; }
 
     // Largest opacity the linearly filtered table returns for texel values in [lo, hi] (with one table
     // texel of margin for rounding of the coordinate on the GPU).
@@ -61,6 +65,7 @@ private:
     float unitLengthMm_ = 1;
     int lead_ = 0;
     TransferFunction::Material material_;
+    const LabelOverlay* labels_ = nullptr;
 };
 
 }  // namespace curette

@@ -15,6 +15,12 @@
 #define BINDING_TUBE_COLOR 12       // sampler2D rgba16f: G-buffer surface colour
 #define BINDING_TUBE_NORMAL 13      // sampler2D rgba16f: G-buffer world normal (tubes) or tangent (lines), w: kind
 #define BINDING_PARTIAL_OCCLUSION 14   // sampler2D r32f: volume occlusion at each tube surface
+#define BINDING_LABEL_IDS 15        // usampler3D r16ui: label ids on the scan grid (labels.glsl)
+#define BINDING_LABEL_STYLES 16     // sampler1D rgba32f: per label id rgb + opacity per unit length
+#define BINDING_ISMOS_LAYER_FRONT 17   // sampler2D rgba32f: ISMOS z = 1 - depth of up to 4 layer fronts (-1: none)
+#define BINDING_ISMOS_LAYER_ALPHA 18   // sampler2D rgba32f: ISMOS opacity of each layer
+#define BINDING_ISMOS_LAYER_BACK 19    // sampler2D rgba32f: ISMOS z of each layer's last sample (exact opacity)
+#define BINDING_ISMOS_FIT 20           // sampler2D r32f: ISMOS beta of the transmittance fit exp(-beta z^2)
 
 #define IMAGE_OUTPUT 0              // image2D: the rendered RGBA
 #define IMAGE_OPACITY 1             // image3D r16: V_o written by step IV
@@ -23,6 +29,10 @@
 #define IMAGE_DILATION 4            // image2DArray r32f: dilated map written by step III
 #define IMAGE_OCCLUSION_NEXT 5      // image2D rg32f: the slab pass's next occlusion buffer
 #define IMAGE_PARTIAL_OCCLUSION 6   // image2D r32f: written by the slab pass at each tube surface's depth
+#define IMAGE_ISMOS_LAYER_FRONT 7   // image2D rgba32f: ISMOS pass 1 writes the layer fronts
+#define IMAGE_ISMOS_LAYER_ALPHA 8   // image2D rgba32f: ... the layer opacities
+#define IMAGE_ISMOS_LAYER_BACK 9    // image2D rgba32f: ... the layer backs (exact opacity only)
+#define IMAGE_ISMOS_FIT 10          // image2D r32f: ... beta (transmittance fit only)
 
 #define SSBO_SAMPLE_COUNTER 0       // uint: samples taken (bench only)
 #define SSBO_LAO_DIRECTIONS 1       // vec4[]: LAO step in texture space, weight / (K * M)
@@ -30,6 +40,10 @@
 #define SSBO_DISPATCH 4             // uvec3: indirect dispatch size of the compacted step V
 #define SSBO_ANTIALIASING 5         // vec4[]: the N extra anti-aliasing offsets of step IV
 #define SSBO_POISSON_DISK 8         // vec2[]: vicinity-occlusion samples in the unit disk
+#define SSBO_PROBE_POINTS 6         // vec4[]: world points the clip probe tests (clip_probe.comp)
+#define SSBO_PROBE_RESULTS 7        // uint[]: per point bit 0 inside, bit 1 dilated, bit 2 near
+#define SSBO_ISMOS_LIGHT_SAMPLES 10  // vec4[]: ISMOS light samples in texture space, N per light
+#define SSBO_REMOVAL_COUNTS 9       // uint[]: per voxel of a box, clip samples inside a mesh (removal_count.comp)
 
 #define UBO_CLIP_MESHES 0           // ClipMeshGpu[MAX_CLIP_MESHES]: per-mesh clipping camera
 

@@ -1,7 +1,8 @@
 // Classification of one volume sample: TF colour and opacity per unit length, the gradient when a mode or the
 // TF needs it, and the gradient-opacity factor. One definition for the ray caster and the slab pass; the
 // segment's opacity is then correctOpacity(alphaUnit, length) (transfer_function.glsl).
-// Binders: VolumePiece (volume.glsl) and TransferFunctionTexture (transfer_function.glsl); no uniforms of its own.
+// Binders: VolumePiece (volume.glsl) and TransferFunctionTexture (transfer_function.glsl, and labels.glsl
+// through its LabelOverlay); no uniforms of its own.
 #include "shading_modes.glsl"
 #include "volume.glsl"
 #include "transfer_function.glsl"
@@ -15,6 +16,9 @@ struct VolumeSample {
 VolumeSample classifySample(vec3 tex) {
     VolumeSample s;
     vec4 classified = classify(sampleTexel(tex));
+#ifdef LABELS
+    classified = withLabel(classified, labelStyleAt(tex));
+#endif
     s.albedo = classified.rgb;
 #if SHADING == SHADING_PHONG
     s.gradient = gradientWorld(tex);

@@ -1,12 +1,13 @@
 #version 450
-// Test probe: evaluates clip_test.glsl at arbitrary world points so tests can compare the shader's inside
-// test (and dilated test) with analytic shapes. Not used when rendering.
+// The clip probe: evaluates clip_test.glsl at arbitrary world points: the removal report asks which tract
+// points a carve cuts (render/removal_probe.h), and tests compare the shader's inside
+// test (and dilated test) with analytic shapes.
 #include "bindings.glsl"
 #include "clip_test.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 6) readonly buffer Points { vec4 points[]; };
-layout(std430, binding = 7) writeonly buffer Results { uint results[]; };  // bit 0 inside, bit 1 dilated, bit 2 near
+layout(std430, binding = SSBO_PROBE_POINTS) readonly buffer Points { vec4 points[]; };
+layout(std430, binding = SSBO_PROBE_RESULTS) writeonly buffer Results { uint results[]; };  // bit 0 inside, bit 1 dilated, bit 2 near
 uniform uint pointCount;
 
 void main() {

@@ -22,6 +22,9 @@ uniform int brickSize;
 #ifdef COUNT_SAMPLES
 layout(std430, binding = 0) buffer SampleCounter { uint samplesTaken; };  // `curette bench` only
 #endif
+#ifdef ISMOS_LAYERS
+#include "ismos_layers.glsl"
+#endif
 
 // Ray parameter interval inside the axis-aligned box [lo, hi] (texture space), or false if it misses.
 bool intersectBox(vec3 origin, vec3 direction, vec3 lo, vec3 hi, out float tNear, out float tFar) {
@@ -45,11 +48,20 @@ void main() {
 
     vec4 accumulated = vec4(0.0);  // premultiplied colour, opacity
     uint samples = 0u;
+#ifdef ISMOS_LAYERS
+    IsmosLayers layers = ismosBegin();
+    float depthPerMm = dot(direction, ismosForward) / ismosDepthRangeMm;
+#endif
     float tNear, tFar;
     if (intersectBox(originTex, directionTex, vec3(0.0), vec3(1.0), tNear, tFar)) {
         float jitter = jitterSeed != 0u ? pixelRandom(uvec2(pixel), jitterSeed) : 0.0;
         int k = int(ceil(max(tNear, 0.0) / stepMm - jitter));
         int kLast = int(floor(tFar / stepMm - jitter));
+#ifdef ISMOS_TUBES
+        // The ray stops in front of the tube surface (G-buffer view depth; 0: none).
+        float tubeView = texelFetch(ismosTubeDepth, pixel, 0).r;
+        if (tubeView > 0.0) kLast = min(kLast, int(ceil(tubeView / dot(direction, ismosForward) / stepMm - jitter)) - 1);
+#endif
         for (; k <= kLast; ++k) {
             float t = (float(k) + jitter) * stepMm;
             vec3 tex = originTex + t * directionTex;
@@ -63,18 +75,38 @@ void main() {
                     float bNear, bFar;
                     intersectBox(originTex, directionTex, lo, hi, bNear, bFar);
                     k = max(k, int(floor(bFar / stepMm - jitter)));
+#ifdef ISMOS_LAYERS
+                    ismosGap(layers);
+#endif
                     continue;
                 }
             }
             // Step VI's shadow-test clipping: a sample inside any clip mesh is not there.
-            if (clipMeshCount > 0 && insideAnyClipMesh(eyeWorld + t * direction)) continue;
+            if (clipMeshCount > 0 && insideAnyClipMesh(eyeWorld + t * direction)) {
+#ifdef ISMOS_LAYERS
+                ismosGap(layers);
+#endif
+                continue;
+            }
             ++samples;
             VolumeSample point = classifySample(tex);
             float alpha = correctOpacity(point.alphaUnit, stepMm);
-            if (alpha <= 0.0) continue;
+            if (alpha <= 0.0) {
+#ifdef ISMOS_LAYERS
+                ismosGap(layers);
+#endif
+                continue;
+            }
             vec3 color = shadeSample(point, tex, -direction);
             accumulated.rgb += (1.0 - accumulated.a) * alpha * color;
             accumulated.a += (1.0 - accumulated.a) * alpha;
+#ifdef ISMOS_LAYERS
+            ismosSample(layers, t * depthPerMm - ismosNearDepth, alpha, 1.0 - accumulated.a);
+            if (accumulated.a >= earlyTerminationAlpha) {
+                ismosTerminated(layers);
+                break;
+            }
+#endif
             if (accumulated.a >= earlyTerminationAlpha) break;
         }
     }
@@ -82,4 +114,16 @@ void main() {
     atomicAdd(samplesTaken, samples);
 #endif
     imageStore(outputImage, pixel, accumulated);
+#ifdef ISMOS_LAYERS
+#ifdef ISMOS_TUBES
+    // The tube is an opaque layer at its depth (the compositor adds its colour behind the volume).
+    float surface = texelFetch(ismosTubeDepth, pixel, 0).r;
+    if (surface > 0.0 && accumulated.a < earlyTerminationAlpha) {
+        ismosGap(layers);
+        ismosSample(layers, surface / ismosDepthRangeMm - ismosNearDepth, 1.0, 1.0 - earlyTerminationAlpha);
+        ismosTerminated(layers);
+    }
+#endif
+    ismosStore(layers, pixel);
+#endif
 }

@@ -5,3 +5,5 @@
 #define SHADING_LAO 2     // ambient from V_AO, LAO recomputed for every voxel every frame
 #define SHADING_CAO 3     // ambient from V_AO, Contextual Ambient Occlusion
 #define SHADING_DOS 4     // directional occlusion shading (slab pass)
+#define SHADING_ISMOS 5   // image-space multidirectional occlusion (seed 003): pass 1 is compiled with its
+                          // base's value (phong or solid) and ISMOS_LAYERS; pass 2 is ismos_occlusion.comp

@@ -1,6 +1,7 @@
 // Classification: the transfer function maps a data value to colour and to opacity per unit length; the
 // opacity of a segment is then corrected for its length (render/transfer_function.h).
 #include "bindings.glsl"
+#include "labels.glsl"
 
 layout(binding = BINDING_TRANSFER_FUNCTION) uniform sampler1D transferFunction;
 layout(binding = BINDING_GRADIENT_OPACITY) uniform sampler1D gradientOpacity;

@@ -7,19 +7,15 @@
 // testDilation = false: every visible voxel is b.
 #include "bindings.glsl"
 #include "transfer_function.glsl"
-#include "clip_test.glsl"
+#include "clip_coverage.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
 layout(binding = BINDING_VOLUME) uniform sampler3D volumeData;
 layout(r16, binding = IMAGE_OPACITY) uniform writeonly image3D clippedOpacityOut;
 layout(r8ui, binding = IMAGE_MASK) uniform writeonly uimage3D maskOut;
-layout(std430, binding = SSBO_ANTIALIASING) readonly buffer AntiAliasing { vec4 antiAliasingOffsets[]; };
-
-uniform mat4 indexToWorld;
 uniform ivec3 volumeSize;
 uniform ivec3 regionOrigin;        // the box of voxels this dispatch visits (render/ambient_occlusion.cpp)
 uniform ivec3 regionSize;
-uniform int antiAliasingSamples;   // N
 uniform bool testDilation;
 uniform mat3 gradientToWorld;      // index gradient -> world gradient (value per mm)
 uniform float sampleReachMm;       // the farthest any of a voxel's clip samples lies from its centre
@@ -28,6 +24,9 @@ uniform float sampleReachMm;       // the farthest any of a voxel's clip samples
 // gradient-opacity factor from central differences when the TF has one.
 float voxelOpacity(ivec3 v) {
     float alpha = classify(texelFetch(volumeData, v, 0).r).a;
+#ifdef LABELS
+    alpha = withLabel(vec4(0.0, 0.0, 0.0, alpha), labelStyleAtVoxel(v)).a;
+#endif
     if (useGradientOpacity) {
         ivec3 hi = volumeSize - 1;
         vec3 d = vec3(texelFetch(volumeData, min(v + ivec3(1, 0, 0), hi), 0).r - texelFetch(volumeData, max(v - ivec3(1, 0, 0), 0), 0).r,
@@ -38,33 +37,22 @@ float voxelOpacity(ivec3 v) {
     return alpha;
 }
 
-bool visibleAt(vec3 index) { return !insideAnyClipMesh((indexToWorld * vec4(index, 1.0)).xyz); }
-
 void main() {
     if (any(greaterThanEqual(ivec3(gl_GlobalInvocationID), regionSize))) return;
     ivec3 v = regionOrigin + ivec3(gl_GlobalInvocationID);
     vec3 centre = vec3(v);
 
-    int visible = 0;
     vec3 centreWorld = (indexToWorld * vec4(centre, 1.0)).xyz;
     // Far from every mesh's map box, every sample is visible and the centre is in no dilated shape: the
-    // full test below would conclude exactly this, so skip it.
+    // full test would conclude exactly this, so skip it.
     bool near = clipMeshCount > 0 && nearAnyClipMesh(centreWorld, sampleReachMm);
-    if (!near) {
-        visible = 9;
-    } else {
-        visible += visibleAt(centre) ? 1 : 0;
-        for (int c = 0; c < 8; ++c) {
-            vec3 corner = vec3((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0);
-            visible += visibleAt(centre + corner) ? 1 : 0;
-        }
-    }
+    int samples = 9 + antiAliasingSamples;
+    int visible = samples - (near ? insideSampleCount(centre) : 0);
     float opacity = voxelOpacity(v);
     if (visible == 0) {
         opacity = 0.0;
-    } else if (visible < 9) {
-        for (int s = 0; s < antiAliasingSamples; ++s) visible += visibleAt(centre + antiAliasingOffsets[s].xyz) ? 1 : 0;
-        opacity *= float(visible) / float(antiAliasingSamples + 9);
+    } else if (visible < samples) {
+        opacity *= float(visible) / float(samples);  // line 10: scaled by the visible fraction
     }
     uint category = visible == 0 ? CATEGORY_CLIPPED
                     : (testDilation && !(near && insideAnyDilatedMesh(centreWorld))) ? CATEGORY_UNAFFECTED

@@ -3,7 +3,9 @@
 #include "app/bench/bench_cao.h"
 #include "app/bench/bench_dos.h"
 #include "app/bench/bench_input.h"
+#include "app/bench/bench_ismos.h"
 #include "app/bench/bench_raycast.h"
+#include "app/bench/bench_report.h"
 #include "app/command_line.h"
 #include "app/commands/commands.h"
 #include "base/error.h"
@@ -12,7 +14,7 @@ namespace curette::commands {
 
 int bench(const Arguments& args) {
     if (args.empty())
-        throw InputError("<command line>", "bench", "what to measure: raycast, cao, dos or input (curette bench raycast --scene S)",
+        throw InputError("<command line>", "bench", "what to measure: raycast, cao, dos, ismos, input or report (curette bench raycast --scene S)",
                          "nothing");
     std::string what = args[0];
     Arguments rest(args.begin() + 1, args.end());
@@ -44,13 +46,29 @@ int bench(const Arguments& args) {
                               {"json", true, "JSON output file (default bench-dos.json)"}});
         return bench::benchDos(cl);
     }
+    if (what == "ismos") {
+        CommandLine cl(rest, {{"scene", true, "scene file (its volume, TF, lights and ISMOS settings)"},
+                              {"size", true, "image size (default 256x256)"},
+                              {"frames", true, "frames per configuration (default 3)"},
+                              {"reference-pixels", true, "pixels checked against the physical reference (default 150)"},
+                              {"reference-points", true, "stratified points per light disk of the reference (default 64)"},
+                              {"json", true, "JSON output file (default bench-ismos.json)"}});
+        return bench::benchIsmos(cl);
+    }
     if (what == "input") {
         CommandLine cl(rest, {{"reports", true, "random reports per device family (default 20000)"},
                               {"frames", true, "frames of the latency measurement (default 20000)"},
                               {"json", true, "JSON output file (default bench-input.json)"}});
         return bench::benchInput(cl);
     }
-    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos, input", "\"" + what + "\"");
+    if (what == "report") {
+        CommandLine cl(rest, {{"scene", true, "scene file with clip meshes (labels and tubes are reported too)"},
+                              {"repeats", true, "reports measured, each with the meshes moved 0.5 mm (default 8)"},
+                              {"oracle-voxels", true, "voxels checked against the CPU winding-number oracle (default 1500)"},
+                              {"json", true, "JSON output file (default bench-report.json)"}});
+        return bench::benchReport(cl);
+    }
+    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos, ismos, input, report", "\"" + what + "\"");
 }
 
 }  // namespace curette::commands

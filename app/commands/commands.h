@@ -14,6 +14,7 @@ int render(const Arguments& args);   // curette render --scene S --out F.png
 int view(const Arguments& args);     // curette view --scene S
 int bench(const Arguments& args);    // curette bench raycast|cao|dos|input --scene S
 int record(const Arguments& args);   // curette record --scene S --out F.jsonl --synthetic FAMILIES
-int replay(const Arguments& args);   // curette replay F.jsonl [--check] [--from-reports]
+int replay(const Arguments& args);   // curette replay F.jsonl [--check] [--from-reports] [--report]
+int report(const Arguments& args);   // curette report --scene S [--session F --frame N] --out DIR
 
 }  // namespace curette::commands

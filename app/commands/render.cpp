@@ -16,7 +16,7 @@ int render(const Arguments& args) {
     CommandLine cl(args, {{"scene", true, "scene file (JSON)"},
                           {"out", true, "output PNG (written atomically)"},
                           {"size", true, "image size WxH (default: the scene's)"},
-                          {"shading", true, "solid|phong|lao|cao|dos (default: the scene's)"},
+                          {"shading", true, "solid|phong|lao|cao|dos|ismos (default: the scene's)"},
                           {"azimuth", true, "camera azimuth in degrees (default: the scene's)"},
                           {"elevation", true, "camera elevation in degrees (default: the scene's)"},
                           {"timings", false, "print the GPU time of every pass and the GPU memory of every resource"},

@@ -7,6 +7,10 @@
 //                    and check they equal the recorded poses exactly
 //   --no-render      with --from-reports: check the poses only (no GL context)
 //   --lenient        replay the valid prefix of a session with a bad line instead of refusing it
+//   --report         with --out: the removal report (app/carve_report.h) of every Nth frame in
+//                    DIR/report/frame_NNNNNN/, the plan's exports for the last of them, and removal.csv and
+//                    removal.png (removed mL and cut streamlines over time)
+#include "app/carve_report.h"
 #include "app/command_line.h"
 #include "app/commands/commands.h"
 #include "app/interaction.h"
@@ -30,17 +34,29 @@ namespace curette::commands {
 
 namespace {
 
-// Writes a gnuplot script and runs it to turn frames.csv into frames.png (render time and recompute fraction).
-void plot(const std::filesystem::path& dir) {
-    std::string script = "set terminal pngcairo size 900,500 noenhanced\nset output '" + (dir / "frames.png").string() +
-                         "'\nset datafile separator ','\nset key top left\nset xlabel 'frame'\nset ylabel 'ms'\n"
-                         "set y2label 'recomputed voxels (%)'\nset y2tics\nset ytics nomirror\n"
-                         "plot '" + (dir / "frames.csv").string() + "' using 1:3 skip 1 with lines title 'frame ms', "
-                         "'' using 1:4 skip 1 with lines title 'AO ms', '' using 1:($5*100) skip 1 axes x1y2 with lines title 'recomputed %'\n";
-    std::filesystem::path scriptPath = dir / "frames.gnuplot";
+// Writes `name`.gnuplot (a PNG terminal, CSV input, `settings`, then `plot` with `plotArguments`) and runs gnuplot on it to turn
+// `name`.csv into `name`.png; a missing or failing gnuplot leaves the CSV and says so.
+void plot(const std::filesystem::path& dir, const std::string& name, const std::string& settings, const std::string& plotArguments) {
+    std::string csv = (dir / (name + ".csv")).string();
+    std::string script = "set terminal pngcairo size 900,500 noenhanced\nset output '" + (dir / (name + ".png")).string() +
+                         "'\nset datafile separator ','\nset key top left\n" + settings + "plot '" + csv + "' " + plotArguments + "\n";
+    std::filesystem::path scriptPath = dir / (name + ".gnuplot");
     writeFileAtomically(scriptPath, script);
     std::string command = "gnuplot '" + scriptPath.string() + "' 2>/dev/null";
-    if (std::system(command.c_str()) != 0) std::fprintf(stderr, "curette replay: gnuplot failed; frames.csv is still written\n");
+    if (std::system(command.c_str()) != 0) std::fprintf(stderr, "curette replay: gnuplot failed; %s is still written\n", csv.c_str());
+}
+
+// frames.csv -> frames.png: render time and recompute fraction.
+void plotFrames(const std::filesystem::path& dir) {
+    plot(dir, "frames", "set xlabel 'frame'\nset ylabel 'ms'\nset y2label 'recomputed voxels (%)'\nset y2tics\nset ytics nomirror\n",
+         "using 1:3 skip 1 with lines title 'frame ms', '' using 1:4 skip 1 with lines title 'AO ms', "
+         "'' using 1:($5*100) skip 1 axes x1y2 with lines title 'recomputed %'");
+}
+
+// removal.csv -> removal.png: removed mL and cut streamlines (all bundles) over the session.
+void plotRemoval(const std::filesystem::path& dir) {
+    plot(dir, "removal", "set xlabel 'time (s)'\nset ylabel 'removed (mL)'\nset y2label 'cut streamlines'\nset y2tics\nset ytics nomirror\n",
+         "using 2:3 skip 1 with lines title 'removed mL', '' using 2:5 skip 1 axes x1y2 with lines title 'cut streamlines'");
 }
 
 }  // namespace
@@ -52,7 +68,8 @@ int replay(const Arguments& args) {
                           {"from-reports", false, "re-derive poses from the raw reports and check them"},
                           {"lenient", false, "replay the valid prefix of a damaged session"},
                           {"size", true, "render at WxH instead of the recorded size"},
-                          {"no-render", false, "with --from-reports: only check the poses, render nothing"}});
+                          {"no-render", false, "with --from-reports: only check the poses, render nothing"},
+                          {"report", false, "with --out: the removal report every Nth frame, removal.csv and removal.png"}});
     if (cl.positional().size() != 1) throw InputError("<command line>", "FILE", "one session file: curette replay FILE [options]");
     std::filesystem::path file = cl.positional()[0];
     int every = CommandLine::parseInt("every", cl.valueOr("every", "1"), 1, 1 << 20);
@@ -72,7 +89,10 @@ int replay(const Arguments& args) {
     if (scenePath.is_relative()) scenePath = file.parent_path() / scenePath;
     LoadedScene loaded = loadSceneWithVolume(scenePath);
     bool render = !cl.flag("no-render");
+    bool reporting = cl.flag("report");
+    if (reporting && !out) throw InputError("<command line>", "--report", "together with --out DIR (where the reports go)");
     if (!render && !fromReports) throw InputError("<command line>", "--no-render", "together with --from-reports (otherwise there is nothing to do)");
+    if (!render && reporting) throw InputError("<command line>", "--report", "without --no-render (the report uses the renderer's clip maps)");
     std::unique_ptr<gl::Context> context;
     std::unique_ptr<Renderer> renderer;
     if (render) {
@@ -84,6 +104,11 @@ int replay(const Arguments& args) {
     SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
                      initialFrame(loaded.scene, geometry));
     const InteractionState& state = step.state();
+    std::optional<CarveReporter> reporter;
+    if (reporting) reporter.emplace(loaded, geometry);
+    std::string removalCsv = "frame,time_s,removed_ml,touched_voxels,cut_streamlines,protected_touched\n";
+    std::optional<plan::Report> lastReport;
+    InteractionState lastReportState;
 
     std::optional<input::InputPipeline> pipeline;
     if (fromReports) {
@@ -154,13 +179,37 @@ int replay(const Arguments& args) {
             std::snprintf(name, sizeof name, "frame_%06zu.png", f.index);
             writePng(*out / name, image, glm::vec4(loaded.scene.background));
         }
+        if (reporter) {
+            plan::Report report = reporter->compute(renderer->clipMeshes());
+            char name[64];
+            std::snprintf(name, sizeof name, "frame_%06zu", f.index);
+            reporter->write(*out / "report" / name, report, state, PlanExportOptions{io::MeshSpace::Ras, false});
+            std::uint64_t cut = 0;
+            for (const plan::BundleRow& b : report.bundles) cut += b.cut;
+            char row[160];
+            std::snprintf(row, sizeof row, "%zu,%.4f,%.6f,%llu,%llu,%zu\n", f.index, f.time, report.removedMl,
+                          static_cast<unsigned long long>(report.touchedVoxels), static_cast<unsigned long long>(cut), report.warnings().size());
+            removalCsv += row;
+            std::printf("           removed %.3f mL, %llu streamlines cut%s\n", report.removedMl, static_cast<unsigned long long>(cut),
+                        report.warnings().empty() ? "" : ", PROTECTED TOUCHED");
+            lastReport = std::move(report);
+            lastReportState = state;
+        }
         std::printf("frame %6zu  %-5s %8.1f ms  AO %8.1f ms  recomputed %6.2f %%  %s%s\n", f.index, shadingModeName(frame.shading), ms, aoMs,
                     100.0 * fraction, hash.c_str(), equal == "-" ? "" : ("  CAO == LAO: " + equal).c_str());
         ++rendered;
     }
+    if (reporter && lastReport) {
+        // The whole plan (exports included) for the last reported frame; the series as CSV and a plot.
+        reporter->write(*out / "report", *lastReport, lastReportState, PlanExportOptions{});
+        writeFileAtomically(*out / "removal.csv", removalCsv);
+        plotRemoval(*out);
+        std::printf("wrote %s, %s and the plan of the last reported frame in %s\n", (*out / "removal.csv").c_str(),
+                    (*out / "removal.png").c_str(), (*out / "report").c_str());
+    }
     if (out && check) {
         writeFileAtomically(*out / "frames.csv", csv);
-        plot(*out);
+        plotFrames(*out);
         std::printf("wrote %s and %s\n", (*out / "frames.csv").c_str(), (*out / "frames.png").c_str());
     }
     std::printf("replayed %zu frames, rendered %d", session.frames.size(), rendered);

@@ -3,7 +3,10 @@
 // zooms. F9 (or a mapped button) starts and stops recording a session; P or F12 saves a screenshot. The overlay
 // shows which device holds which mesh, the shading, and the time of every pass of the frame plan. The frame is
 // re-rendered only when the renderer is not already showing it (Renderer::showing), at reduced resolution
-// while the camera moves (llvmpipe renders on the CPU).
+// while the camera moves (llvmpipe renders on the CPU). The plan panel shows the removal report (removed mL,
+// the structures and bundles the carve touches or must spare, margins; protected ones in red when touched),
+// updated 0.2 s after the meshes stop; F5 writes the report and the plan's exports (app/carve_report.h).
+#include "app/carve_report.h"
 #include "app/command_line.h"
 #include "app/commands/commands.h"
 #include "app/interaction.h"
@@ -35,7 +38,7 @@ namespace {
 constexpr int kGlfwKeys[] = {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E, GLFW_KEY_UP, GLFW_KEY_DOWN,
                              GLFW_KEY_LEFT, GLFW_KEY_RIGHT, GLFW_KEY_PAGE_UP, GLFW_KEY_PAGE_DOWN, GLFW_KEY_TAB, GLFW_KEY_R,
                              GLFW_KEY_INSERT, GLFW_KEY_DELETE, GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5,
-                             GLFW_KEY_C, GLFW_KEY_F9, GLFW_KEY_P, GLFW_KEY_F12};
+                             GLFW_KEY_C, GLFW_KEY_F9, GLFW_KEY_P, GLFW_KEY_F12, GLFW_KEY_6};
 static_assert(std::size(kGlfwKeys) == static_cast<std::size_t>(input::Key::Count));
 
 // Presses latched between frames: a key pressed and released while a slow frame renders still counts.
@@ -85,6 +88,15 @@ int view(const Arguments& args) {
     Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     Presenter presenter;
+    // The plan overlay: the removal report, recomputed once the meshes have been still for kReportDelayS
+    // (a report costs a GPU pass and a CPU pass over the grid; while a mesh moves the frames come first).
+    constexpr double kReportDelayS = 0.2;
+    CarveReporter reporter(loaded, renderer.geometry());
+    std::optional<plan::Report> report;
+    std::uint64_t reportedVersion = 0, seenVersion = 0;
+    double versionChangedAt = -1e9, reportMs = 0;
+    bool exportKeyWasDown = false;
+    int exports = 0;
 
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
     FrameDescription& frame = step.frame();
@@ -177,8 +189,8 @@ int view(const Arguments& args) {
         // Overlay: timings, shading, who holds which mesh, recording, device messages.
         ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
         ImGui::Begin("curette", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
-        // Shading changes only through input (1-5, C, mapped buttons), so a session replays it from its reports.
-        ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-5, C) | %dx%d", lastFrameMs, lastTimings.ambientOcclusionMs(),
+        // Shading changes only through input (1-6, C, mapped buttons), so a session replays it from its reports.
+        ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-6, C) | %dx%d", lastFrameMs, lastTimings.ambientOcclusionMs(),
                     shadingModeName(frame.shading), renderer.outputSize().x, renderer.outputSize().y);
         for (const FrameTimings::Entry& e : lastTimings.passes) ImGui::Text("  %-22s %8.1f ms", passInfo(e.pass).name, e.ms);
         auto meshLabel = [&](int index) {
@@ -199,6 +211,24 @@ int view(const Arguments& args) {
         ImGui::Text("keyboard -> %s (Tab: next)", meshLabel(live.pipeline().keyboardSelection()).c_str());
         if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %s: %zu frames (F9 stops)", recording->path().c_str(), recording->frames());
         for (const std::string& m : messages) ImGui::TextWrapped("%s", m.c_str());
+        if (report) {
+            ImGui::Separator();
+            ImGui::Text("removed %.2f mL%s (%.0f ms; F5 writes the plan)", report->removedMl,
+                        reportedVersion == renderer.clipMeshes().version() ? "" : " (updating)", reportMs);
+            for (const plan::StructureRow& r : report->structures) {
+                if (!r.touched && !r.isProtected) continue;
+                ImVec4 colour = r.isProtected && r.touched ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
+                ImGui::TextColored(colour, "  %-24s %7.2f mL %5.1f %%  %s %5.1f mm", r.name.c_str(), r.removedMl, 100 * r.share,
+                                   r.touched ? "depth" : "margin", r.touched ? r.intrusionDepthMm : r.marginMm);
+            }
+            for (const plan::BundleRow& b : report->bundles) {
+                ImVec4 colour = b.isProtected && b.cut ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
+                ImGui::TextColored(colour, "  %-24s %5llu of %llu cut  %6.1f mm removed  margin %5.1f mm", b.name.c_str(),
+                                   static_cast<unsigned long long>(b.cut), static_cast<unsigned long long>(b.streamlines), b.removedLengthMm,
+                                   b.marginMm);
+            }
+            for (const std::string& warning : report->warnings()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", warning.c_str());
+        }
         float scale = static_cast<float>(renderScale);
         if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) renderScale = scale;
         ImGui::TextUnformatted("left drag: orbit  wheel: zoom  WASDQE, arrows, PgUp/PgDn, right drag: move mesh\n"
@@ -223,6 +253,35 @@ int view(const Arguments& args) {
                 std::printf("saved %s\n", name.c_str());
             }
             presenter.present(renderer.outputTexture(), framebuffer, glm::vec4(loaded.scene.background));
+
+            std::uint64_t version = renderer.clipMeshes().version();
+            if (version != seenVersion) seenVersion = version, versionChangedAt = now;
+            if (version != reportedVersion && now - versionChangedAt >= kReportDelayS) {
+                auto start = std::chrono::steady_clock::now();
+                report = reporter.compute(renderer.clipMeshes());
+                reportMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                reportedVersion = version;
+            }
+            bool exportKeyDown = !io.WantCaptureKeyboard && glfwGetKey(w, GLFW_KEY_F5) == GLFW_PRESS;
+            if (exportKeyDown && !exportKeyWasDown && report) {
+                if (reportedVersion != version) report = reporter.compute(renderer.clipMeshes()), reportedVersion = version;
+                std::string stamp = currentTimeIso8601();
+                for (char& c : stamp)
+                    if (c == ':') c = '-';
+                std::string name = "curette-plan-";
+                name += stamp;
+                if (exports++ > 0) name += std::string(1, '-').append(std::to_string(exports));
+                std::filesystem::path dir = name;
+                try {
+                    reporter.write(dir, *report, state, PlanExportOptions{});
+                    messages.push_back("wrote the plan to " + dir.string());
+                } catch (const std::exception& e) {
+                    messages.push_back(std::string("could not write the plan: ") + e.what());
+                }
+                std::printf("%s\n", messages.back().c_str());
+                if (messages.size() > 6) messages.pop_front();
+            }
+            exportKeyWasDown = exportKeyDown;
         }
         state.screenshot = false;
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

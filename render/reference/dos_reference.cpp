@@ -1,4 +1,5 @@
 #include "render/reference/dos_reference.h"
+#include "render/reference/camera_ray.h"
 
 #include "render/slice_lattice.h"
 #include "render/volume_geometry.h"
@@ -31,13 +32,8 @@ glm::dvec4 dosPixel(const VolumeData& volume, const TransferFunction& tf, const 
     VolumeGeometry g{volume.dims, volume.indexToWorld};
     glm::dmat4 worldToTexture = g.worldToTexture();
     const OrbitCamera& camera = frame.camera;
-    glm::dvec3 eye = camera.position(), forward = camera.forward();
-    double aspect = double(frame.size.x) / frame.size.y;
-    glm::dmat4 inverseViewProjection = glm::inverse(camera.projection(aspect) * camera.view());
-    glm::dvec2 ndc = (glm::dvec2(pixel) + 0.5) / glm::dvec2(frame.size) * 2.0 - 1.0;
-    ndc.y = -ndc.y;
-    glm::dvec4 farPoint = inverseViewProjection * glm::dvec4(ndc, 1, 1);
-    glm::dvec3 direction = glm::normalize(glm::dvec3(farPoint) / farPoint.w - eye);
+    glm::dvec3 forward = camera.forward();
+    const auto [eye, direction] = cameraRay(frame, pixel);
     double cosine = glm::dot(direction, forward);
 
     auto texel = [&](int i, int j, int k) { return volume.normalized(volume.linearIndex(i, j, k)); };

@@ -1,4 +1,5 @@
 #include "render/reference/raycast_reference.h"
+#include "render/reference/camera_ray.h"
 
 #include "render/lighting.h"
 #include "render/reference/random.h"
@@ -50,13 +51,7 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
                            double stepMm, glm::ivec2 pixel) {
     VolumeGeometry g{volume.dims, volume.indexToWorld};
     glm::dmat4 worldToTexture = g.worldToTexture();
-    double aspect = double(frame.size.x) / frame.size.y;
-    glm::dmat4 inverseViewProjection = glm::inverse(frame.camera.projection(aspect) * frame.camera.view());
-    glm::dvec2 ndc = (glm::dvec2(pixel) + 0.5) / glm::dvec2(frame.size) * 2.0 - 1.0;
-    ndc.y = -ndc.y;
-    glm::dvec4 farPoint = inverseViewProjection * glm::dvec4(ndc, 1.0, 1.0);
-    glm::dvec3 eye = frame.camera.position();
-    glm::dvec3 direction = glm::normalize(glm::dvec3(farPoint) / farPoint.w - eye);
+    const auto [eye, direction] = cameraRay(frame, pixel);
     glm::dvec3 originTex = glm::dvec3(worldToTexture * glm::dvec4(eye, 1.0));
     glm::dvec3 directionTex = glm::dmat3(worldToTexture) * direction;
 

@@ -223,6 +223,10 @@ TEST(Keyboard, SameActionsAsTheDevices) {
     s.keys = 1u << static_cast<int>(Key::Digit4);
     a = keys.update(s, 0.016, 2);
     EXPECT_EQ(std::get<SetShading>(a[0]).mode, "cao");
+    s.keys = 1u << static_cast<int>(Key::Digit6);
+    a = keys.update(s, 0.016, 2);
+    ASSERT_EQ(a.size(), 1u);
+    EXPECT_EQ(std::get<SetShading>(a[0]).mode, "ismos");
     s.keys = 0;
     s.rightDragPixels = {3, -2};
     a = keys.update(s, 0.016, 2);

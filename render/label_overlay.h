@@ -1,0 +1,43 @@
+#pragma once
+// Label volumes on the GPU (the binder of shaders/labels.glsl): one R16UI 3-D texture of label ids on the
+// scan grid and a 1-D RGBA32F table of styles per id (rgb, opacity per unit length; 0 hides the label).
+// Several label sets share one id space (app/scene_labels.h assigns each set a range). Attached to the
+// TransferFunctionTexture, whose binder adds LABELS and binds these: every pass that classifies samples
+// (ray cast, slab pass, step IV) carries the labels, and a scene without labels compiles none of it.
+
+#include "gl/objects.h"
+#include "gl/program.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace curette {
+
+class LabelOverlay {
+public:
+    // ids: dims.x * dims.y * dims.z label ids on the scan grid, i fastest. styles: one per id (index = id),
+    // id 0 (no label) must be transparent.
+    LabelOverlay(glm::ivec3 dims, const std::vector<std::uint16_t>& ids, const std::vector<glm::vec4>& styles);
+
+    void setStyles(const std::vector<glm::vec4>& styles);
+    const std::vector<glm::vec4>& styles() const { return styles_; }
+
+    void addDefines(gl::Defines& defines) const;
+    void apply(gl::Program& program) const;
+
+    // For empty-space skipping: per brick of `brickSize`^3 voxels (bricks of render/gpu_volume.h, grid
+    // `brickGrid`), whether a shown label lies in the brick or its one-voxel apron.
+    std::vector<std::uint8_t> occupiedBricks(glm::ivec3 brickGrid, int brickSize) const;
+    std::size_t gpuBytes() const;
+
+private:
+    glm::ivec3 dims_;
+    std::vector<std::uint16_t> ids_;
+    std::vector<glm::vec4> styles_;
+    gl::Texture idsTexture_, stylesTexture_;
+    int styleTexels_ = 0;
+};
+
+}  // namespace curette

@@ -1,0 +1,249 @@
+#include "render/reference/ismos_reference.h"
+#include "render/reference/camera_ray.h"
+
+#include "render/reference/random.h"
+#include "render/reference/volume_sampler.h"
+#include "render/volume_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace curette::reference {
+
+namespace {
+
+constexpr float kNoLayer = -1.0f;
+constexpr float kSolid = -1.0e29f;
+
+struct Twin {
+    const IsmosLayerImages& layers;
+    const IsmosSettings& s;
+    glm::dvec3 texToDepth;
+    double stepDepth;
+    int layerCount;
+
+    bool fullyOccluded(glm::ivec2 q, double z) const {
+        const glm::vec4& f = layers.front[layers.index(q)];
+        const glm::vec4& a = layers.alpha[layers.index(q)];
+        for (int k = 0; k < layerCount; ++k) {
+            if (f[k] == kNoLayer) break;
+            if (a[k] >= s.opacityThreshold) return f[k] > z + s.depthBias;
+        }
+        return false;
+    }
+
+    double segmentOpacity(glm::ivec2 q, double z, double dz) const {
+        const glm::vec4& f = layers.front[layers.index(q)];
+        if (!s.fit) {
+            const glm::vec4& a = layers.alpha[layers.index(q)];
+            const glm::vec4& b = layers.back[layers.index(q)];
+            double tau = 0;
+            for (int k = 0; k < layerCount; ++k) {
+                if (f[k] == kNoLayer) break;
+                if (z >= f[k] + 0.5 * stepDepth - s.depthBias) continue;
+                if (b[k] < kSolid) return 1.0;
+                if (z < b[k] - 0.5 * stepDepth) continue;
+                tau += -std::log(std::max(1.0 - a[k], 1e-6)) / (f[k] - b[k] + stepDepth) * dz;
+            }
+            return 1.0 - std::exp(-tau);
+        }
+        if (f.x == kNoLayer || z >= f.x - s.depthBias) return 0.0;
+        double alphaApp = fittedOpacity(layers.beta[layers.index(q)], 1.0 - z, dz);
+        return 1.0 - std::exp(-alphaApp * dz);
+    }
+
+    double pathOcclusion(glm::dvec3 p, glm::dvec3 l) const {
+        glm::dvec3 d = l - p;
+        int nr = std::clamp(s.testPoints, 1, 4096);
+        double dt = pathExit(p, l) / nr;
+        double dz = glm::length(d * dt * texToDepth);
+        double occ = 0;
+        for (int i = 1; i <= nr; ++i) {
+            glm::dvec3 r = p + (i * dt) * d;
+            glm::ivec2 q(static_cast<int>(std::floor(r.x * layers.size.x)), static_cast<int>(std::floor(r.y * layers.size.y)));
+            if (q.x < 0 || q.y < 0 || q.x >= layers.size.x || q.y >= layers.size.y) break;
+            if (s.partial) {
+                occ += (1.0 - occ) * segmentOpacity(q, r.z, dz);
+                if (occ >= 1.0) break;
+            } else if (fullyOccluded(q, r.z)) {
+                return 1.0;
+            }
+        }
+        return occ;
+    }
+};
+
+}  // namespace
+
+IsmosPixel ismosOcclusionPixel(const IsmosLayerImages& layers, const std::vector<IsmosLight>& lights, const IsmosSettings& s,
+                               const IsmosSpace& space, double stepDepth, glm::ivec2 pixel) {
+    IsmosPixel out;
+    const glm::vec4& f = layers.front[layers.index(pixel)];
+    const glm::vec4& a = layers.alpha[layers.index(pixel)];
+    if (f.x == kNoLayer || lights.empty()) return out;
+    Twin twin{layers, s, space.boxMm / space.boxMm.z, stepDepth, std::clamp(s.layers, 1, 4)};
+    glm::dvec2 xy = (glm::dvec2(pixel) + 0.5) / glm::dvec2(layers.size);
+    double occSum = 0, weightSum = 0, before = 1;
+    glm::dvec3 lightSum(0);
+    for (int k = 0; k < twin.layerCount; ++k) {
+        if (f[k] == kNoLayer) break;
+        double w = 1;
+        if (twin.layerCount > 1) {
+            if (s.blendLayers) {
+                w = a[k] * before;
+                before *= 1.0 - a[k];
+            } else if (a[k] < s.opacityThreshold) {
+                continue;
+            }
+        }
+        glm::dvec3 p(xy, f[k]);
+        double occluded = 0;
+        glm::dvec3 light(0);
+        std::size_t n = 0;
+        for (const IsmosLight& l : lights) {
+            light += l.tint * lightIntensity(l, p, s.falloff);
+            n += l.samples.size();
+            if (!insideSpot(l, p)) {
+                occluded += static_cast<double>(l.samples.size());
+                continue;
+            }
+            for (glm::dvec3 sample : l.samples) occluded += twin.pathOcclusion(p, sample);
+        }
+        light /= static_cast<double>(lights.size());
+        occSum += w * occluded / static_cast<double>(std::max<std::size_t>(n, 1));
+        lightSum += w * light;
+        weightSum += w;
+        if (twin.layerCount == 1 || !s.blendLayers) break;
+    }
+    if (weightSum <= 0) return out;
+    out.shaded = true;
+    out.occlusion = occSum / weightSum;
+    out.light = lightSum / weightSum;
+    out.factor = out.light * std::max(1.0 - out.occlusion, s.ambient);
+    return out;
+}
+
+IsmosLayersPixel ismosLayersPixel(const VolumeData& volume, const TransferFunction& tf, const FrameDescription& frame, double stepMm,
+                                  const IsmosSpace& space, glm::ivec2 pixel) {
+    VolumeGeometry g{volume.dims, volume.indexToWorld};
+    glm::dmat4 worldToTexture = g.worldToTexture();
+    const auto [eye, direction] = cameraRay(frame, pixel);
+    glm::dvec3 originTex = glm::dvec3(worldToTexture * glm::dvec4(eye, 1.0));
+    glm::dvec3 directionTex = glm::dmat3(worldToTexture) * direction;
+    auto texel = [&](int i, int j, int k) { return volume.normalized(volume.linearIndex(i, j, k)); };
+    auto sample = [&](glm::dvec3 tex) { return sampleTrilinear(texel, volume.dims, tex, Wrap::ClampToEdge); };
+    glm::dvec3 texelSize = 1.0 / glm::dvec3(volume.dims);
+    glm::dmat3 gradientToWorld = g.gradientIndexToWorld() * volume.valueScale;
+    int maxLayers = std::clamp(frame.ismos.layers, 1, 4);
+
+    IsmosLayersPixel out;
+    double tNear = -1e300, tFar = 1e300;
+    for (int a = 0; a < 3; ++a) {
+        if (directionTex[a] == 0.0) {
+            if (originTex[a] < 0 || originTex[a] > 1) return out;
+            continue;
+        }
+        double t0 = (0 - originTex[a]) / directionTex[a], t1 = (1 - originTex[a]) / directionTex[a];
+        tNear = std::max(tNear, std::min(t0, t1));
+        tFar = std::min(tFar, std::max(t0, t1));
+    }
+    if (tFar < std::max(tNear, 0.0)) return out;
+    double jitter = frame.raycast.jitterSeed ? pixelRandom(glm::uvec2(pixel), frame.raycast.jitterSeed) : 0.0;
+    long k = static_cast<long>(std::ceil(std::max(tNear, 0.0) / stepMm - jitter));
+    long kLast = static_cast<long>(std::floor(tFar / stepMm - jitter));
+    double accumulated = 0, range = space.farMm - space.nearMm, cosine = glm::dot(direction, space.forward);
+    glm::dvec4 transmittance(1.0);
+    int count = 0;
+    bool open = false;
+    TransmittanceFit fit;
+    for (; k <= kLast; ++k) {
+        double t = (static_cast<double>(k) + jitter) * stepMm;
+        glm::dvec3 tex = originTex + t * directionTex;
+        double value = volume.valueScale * sample(tex) + volume.valueOffset;
+        double alphaUnit = tf.evaluateOpacity(value);
+        if (tf.hasGradientOpacity()) {
+            glm::dvec3 d(sample(tex + glm::dvec3(texelSize.x, 0, 0)) - sample(tex - glm::dvec3(texelSize.x, 0, 0)),
+                         sample(tex + glm::dvec3(0, texelSize.y, 0)) - sample(tex - glm::dvec3(0, texelSize.y, 0)),
+                         sample(tex + glm::dvec3(0, 0, texelSize.z)) - sample(tex - glm::dvec3(0, 0, texelSize.z)));
+            alphaUnit *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
+        }
+        double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), stepMm / tf.unitLengthMm);
+        if (alpha <= 0) {
+            open = false;
+            continue;
+        }
+        accumulated += (1.0 - accumulated) * alpha;
+        double depth = (t * cosine - space.nearMm) / range;
+        if (!open) {
+            open = true;
+            if (count < maxLayers) out.front[count++] = 1.0 - depth;
+            else count = maxLayers + 1;
+        }
+        if (count <= maxLayers) {
+            transmittance[count - 1] *= 1.0 - alpha;
+            out.back[count - 1] = 1.0 - depth;
+        }
+        fit.add(depth, 1.0 - accumulated);
+        if (accumulated >= frame.raycast.earlyTerminationAlpha) {
+            if (count <= maxLayers) out.back[count - 1] = -1e30;
+            break;
+        }
+    }
+    out.alpha = glm::dvec4(1.0) - transmittance;
+    out.beta = fit.beta();
+    return out;
+}
+
+glm::dvec3 lightPointWorld(const IsmosSpace& space, glm::dvec3 volumeCentre, glm::dvec3 tex) {
+    glm::dvec3 d = tex - space.toTexture(volumeCentre);
+    return volumeCentre + d.x * space.boxMm.x * space.right - d.y * space.boxMm.y * space.up - d.z * space.boxMm.z * space.forward;
+}
+
+double physicalOcclusion(const VolumeData& volume, const TransferFunction& tf, const IsmosSpace& space, glm::dvec3 volumeCentre,
+                         const std::vector<IsmosLight>& lights, const std::vector<std::vector<glm::dvec3>>& points, glm::dvec3 pTex,
+                         const PhysicalSettings& ps) {
+    VolumeGeometry g{volume.dims, volume.indexToWorld};
+    glm::dmat4 worldToTexture = g.worldToTexture();
+    auto texel = [&](int i, int j, int k) { return volume.normalized(volume.linearIndex(i, j, k)); };
+    glm::dvec3 texelSize = 1.0 / glm::dvec3(volume.dims);
+    glm::dmat3 gradientToWorld = g.gradientIndexToWorld() * volume.valueScale;
+    bool gradientOpacity = tf.hasGradientOpacity();
+    glm::dvec3 p = space.toWorld(pTex);
+    // Transmittance along the world segment from p towards q, over the volume's extent.
+    auto transmittance = [&](glm::dvec3 q) {
+        glm::dvec3 dir = glm::normalize(q - p);
+        double reach = 2.0 * g.boundingRadiusMm() + glm::length(p - volumeCentre);
+        double T = 1.0;
+        for (double t = ps.startOffsetMm; t < reach && T > 1e-6; t += ps.stepMm) {
+            glm::dvec3 w = p + t * dir;
+            glm::dvec3 tex(worldToTexture * glm::dvec4(w, 1.0));
+            if (tex.x < 0 || tex.y < 0 || tex.z < 0 || tex.x > 1 || tex.y > 1 || tex.z > 1) continue;
+            if (ps.insideClip && ps.insideClip(w)) continue;
+            double value = volume.valueScale * sampleTrilinear(texel, volume.dims, tex, Wrap::ClampToEdge) + volume.valueOffset;
+            double alphaUnit = tf.evaluateOpacity(value);
+            if (gradientOpacity) {
+                auto sample = [&](glm::dvec3 x) { return sampleTrilinear(texel, volume.dims, x, Wrap::ClampToEdge); };
+                glm::dvec3 d(sample(tex + glm::dvec3(texelSize.x, 0, 0)) - sample(tex - glm::dvec3(texelSize.x, 0, 0)),
+                             sample(tex + glm::dvec3(0, texelSize.y, 0)) - sample(tex - glm::dvec3(0, texelSize.y, 0)),
+                             sample(tex + glm::dvec3(0, 0, texelSize.z)) - sample(tex - glm::dvec3(0, 0, texelSize.z)));
+                alphaUnit *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
+            }
+            double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), ps.stepMm / tf.unitLengthMm);
+            T *= 1.0 - alpha;
+        }
+        return T;
+    };
+    double occluded = 0;
+    std::size_t n = 0;
+    for (std::size_t j = 0; j < lights.size(); ++j) {
+        n += points[j].size();
+        if (!insideSpot(lights[j], pTex)) {
+            occluded += static_cast<double>(points[j].size());
+            continue;
+        }
+        for (glm::dvec3 l : points[j]) occluded += 1.0 - transmittance(lightPointWorld(space, volumeCentre, l));
+    }
+    return n ? occluded / static_cast<double>(n) : 0.0;
+}
+
+}  // namespace curette::reference

@@ -1,0 +1,30 @@
+// How much of a voxel the clip meshes cover: the sample pattern of CAO Algorithm 2 (lines 3-10), one
+// definition for step IV (voxel_clip.comp: the visible fraction scales V_o) and for the removal report
+// (removal_count.comp: the removed fraction is what the carve takes away). The CPU twin is
+// clip::insideSampleCount (clip/coverage.h).
+// Nine samples, the centre and the eight corners one index step away along the diagonals; only where they
+// disagree, N more at fixed offsets in [-1, 1]^3 (antiAliasingOffsets, clip::antiAliasingOffsets).
+// Binder: the pass sets indexToWorld and antiAliasingSamples and binds SSBO_ANTIALIASING; clip_test.glsl's
+// binder is clip::ClipMeshSet::apply.
+#include "bindings.glsl"
+#include "clip_test.glsl"
+
+layout(std430, binding = SSBO_ANTIALIASING) readonly buffer AntiAliasing { vec4 antiAliasingOffsets[]; };
+uniform mat4 indexToWorld;
+uniform int antiAliasingSamples;   // N
+
+bool clippedAtIndex(vec3 index) { return insideAnyClipMesh((indexToWorld * vec4(index, 1.0)).xyz); }
+
+// Of the 9 + N samples of voxel `centre` (index coordinates), how many lie inside a clip mesh. The N extra
+// samples are taken only when the first nine disagree, so the result is 0 or 9 + N wherever they agree.
+int insideSampleCount(vec3 centre) {
+    int inside = clippedAtIndex(centre) ? 1 : 0;
+    for (int c = 0; c < 8; ++c) {
+        vec3 corner = vec3((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0);
+        inside += clippedAtIndex(centre + corner) ? 1 : 0;
+    }
+    if (inside == 0) return 0;
+    if (inside == 9) return 9 + antiAliasingSamples;
+    for (int s = 0; s < antiAliasingSamples; ++s) inside += clippedAtIndex(centre + antiAliasingOffsets[s].xyz) ? 1 : 0;
+    return inside;
+}
