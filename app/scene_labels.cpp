@@ -15,21 +15,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The table beside a label volume: X.nii.gz -> X.nii.txt, X.txt, X.ctbl (the mricron atlases ship X.nii.txt).
+// The table beside a label volume, the most specific name first: X.nii.gz -> X.nii.gz.txt, X.nii.txt (what
+// the mricron atlases ship), X.txt, and the same with .ctbl.
 std::optional<fs::path> siblingTable(const fs::path& volume) {
-    std::string name = volume.filename().string();
-    std::vector<std::string> stems{name};
+    std::vector<std::string> stems{volume.filename().string()};
     for (const char* suffix : {".gz", ".nii", ".nrrd", ".mha", ".mhd"})
         if (stems.back().ends_with(suffix)) stems.push_back(stems.back().substr(0, stems.back().size() - std::strlen(suffix)));
-    for (auto it = stems.rbegin(); it != stems.rend(); ++it)
-        for (const char* ext : {".txt", ".ctbl"}) {
-            fs::path candidate = volume.parent_path() / (*it + ext);
-            if (candidate != volume && fs::is_regular_file(candidate)) return candidate;
-        }
-    for (const std::string& stem : stems) {
-        fs::path candidate = volume.parent_path() / (stem + ".txt");
-        if (fs::is_regular_file(candidate)) return candidate;
-    }
+    for (const std::string& stem : stems)
+        for (const char* ext : {".txt", ".ctbl"})
+            if (fs::path candidate = volume.parent_path() / (stem + ext); fs::is_regular_file(candidate)) return candidate;
     return std::nullopt;
 }
 
