@@ -70,23 +70,10 @@ plan::Report CarveReporter::compute(clip::ClipMeshSet& clip) {
     return plan::computeReport(loaded_.volume, loaded_.scene.transferFunction, settings_, field_, labelSets_, bundles_);
 }
 
-LabelMap CarveReporter::removedRegion() const {
-    LabelMap map;
-    map.dims = loaded_.volume.dims;
-    map.indexToWorld = loaded_.volume.indexToWorld;
-    map.ids.assign(map.voxelCount(), 0);
-    map.source = loaded_.volume.source + " (removed region)";
-    if (field_.insideSamples.empty()) return map;
+std::vector<std::uint8_t> CarveReporter::tissueInField() const {
+    if (field_.insideSamples.empty()) return {};
     const LabelMap* firstLabels = loaded_.labels.empty() ? nullptr : &loaded_.labels.front().onScanGrid;
-    std::vector<std::uint8_t> tissue = plan::tissueInBox(loaded_.volume, loaded_.scene.transferFunction, settings_, firstLabels, field_.box());
-    std::size_t n = 0;
-    for (int k = 0; k < field_.size.z; ++k)
-        for (int j = 0; j < field_.size.y; ++j)
-            for (int i = 0; i < field_.size.x; ++i, ++n) {
-                glm::ivec3 v = field_.origin + glm::ivec3(i, j, k);
-                if (tissue[n] && 2 * field_.insideSamples[n] >= field_.samplesPerVoxel) map.ids[map.linearIndex(v.x, v.y, v.z)] = 1;
-            }
-    return map;
+    return plan::tissueInBox(loaded_.volume, loaded_.scene.transferFunction, settings_, firstLabels, field_.box());
 }
 
 void CarveReporter::write(const fs::path& dir, const plan::Report& report, const InteractionState& state,
@@ -96,13 +83,16 @@ void CarveReporter::write(const fs::path& dir, const plan::Report& report, const
     if (ec) throw SystemError(dir.string() + ": cannot create the output directory (" + ec.message() + ")");
     plan::writeReportFiles(report, dir);
     if (!options.exports) return;
-    LabelMap removed = removedRegion();
+    std::vector<std::uint8_t> tissue = tissueInField();
+    // The removed region R on the scan grid, 1 where removed (plan/removal_report.h).
+    LabelMap removed;
+    removed.dims = loaded_.volume.dims;
+    removed.indexToWorld = loaded_.volume.indexToWorld;
+    removed.source = loaded_.volume.source + " (removed region)";
+    std::vector<std::uint8_t> region = plan::removedRegionOnGrid(field_, tissue);  // the field's grid is the scan's
+    removed.ids.assign(region.begin(), region.end());
     io::writeNiftiLabelmap(dir / "removed.nii.gz", removed);
     io::writeSlicerSegmentation(dir / "removed.seg.nrrd", removed, {io::SegmentInfo{1, "removed", "removed by the carve", glm::dvec3(0.85, 0.2, 0.15)}});
-    const LabelMap* firstLabels = loaded_.labels.empty() ? nullptr : &loaded_.labels.front().onScanGrid;
-    std::vector<std::uint8_t> tissue = field_.insideSamples.empty()
-                                           ? std::vector<std::uint8_t>{}
-                                           : plan::tissueInBox(loaded_.volume, loaded_.scene.transferFunction, settings_, firstLabels, field_.box());
     clip::TriangleMesh cavity = plan::cavitySurface(field_, tissue);
     if (!cavity.triangles.empty()) {
         io::writeStl(dir / "cavity.stl", cavity, options.meshSpace);

@@ -46,15 +46,16 @@ public:
     const plan::ReportSettings& settings() const { return settings_; }
     const std::vector<plan::LabelSet>& labelSets() const { return labelSets_; }
 
-    // Writes the report and (with options.exports) the plan's files into `directory` (created if needed).
+    // Writes the report and (with options.exports) the plan's files into `directory` (created if needed);
+    // call after compute(), whose field the exports are made from.
     // `state` is the interaction state the report was computed under (the poses for plan-scene.json).
     void write(const std::filesystem::path& directory, const plan::Report& report, const InteractionState& state,
                const PlanExportOptions& options) const;
 
-    // The removed region R on the scan grid (1 where tissue and removed fraction >= 0.5).
-    LabelMap removedRegion() const;
-
 private:
+    // The tissue over the last field's box (plan/tissue_mask.h), as the report counted it.
+    std::vector<std::uint8_t> tissueInField() const;
+
     const LoadedScene& loaded_;
     plan::ReportSettings settings_;
     std::vector<plan::LabelSet> labelSets_;

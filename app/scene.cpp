@@ -13,6 +13,22 @@ namespace curette {
 
 namespace fs = std::filesystem;
 
+std::vector<std::string> fileNameStems(const fs::path& path) {
+    std::vector<std::string> stems{path.filename().string()};
+    for (bool stripped = true; stripped;) {
+        stripped = false;
+        for (const char* suffix : {".gz", ".nii", ".nrrd", ".mha", ".mhd", ".trk", ".tck", ".trx"}) {
+            const std::string& name = stems.back();
+            if (name.size() > std::strlen(suffix) && name.ends_with(suffix)) {
+                stems.push_back(name.substr(0, name.size() - std::strlen(suffix)));
+                stripped = true;
+                break;
+            }
+        }
+    }
+    return stems;
+}
+
 namespace {
 
 ScalarType parseScalarType(const JsonReader& r) {
@@ -26,12 +42,7 @@ ScalarType parseScalarType(const JsonReader& r) {
 }
 
 // "AF_L.trk" -> "AF_L", "aal.nii.gz" -> "aal": what a file is called in a report.
-std::string fileStem(const fs::path& path) {
-    std::string name = path.filename().string();
-    for (const char* suffix : {".gz", ".nii", ".nrrd", ".trk", ".tck", ".trx", ".mha", ".mhd"})
-        if (name.size() > std::strlen(suffix) && name.ends_with(suffix)) name.resize(name.size() - std::strlen(suffix));
-    return name;
-}
+std::string fileStem(const fs::path& path) { return fileNameStems(path).back(); }
 
 fs::path resolvePath(const fs::path& scene, const std::string& path) {
     fs::path p(path);

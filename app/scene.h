@@ -128,6 +128,11 @@ struct Scene {
     ReportSpec report;
 };
 
+// A file's name with the known volume and tract suffixes taken off one at a time, the full name first:
+// "aal.nii.gz" -> {"aal.nii.gz", "aal.nii", "aal"}. The last is what the file is called in a report; the
+// others are where its sibling files are looked for (app/scene_labels.h).
+std::vector<std::string> fileNameStems(const std::filesystem::path& path);
+
 // Reads and validates a scene file (and the TF file it names); throws InputError naming the key.
 Scene loadScene(const std::filesystem::path& path);
 Scene parseScene(std::string_view text, const std::filesystem::path& path);

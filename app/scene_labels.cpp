@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstring>
 #include <filesystem>
 
 namespace curette {
@@ -18,10 +17,7 @@ namespace {
 // The table beside a label volume, the most specific name first: X.nii.gz -> X.nii.gz.txt, X.nii.txt (what
 // the mricron atlases ship), X.txt, and the same with .ctbl.
 std::optional<fs::path> siblingTable(const fs::path& volume) {
-    std::vector<std::string> stems{volume.filename().string()};
-    for (const char* suffix : {".gz", ".nii", ".nrrd", ".mha", ".mhd"})
-        if (stems.back().ends_with(suffix)) stems.push_back(stems.back().substr(0, stems.back().size() - std::strlen(suffix)));
-    for (const std::string& stem : stems)
+    for (const std::string& stem : fileNameStems(volume))
         for (const char* ext : {".txt", ".ctbl"})
             if (fs::path candidate = volume.parent_path() / (stem + ext); fs::is_regular_file(candidate)) return candidate;
     return std::nullopt;

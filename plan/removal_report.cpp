@@ -143,6 +143,20 @@ std::vector<std::string> Report::warnings() const {
     return out;
 }
 
+std::vector<std::uint8_t> removedRegionOnGrid(const RemovalField& field, const std::vector<std::uint8_t>& tissueInFieldBox) {
+    const glm::ivec3 dims = field.gridDims;
+    std::vector<std::uint8_t> region(std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z), 0);
+    std::size_t at = 0;
+    for (int k = field.origin.z; k < field.origin.z + field.size.z; ++k)
+        for (int j = field.origin.y; j < field.origin.y + field.size.y; ++j)
+            for (int i = field.origin.x; i < field.origin.x + field.size.x; ++i, ++at) {
+                bool tissue = tissueInFieldBox.empty() || tissueInFieldBox[at];
+                if (tissue && 2 * int(field.insideSamples[at]) >= field.samplesPerVoxel)
+                    region[(std::size_t(k) * std::size_t(dims.y) + std::size_t(j)) * std::size_t(dims.x) + std::size_t(i)] = 1;
+            }
+    return region;
+}
+
 Report computeReport(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
                      const RemovalField& field, const std::vector<LabelSet>& labelSets,
                      const std::vector<BundleInput>& bundles) {
@@ -169,7 +183,7 @@ Report computeReport(const VolumeData& volume, const TransferFunction& tf, const
     const VoxelBox box = field.box();
     const std::vector<std::uint8_t> tissue =
         tissueInBox(volume, tf, settings, labelSets.empty() ? nullptr : labelSets.front().labels, box);
-    std::vector<std::uint8_t> removedRegion(volume.voxelCount(), 0);
+    const std::vector<std::uint8_t> removedRegion = removedRegionOnGrid(field, tissue);
     std::uint64_t removedSamples = 0;  // sum of t(v) * count(v): the total in units of voxel / (9 + N)
     {
         std::size_t at = 0;
@@ -179,10 +193,7 @@ Report computeReport(const VolumeData& volume, const TransferFunction& tf, const
                     if (!tissue[at] || field.insideSamples[at] == 0) continue;
                     removedSamples += field.insideSamples[at];
                     ++report.touchedVoxels;
-                    if (2 * int(field.insideSamples[at]) >= field.samplesPerVoxel) {
-                        removedRegion[volume.linearIndex(i, j, k)] = 1;
-                        ++report.removedRegionVoxels;
-                    }
+                    report.removedRegionVoxels += removedRegion[volume.linearIndex(i, j, k)];
                 }
     }
     report.removedMl = double(removedSamples) / double(field.samplesPerVoxel) * report.voxelVolumeMl;

@@ -105,6 +105,11 @@ struct Report {
     std::vector<std::string> warnings() const;
 };
 
+// The removed region R on the field's whole grid (1 where tissue and count / (9 + N) >= 0.5; the definition
+// above), from the tissue over the field's box (plan/tissue_mask.h tissueInBox; empty: every voxel is tissue).
+// The report's margins and the exported labelmap both start from it.
+std::vector<std::uint8_t> removedRegionOnGrid(const RemovalField& field, const std::vector<std::uint8_t>& tissueInFieldBox);
+
 // Throws InputError when a label map or the field is not on the volume's grid, or a probe does not match its
 // tractogram.
 Report computeReport(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,

@@ -58,16 +58,16 @@ GpuVolume::GpuVolume(const gl::ContextInfo& info, const VolumeData& data)
                         glm::vec2(1e30f, -1e30f));
     // One pass over the voxels: each voxel updates the (up to 8) bricks whose apron holds it.
     for (int k = 0; k < data.dims.z; ++k) {
-        int bz0 = std::max(0, (k - 1) / brickSize), bz1 = std::min(brickGrid_.z - 1, (k + 1) / brickSize);
+        glm::ivec2 bzRange = bricksHoldingVoxel(k, brickGrid_.z);
         for (int j = 0; j < data.dims.y; ++j) {
-            int by0 = std::max(0, (j - 1) / brickSize), by1 = std::min(brickGrid_.y - 1, (j + 1) / brickSize);
+            glm::ivec2 byRange = bricksHoldingVoxel(j, brickGrid_.y);
             std::size_t row = data.linearIndex(0, j, k);
             for (int i = 0; i < data.dims.x; ++i) {
-                int bx0 = std::max(0, (i - 1) / brickSize), bx1 = std::min(brickGrid_.x - 1, (i + 1) / brickSize);
+                glm::ivec2 bxRange = bricksHoldingVoxel(i, brickGrid_.x);
                 float v = static_cast<float>(data.normalized(row + static_cast<std::size_t>(i)));
-                for (int bz = bz0; bz <= bz1; ++bz)
-                    for (int by = by0; by <= by1; ++by)
-                        for (int bx = bx0; bx <= bx1; ++bx) {
+                for (int bz = bzRange.x; bz <= bzRange.y; ++bz)
+                    for (int by = byRange.x; by <= byRange.y; ++by)
+                        for (int bx = bxRange.x; bx <= bxRange.y; ++bx) {
                             glm::vec2& r = brickRanges_[(static_cast<std::size_t>(bz) * static_cast<std::size_t>(brickGrid_.y) +
                                                          static_cast<std::size_t>(by)) *
                                                             static_cast<std::size_t>(brickGrid_.x) +

@@ -8,6 +8,7 @@
 #include "base/volume.h"
 #include "render/volume_geometry.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace curette {
@@ -31,6 +32,11 @@ public:
     // Bricks of brickSize^3 voxels; for each, the lowest and highest stored texel value that trilinear
     // sampling anywhere inside the brick can see (the brick plus a one-voxel apron).
     glm::ivec3 brickGrid() const { return brickGrid_; }
+    // Along one axis, the first and last brick whose apron holds voxel `i` (a sample in brick b interpolates
+    // voxels b*B-1 .. (b+1)*B), of `bricks` bricks: the bricks a voxel's value can reach.
+    static glm::ivec2 bricksHoldingVoxel(int i, int bricks) {
+        return {std::max(0, (i - 1) / brickSize), std::min(bricks - 1, (i + 1) / brickSize)};
+    }
     const std::vector<glm::vec2>& brickRanges() const { return brickRanges_; }
 
 private:

@@ -2,6 +2,7 @@
 
 #include "base/error.h"
 #include "gl/bindings.h"
+#include "render/gpu_volume.h"
 
 #include <algorithm>
 
@@ -46,20 +47,21 @@ void LabelOverlay::apply(gl::Program&) const {
     glBindTextureUnit(binding::labelStyles, stylesTexture_.name());
 }
 
-std::vector<std::uint8_t> LabelOverlay::occupiedBricks(glm::ivec3 grid, int brickSize) const {
+std::vector<std::uint8_t> LabelOverlay::occupiedBricks(glm::ivec3 grid) const {
     std::vector<std::uint8_t> flags(std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z), 0);
+    std::size_t v = 0;
     for (int k = 0; k < dims_.z; ++k)
         for (int j = 0; j < dims_.y; ++j)
-            for (int i = 0; i < dims_.x; ++i) {
-                std::uint16_t id = ids_[(std::size_t(k) * std::size_t(dims_.y) + std::size_t(j)) * std::size_t(dims_.x) + std::size_t(i)];
+            for (int i = 0; i < dims_.x; ++i, ++v) {
+                std::uint16_t id = ids_[v];
                 if (id == 0 || styles_[id].a <= 0.0f) continue;
-                // The voxel and its apron: every brick whose samples can land in it.
-                glm::ivec3 lo = glm::max(glm::ivec3(i - 1, j - 1, k - 1) / brickSize, glm::ivec3(0));
-                glm::ivec3 hi = glm::min(glm::ivec3(i + 1, j + 1, k + 1) / brickSize, grid - 1);
-                for (int bk = lo.z; bk <= hi.z; ++bk)
-                    for (int bj = lo.y; bj <= hi.y; ++bj)
-                        for (int bi = lo.x; bi <= hi.x; ++bi)
-                            flags[(std::size_t(bk) * std::size_t(grid.y) + std::size_t(bj)) * std::size_t(grid.x) + std::size_t(bi)] = 255;
+                // Every brick whose samples can land in this voxel.
+                glm::ivec2 bx = GpuVolume::bricksHoldingVoxel(i, grid.x), by = GpuVolume::bricksHoldingVoxel(j, grid.y),
+                           bz = GpuVolume::bricksHoldingVoxel(k, grid.z);
+                for (int b2 = bz.x; b2 <= bz.y; ++b2)
+                    for (int b1 = by.x; b1 <= by.y; ++b1)
+                        for (int b0 = bx.x; b0 <= bx.y; ++b0)
+                            flags[(std::size_t(b2) * std::size_t(grid.y) + std::size_t(b1)) * std::size_t(grid.x) + std::size_t(b0)] = 255;
             }
     return flags;
 }

@@ -52,7 +52,7 @@ std::vector<std::uint8_t> RemovalProbe::insideFlags(clip::ClipMeshSet& clip, con
     if (points.empty() || clip.count() == 0) return flags;
     clip.update();
     // In batches, so a whole-brain tractogram needs no buffer of its size.
-    constexpr std::size_t batch = 1 << 20;
+    const std::size_t batch = std::min<std::size_t>(points.size(), 1 << 20);
     gl::Buffer in = gl::createBuffer(), out = gl::createBuffer();
     glNamedBufferStorage(in.name(), static_cast<GLsizeiptr>(batch * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferStorage(out.name(), static_cast<GLsizeiptr>(batch * sizeof(std::uint32_t)), nullptr, GL_DYNAMIC_STORAGE_BIT);

@@ -68,7 +68,7 @@ void Renderer::updateOccupancy() {
     for (std::size_t i = 0; i < ranges.size(); ++i) flags[i] = tf_->maxOpacity(ranges[i].x, ranges[i].y) > 0.0f ? 255 : 0;
     // ... and no shown label lies in it (a label raises the opacity of transparent tissue).
     if (labels_) {
-        std::vector<std::uint8_t> labelled = labels_->occupiedBricks(grid, GpuVolume::brickSize);
+        std::vector<std::uint8_t> labelled = labels_->occupiedBricks(grid);
         for (std::size_t i = 0; i < flags.size(); ++i) flags[i] = std::max(flags[i], labelled[i]);
     }
     if (!occupancy_) {

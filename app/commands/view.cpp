@@ -64,12 +64,15 @@ std::unique_ptr<input::HidBackend> openHid(bool wanted) {
 volatile std::sig_atomic_t quitRequested = 0;
 void requestQuit(int) { quitRequested = 1; }
 
-std::string sessionFileName() {
+// The current time for a file name (ISO 8601 with '-' for ':', which some file systems refuse).
+std::string fileNameTimestamp() {
     std::string stamp = currentTimeIso8601();
     for (char& c : stamp)
         if (c == ':') c = '-';
-    return "curette-session-" + stamp + ".jsonl";
+    return stamp;
 }
+
+std::string sessionFileName() { return "curette-session-" + fileNameTimestamp() + ".jsonl"; }
 
 }  // namespace
 
@@ -265,11 +268,8 @@ int view(const Arguments& args) {
             bool exportKeyDown = !io.WantCaptureKeyboard && glfwGetKey(w, GLFW_KEY_F5) == GLFW_PRESS;
             if (exportKeyDown && !exportKeyWasDown && report) {
                 if (reportedVersion != version) report = reporter.compute(renderer.clipMeshes()), reportedVersion = version;
-                std::string stamp = currentTimeIso8601();
-                for (char& c : stamp)
-                    if (c == ':') c = '-';
                 std::string name = "curette-plan-";
-                name += stamp;
+                name += fileNameTimestamp();
                 if (exports++ > 0) name += std::string(1, '-').append(std::to_string(exports));
                 std::filesystem::path dir = name;
                 try {

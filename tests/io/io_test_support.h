@@ -17,6 +17,14 @@
 
 namespace curette::test {
 
+// The mricron-data atlases and heads (Debian package mricron-data, installed by scripts/setup).
+inline const std::filesystem::path kMricronTemplates = "/usr/share/mricron/templates";
+
+// Skips the test, naming the file and the package, when a mricron-data file is missing.
+#define SKIP_WITHOUT_MRICRON(file)                                                                          \
+    if (!std::filesystem::exists(::curette::test::kMricronTemplates / (file)))                              \
+    GTEST_SKIP() << (::curette::test::kMricronTemplates / (file)).string() << " is missing (Debian package mricron-data)"
+
 // Runs `read` and expects an InputError that names `file` and `field`.
 template <typename Read>
 void expectInputError(Read&& read, const std::string& file, const std::string& field) {

@@ -21,11 +21,8 @@
 namespace curette {
 namespace {
 
-const std::filesystem::path kTemplates = "/usr/share/mricron/templates";
+const std::filesystem::path& kTemplates = test::kMricronTemplates;
 
-#define SKIP_WITHOUT_MRICRON(file)                                                                    \
-    if (!std::filesystem::exists(kTemplates / (file)))                                                \
-    GTEST_SKIP() << (kTemplates / (file)).string() << " is missing (Debian package mricron-data)"
 
 VolumeData floatVolume(glm::ivec3 dims, const std::vector<float>& values) {
     return buildVolume("made-up.nii", dims, ScalarType::Float32, reinterpret_cast<const std::uint8_t*>(values.data()), false, 1.0, 0.0,

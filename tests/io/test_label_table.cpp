@@ -13,11 +13,8 @@
 namespace curette {
 namespace {
 
-const std::filesystem::path kTemplates = "/usr/share/mricron/templates";
+const std::filesystem::path& kTemplates = test::kMricronTemplates;
 
-#define SKIP_WITHOUT_MRICRON(file)                                                                    \
-    if (!std::filesystem::exists(kTemplates / (file)))                                                \
-    GTEST_SKIP() << (kTemplates / (file)).string() << " is missing (Debian package mricron-data)"
 
 // "r g b" in 0..255, readable in a failure message.
 std::string rgb255(const LabelEntry* e) {

@@ -32,7 +32,7 @@
 namespace curette {
 namespace {
 
-const std::filesystem::path kTemplates = "/usr/share/mricron/templates";
+const std::filesystem::path& kTemplates = test::kMricronTemplates;
 
 // An oblique, anisotropic index-to-world affine (a rotation about a skew axis times voxel sizes, offset).
 glm::dmat4 obliqueAffine() {
@@ -140,7 +140,7 @@ TEST(NiftiLabelmapWriter, ShearedAffineHasNoQform) {
 }
 
 TEST(NiftiLabelmapWriter, AalRoundTrip) {
-    if (!std::filesystem::exists(kTemplates / "aal.nii.gz")) GTEST_SKIP() << "mricron-data is not installed";
+    SKIP_WITHOUT_MRICRON("aal.nii.gz");
     LabelMap aal = labelMapFromVolume(io::readVolume(kTemplates / "aal.nii.gz"));
     std::filesystem::path path = test::scratchDirectory() / "aal-copy.nii.gz";
     io::writeNiftiLabelmap(path, aal);

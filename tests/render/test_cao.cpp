@@ -472,8 +472,8 @@ TEST(Cao, ShaderClipTestAgreesWithAnalyticSphereAndBox) {
         glNamedBufferStorage(out.name(), static_cast<GLsizeiptr>(points.size() * 4), nullptr, GL_DYNAMIC_STORAGE_BIT);
         gl::Program probe = gl::Program::compute("clip_probe.comp");
         set.apply(probe);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, in.name());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, out.name());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboProbePoints, in.name());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboProbeResults, out.name());
         probe.set("clipMeshCount", 1);
         probe.set("pointCount", static_cast<unsigned>(points.size()));
         probe.dispatchCovering(glm::uvec3(static_cast<unsigned>(points.size()), 1, 1));
