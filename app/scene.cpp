@@ -336,6 +336,12 @@ Scene parseScene(std::string_view text, const fs::path& path) {
         if (auto e = rc->find("early_termination")) scene.raycast.earlyTerminationAlpha = e->number(0.5, 1.0);
         if (auto j = rc->find("jitter_seed")) scene.raycast.jitterSeed = static_cast<std::uint32_t>(j->unsignedInteger(UINT32_MAX));
         if (auto k = rc->find("skip_empty_space")) scene.raycast.skipEmptySpace = k->boolean();
+        if (auto faces = rc->find("cut_faces")) {
+            CutFaceSettings& f = scene.raycast.cutFace;
+            if (auto e = faces->find("enabled")) f.enabled = e->boolean();
+            if (auto d = faces->find("normal_depth_mm")) f.normalDepthMm = d->number(0.01, 100);
+            faces->finish();
+        }
         rc->finish();
     }
     if (auto lao = root.find("ambient_occlusion")) scene.lao = parseLao(*lao);

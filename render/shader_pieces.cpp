@@ -31,7 +31,12 @@ void SampleShadingPiece::addDefines(gl::Defines& defines, ShadingMode mode) {
     defines.emplace_back("SHADING", std::to_string(static_cast<int>(mode)));
 }
 
+void SampleShadingPiece::addCutFaceDefines(gl::Defines& defines, const CutFaceSettings& settings, int clipMeshes) {
+    if (settings.enabled && clipMeshes > 0) defines.emplace_back("CUT_FACES", "1");
+}
+
 void SampleShadingPiece::apply(gl::Program& p) const {
+    p.set("cutFaceNormalDepthMm", static_cast<float>(cutFace.normalDepthMm));
     if (!usesAmbientOcclusion(mode)) return;
     p.set("ambientScale", static_cast<float>(ambientScale));
     if (ambient) glBindTextureUnit(binding::ambient, ambient);

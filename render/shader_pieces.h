@@ -39,7 +39,10 @@ struct SampleShadingPiece {
     ShadingMode mode;
     double ambientScale = 1.0;
     GLuint ambient = 0;
+    CutFaceSettings cutFace{};   // used only by passes compiled with CUT_FACES
     static void addDefines(gl::Defines& defines, ShadingMode mode);
+    // CUT_FACES when the frame clips (`clipMeshes` > 0) and cut faces are on.
+    static void addCutFaceDefines(gl::Defines& defines, const CutFaceSettings& settings, int clipMeshes);
     void apply(gl::Program& program) const;
 };
 

@@ -43,7 +43,7 @@ public:
     std::size_t gpuBytes() const;
 
 private:
-    gl::Program& program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf);
+    gl::Program& program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, bool cutFaces);
     void ensureBuffers(glm::ivec2 size);
 
     gl::ComputeVariants programs_{"dos_slice.comp"};

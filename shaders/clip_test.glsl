@@ -77,3 +77,61 @@ bool insideAnyDilatedMesh(vec3 world) {
         if (insideMeshMaps(i, world, true)) return true;
     return false;
 }
+
+// ---- Cut faces (Weiskopf, Engel and Ertl 2003, "Interactive clipping techniques for texture-based volume
+// visualization and volume shading", sec. 5: the clip surface, not the data, decides where a cut face is and
+// how it is lit). Only passes compiled with CUT_FACES call these. llvmpipe runs every branch under a lane
+// mask, so these run for every sample of a pass that calls them: each is a few fetches, no loop.
+
+// The first mesh whose interval holds `world` (-1: none): insideAnyClipMesh that also says which.
+int clipMeshHolding(vec3 world) {
+    for (int i = 0; i < clipMeshCount; ++i)
+        if (insideMeshMaps(i, world, false)) return i;
+    return -1;
+}
+
+// Where the segment from `inside` (held by mesh i) to `outside` (held by no mesh) leaves mesh i, as the
+// fraction s in [0, 1] along it, and the mesh's outward unit world normal there. The layer it leaves through
+// is the back of the interval holding `inside` when the segment runs deeper along the mesh's camera, else its
+// front. That layer is read as a bilinear surface through the map texel centres (the 2 x 2 texels around the
+// segment's middle), not as the nearest-pixel terraces the clip test sees, so the face is smooth: the depth z
+// is linear along the segment and the bilinear depth B quadratic, and two Newton steps from the middle solve
+// z(s) = B(s). The normal is -grad g of g = z - B (front: inside behind it) or g = B - z (back), carried to
+// world by the transpose of the linear part of worldToMap (a normal is a covector). Where a texel of the
+// patch holds no surface (a silhouette of the map) the answer is s = 1 (the lattice sample) and the normal
+// faces back along the segment.
+float clipExitFraction(int i, vec3 inside, vec3 outside, out vec3 outwardWorld) {
+    ClipMeshGpu mesh = clipMeshes[i];
+    vec3 m0 = (mesh.worldToMap * vec4(inside, 1.0)).xyz, m1 = (mesh.worldToMap * vec4(outside, 1.0)).xyz;
+    int resolution = mesh.info.z;
+    ivec2 pixel0 = clamp(ivec2(m0.xy * float(resolution)), ivec2(0), ivec2(resolution - 1));
+    int layer = mesh.info.x;
+    for (int interval = 1; interval < mesh.info.y; ++interval) {
+        int front = mesh.info.x + 2 * interval;
+        if (texelFetch(clipDepthMaps, ivec3(pixel0, front), 0).r < m0.z) layer = front;  // the last front before m0
+    }
+    bool back = m1.z > m0.z;
+    layer += back ? 1 : 0;
+    vec2 corner = clamp(floor(mix(m0.xy, m1.xy, 0.5) * float(resolution) - 0.5), vec2(0.0), vec2(resolution - 2));
+    ivec2 c = ivec2(corner);
+    float d00 = texelFetch(clipDepthMaps, ivec3(c, layer), 0).r, d10 = texelFetch(clipDepthMaps, ivec3(c + ivec2(1, 0), layer), 0).r;
+    float d01 = texelFetch(clipDepthMaps, ivec3(c + ivec2(0, 1), layer), 0).r, d11 = texelFetch(clipDepthMaps, ivec3(c + ivec2(1, 1), layer), 0).r;
+    bool surface = max(max(abs(d00), abs(d10)), max(abs(d01), abs(d11))) < 1e30;
+    // Bilinear depth over texel coordinates u = m.xy * resolution - 0.5 - corner.
+    vec2 u0 = m0.xy * float(resolution) - 0.5 - corner, du = (m1.xy - m0.xy) * float(resolution);
+    float s = 0.5;
+    vec2 gradientTexels = vec2(0.0);
+    for (int step = 0; step < 2; ++step) {
+        vec2 u = u0 + s * du;
+        float depth = mix(mix(d00, d10, u.x), mix(d01, d11, u.x), u.y);
+        gradientTexels = vec2(mix(d10 - d00, d11 - d01, u.y), mix(d01 - d00, d11 - d10, u.x));
+        float g = mix(m0.z, m1.z, s) - depth;
+        float slope = (m1.z - m0.z) - dot(gradientTexels, du);
+        s = clamp(s - g / (abs(slope) > 1e-12 ? slope : 1e-12), 0.0, 1.0);
+    }
+    // grad (m.z - B) in map coordinates (x, y in [0, 1] per map side, z in mm).
+    vec3 gradientFront = vec3(-gradientTexels * float(resolution), 1.0);
+    vec3 outwardMap = back ? gradientFront : -gradientFront;
+    outwardWorld = surface ? normalize(transpose(mat3(mesh.worldToMap)) * outwardMap) : normalize(outside - inside);
+    return surface ? s : 1.0;
+}

@@ -71,7 +71,37 @@ void main() {
     // This slice's sample (nothing outside the volume or inside a clip mesh).
     bool insideVolume = all(greaterThanEqual(tex, vec3(0.0))) && all(lessThanEqual(tex, vec3(1.0)));
     VolumeSample point = emptySample();
-    if (insideVolume && !(clipMeshCount > 0 && insideAnyClipMesh(world))) point = classifySample(tex);
+#ifdef CUT_FACES
+    // Cut faces (clip_test.glsl): this slice's sample stands for the ray within half a slice interval of it.
+    // When the ray leaves a clip mesh inside that interval (the sample clipped and the interval's far end
+    // visible, or the sample visible and its near end clipped), the sample is taken at the crossing instead,
+    // standing for the ray from there to the interval's far end, and lit as the face (its normal, V_AO
+    // behind it); the samples of later slices are lit as the volume is.
+    vec3 faceNormal = vec3(0.0);
+    bool onFace = false;
+    int holding = clipMeshCount > 0 ? clipMeshHolding(world) : -1;
+    bool clipped = holding >= 0;
+    vec3 nearEnd = world - 0.5 * segment * direction, farEnd = world + 0.5 * segment * direction;
+    int holdingOther = clipMeshCount > 0 ? clipMeshHolding(clipped ? farEnd : nearEnd) : -1;
+    bool leaves = clipped ? holdingOther < 0 : holdingOther >= 0;
+    if (leaves && insideVolume) {
+        vec3 outward;
+        vec3 from = clipped ? world : nearEnd, to = clipped ? farEnd : world;
+        float s = clipExitFraction(clipped ? holding : holdingOther, from, to, outward);
+        float crossing = t + (clipped ? 0.0 : -0.5 * segment) + s * 0.5 * segment;
+        faceNormal = -outward;
+        float rest = t + 0.5 * segment - crossing;
+        eyeSegment = max(eyeSegment - (segment - rest), 0.0);
+        segment = rest;
+        world = eyeWorld + crossing * direction;
+        tex = toTexture(world);
+        clipped = false;
+        onFace = true;
+    }
+#else
+    bool clipped = clipMeshCount > 0 && insideAnyClipMesh(world);
+#endif
+    if (insideVolume && !clipped) point = classifySample(tex);
     float alpha = correctOpacity(point.alphaUnit, segment);           // for the occlusion buffer: the whole slice
     float eyeAlpha = correctOpacity(point.alphaUnit, eyeSegment);     // for the eye: up to a tube surface
 
@@ -95,7 +125,11 @@ void main() {
     // shadows from channel "geometry", so nothing is counted twice.
     vec4 eye = imageLoad(eyeBuffer, pixel);
     if (!behindSurface && eyeAlpha > 0.0 && eye.a < earlyTerminationAlpha) {
+#ifdef CUT_FACES
+        vec3 color = shadeCutFaceSample(point, tex, -direction, faceNormal, onFace ? 0.0 : 1e30);
+#else
         vec3 color = shadeSample(point, tex, -direction);
+#endif
 #if SHADING == SHADING_DOS
         color = ambientRadiance * color * occlusionBefore.x;
 #elif SHADING == SHADING_LAO || SHADING == SHADING_CAO

@@ -2,7 +2,9 @@
 // Step VI: perspective ray casting of the volume, one invocation per pixel. Front-to-back compositing with
 // early termination; entry/exit from the volume box; empty bricks skipped without moving the sample
 // lattice, so skipping never changes the image. Samples lie at t = (k + jitter) * stepMm along each ray,
-// t measured in millimetres from the eye, so the segment length of every sample is stepMm exactly.
+// t measured in millimetres from the eye, so the segment length of every sample is stepMm exactly, except
+// with CUT_FACES: where the ray leaves a clip mesh, one extra segment from the crossing to the next lattice
+// sample, with its partial length (the lattice itself does not move).
 #include "bindings.glsl"
 #include "pixel_ray.glsl"
 #include "shade_sample.glsl"
@@ -25,6 +27,12 @@ layout(std430, binding = 0) buffer SampleCounter { uint samplesTaken; };  // `cu
 #ifdef ISMOS_LAYERS
 #include "ismos_layers.glsl"
 #endif
+
+// Front-to-back compositing of one segment: premultiplied colour and opacity.
+void composite(inout vec4 accumulated, vec3 color, float alpha) {
+    accumulated.rgb += (1.0 - accumulated.a) * alpha * color;
+    accumulated.a += (1.0 - accumulated.a) * alpha;
+}
 
 // Ray parameter interval inside the axis-aligned box [lo, hi] (texture space), or false if it misses.
 bool intersectBox(vec3 origin, vec3 direction, vec3 lo, vec3 hi, out float tNear, out float tFar) {
@@ -62,8 +70,21 @@ void main() {
         float tubeView = texelFetch(ismosTubeDepth, pixel, 0).r;
         if (tubeView > 0.0) kLast = min(kLast, int(ceil(tubeView / dot(direction, ismosForward) / stepMm - jitter)) - 1);
 #endif
+#ifdef CUT_FACES
+        // Cut faces (clip_test.glsl, shade_sample.glsl). Lattice sample k stands for the ray within half a
+        // step of it (the sum over the lattice is the midpoint rule). Where the ray leaves a clip mesh, the
+        // first visible lattice sample is taken at the crossing instead, standing for the ray from there to
+        // the end of its own half step, so the tissue starts exactly where the face is; the lattice does not
+        // move. A clipped sample marches through the mesh on its clip test alone and finds the crossing once:
+        // llvmpipe runs a branch for every lane of a group whenever one lane takes it, so the face is worked
+        // out once per crossing, not on every sample.
+        float faceT = -1.0;         // ray parameter of the last cut face crossed (-1: none)
+        vec3 faceNormal = vec3(0.0);
+        float faceCosine = 0.0;     // |cos| between the ray and the face normal: depth behind the face per mm of ray
+#endif
         for (; k <= kLast; ++k) {
             float t = (float(k) + jitter) * stepMm;
+            float segment = stepMm;
             vec3 tex = originTex + t * directionTex;
             if (skipEmptySpace) {
                 ivec3 brick = clamp(ivec3(floor(tex * vec3(volumeSize) / float(brickSize))), ivec3(0),
@@ -75,6 +96,9 @@ void main() {
                     float bNear, bFar;
                     intersectBox(originTex, directionTex, lo, hi, bNear, bFar);
                     k = max(k, int(floor(bFar / stepMm - jitter)));
+#ifdef CUT_FACES
+                    faceT = -1.0;
+#endif
 #ifdef ISMOS_LAYERS
                     ismosGap(layers);
 #endif
@@ -82,24 +106,62 @@ void main() {
                 }
             }
             // Step VI's shadow-test clipping: a sample inside any clip mesh is not there.
+#ifdef CUT_FACES
+            int holding = clipMeshHolding(eyeWorld + t * direction);
+            if (holding >= 0) {
+                // Through the mesh to the first visible lattice sample, then the face between the two.
+                int mesh = holding;
+                bool leaves = false;
+                while (k < kLast) {
+                    int next = clipMeshHolding(eyeWorld + (float(k + 1) + jitter) * stepMm * direction);
+                    ++k;
+                    if (next < 0) {
+                        leaves = true;
+                        break;
+                    }
+                    mesh = next;
+                }
+#ifdef ISMOS_LAYERS
+                ismosGap(layers);
+#endif
+                if (!leaves) continue;  // the ray ends inside the mesh
+                t = (float(k) + jitter) * stepMm;
+                vec3 outward;
+                float s = clipExitFraction(mesh, eyeWorld + (t - stepMm) * direction, eyeWorld + t * direction, outward);
+                float crossing = t - (1.0 - s) * stepMm;
+                faceNormal = -outward;
+                faceCosine = abs(dot(direction, faceNormal));
+                faceT = crossing;
+                segment = t + 0.5 * stepMm - crossing;
+                t = crossing;
+                tex = originTex + t * directionTex;
+            }
+#else
             if (clipMeshCount > 0 && insideAnyClipMesh(eyeWorld + t * direction)) {
 #ifdef ISMOS_LAYERS
                 ismosGap(layers);
 #endif
                 continue;
             }
+#endif
             ++samples;
             VolumeSample point = classifySample(tex);
-            float alpha = correctOpacity(point.alphaUnit, stepMm);
+            float alpha = correctOpacity(point.alphaUnit, segment);
             if (alpha <= 0.0) {
+#ifdef CUT_FACES
+                faceT = -1.0;  // the face's layer ends where its tissue does (a grazing ray may go on to other surfaces)
+#endif
 #ifdef ISMOS_LAYERS
                 ismosGap(layers);
 #endif
                 continue;
             }
+#ifdef CUT_FACES
+            vec3 color = shadeCutFaceSample(point, tex, -direction, faceNormal, faceT >= 0.0 ? (t - faceT) * faceCosine : 1e30);
+#else
             vec3 color = shadeSample(point, tex, -direction);
-            accumulated.rgb += (1.0 - accumulated.a) * alpha * color;
-            accumulated.a += (1.0 - accumulated.a) * alpha;
+#endif
+            composite(accumulated, color, alpha);
 #ifdef ISMOS_LAYERS
             ismosSample(layers, t * depthPerMm - ismosNearDepth, alpha, 1.0 - accumulated.a);
             if (accumulated.a >= earlyTerminationAlpha) {
