@@ -112,4 +112,38 @@ std::string CommandLine::usage() const {
     return text;
 }
 
+OptionSpec gpuOption() {
+    return {"gpu", true, "headless GL: an EGL device index (curette info --gl lists them), llvmpipe (software) or surfaceless "
+                         "(default: the first hardware device, else surfaceless)"};
+}
+
+std::vector<OptionSpec> withGpuOption(std::vector<OptionSpec> specs) {
+    specs.push_back(gpuOption());
+    return specs;
+}
+
+gl::GpuChoice parseGpuChoice(const std::string& text, const gl::EglPlatforms& platforms) {
+    if (text == "llvmpipe") return {gl::GpuChoice::Kind::Software, -1};
+    if (text == "surfaceless") return {gl::GpuChoice::Kind::Surfaceless, -1};
+    const int count = static_cast<int>(platforms.devices.size());
+    std::string expected = "an EGL device index, llvmpipe or surfaceless; " + platforms.describeDevices();
+    int index = -1;
+    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), index);
+    if (ec != std::errc() || end != text.data() + text.size()) throw InputError(kCommandLine, "--gpu", expected, "\"" + text + "\"");
+    if (index < 0 || index >= count)
+        throw InputError(kCommandLine, "--gpu",
+                         (count ? "a device index in [0, " + std::to_string(count - 1) + "], llvmpipe or surfaceless; "
+                                : std::string("llvmpipe or surfaceless (there is no device to index); ")) +
+                             platforms.describeDevices(),
+                         "\"" + text + "\"");
+    return {gl::GpuChoice::Kind::Device, index};
+}
+
+gl::GpuChoice gpuChoice(const CommandLine& cl) {
+    std::optional<std::string> text = cl.value("gpu");
+    if (!text) return {};
+    if (*text == "llvmpipe" || *text == "surfaceless") return parseGpuChoice(*text, {});
+    return parseGpuChoice(*text, gl::queryEglPlatforms());
+}
+
 }  // namespace curette

@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "gl/context.h"
+
 namespace curette {
 
 struct OptionSpec {
@@ -43,5 +45,16 @@ private:
     std::set<std::string> flags_;
     std::vector<std::string> positional_;
 };
+
+// --gpu N|llvmpipe|surfaceless: the one option of every command that makes a headless GL context (render,
+// replay, report, bench, info --gl); gl/context.h says what each choice opens.
+OptionSpec gpuOption();
+// `specs` with gpuOption() appended.
+std::vector<OptionSpec> withGpuOption(std::vector<OptionSpec> specs);
+// The --gpu of `cl` (absent: automatic). An index is checked against the EGL devices found here: a wrong one
+// is an InputError that lists them.
+gl::GpuChoice gpuChoice(const CommandLine& cl);
+// The same on a given device list (tests use made-up ones).
+gl::GpuChoice parseGpuChoice(const std::string& text, const gl::EglPlatforms& platforms);
 
 }  // namespace curette

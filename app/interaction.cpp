@@ -6,6 +6,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace curette {
@@ -18,9 +19,26 @@ std::shared_ptr<const clip::TriangleMesh> meshFromDescription(const std::string&
     return std::make_shared<const clip::TriangleMesh>(clip::meshFromJson(JsonReader(parsed, source), baseDirectory));
 }
 
+Light turnedLight(const Light& light, glm::dvec2 yawPitchRad, const OrbitCamera& camera) {
+    const glm::dvec3 right = camera.right(), up = camera.up(), back = -camera.forward();
+    double length = glm::length(light.direction);
+    if (!(length > 0)) return light;
+    glm::dvec3 d = light.direction / length;
+    if (!light.cameraSpace) d = glm::dvec3(glm::dot(d, right), glm::dot(d, up), glm::dot(d, back));
+    constexpr double limit = glm::radians(89.0);
+    double azimuth = std::atan2(d.x, d.z) + yawPitchRad.x;
+    double elevation = std::clamp(std::asin(std::clamp(d.y, -1.0, 1.0)) + yawPitchRad.y, -limit, limit);
+    glm::dvec3 turned(std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth));
+    if (!light.cameraSpace) turned = turned.x * right + turned.y * up + turned.z * back;
+    Light out = light;
+    out.direction = length * turned;
+    return out;
+}
+
 InteractionState InteractionState::fromScene(const Scene& scene) {
     InteractionState s;
     s.shading = scene.shading;
+    s.lights = scene.lights;
     for (const SceneClipMesh& m : scene.clipMeshes) {
         MeshState mesh;
         mesh.id = s.nextMeshId++;
@@ -38,6 +56,22 @@ InteractionState InteractionState::fromSessionStart(const SessionHeader& header,
                                                     const std::filesystem::path& sceneDirectory, const std::string& source) {
     InteractionState s;
     s.shading = header.shading;
+    // The scene's lights (their colours), turned as they were when recording started (version 2; a version 1
+    // session has none: the scene's, as they were then).
+    s.lights = scene.lights;
+    if (header.lights) {
+        if (header.lights->size() != scene.lights.size())
+            throw InputError(source, "line 1: lights", "as many lights as the scene " + scene.file.string() + " has (" + std::to_string(scene.lights.size()) + ")",
+                             std::to_string(header.lights->size()));
+        for (std::size_t i = 0; i < s.lights.size(); ++i) {
+            const SessionLight& l = (*header.lights)[i];
+            if (l.cameraSpace != s.lights[i].cameraSpace)
+                throw InputError(source, "line 1: lights[" + std::to_string(i) + "].space",
+                                 std::string("the scene's space for this light (\"") + (s.lights[i].cameraSpace ? "camera" : "world") + "\")");
+            s.lights[i].direction = l.direction;
+        }
+        s.selectedLight = std::clamp(header.selectedLight, 0, std::max(0, static_cast<int>(s.lights.size()) - 1));
+    }
     s.nextMeshId = header.nextMeshId;
     for (const SessionMeshStart& start : header.meshes) {
         MeshState m;
@@ -70,6 +104,18 @@ std::vector<SessionMeshStart> InteractionState::sessionMeshes() const {
 std::vector<SessionMesh> InteractionState::sessionPoses() const {
     std::vector<SessionMesh> out;
     for (const MeshState& m : meshes) out.push_back({m.id, m.pose.position, m.pose.orientation, m.scale});
+    return out;
+}
+
+std::vector<SessionLight> InteractionState::sessionLights() const {
+    std::vector<SessionLight> out;
+    for (const Light& l : lights) out.push_back({l.direction, l.cameraSpace});
+    return out;
+}
+
+std::vector<glm::dvec3> InteractionState::lightDirections() const {
+    std::vector<glm::dvec3> out;
+    for (const Light& l : lights) out.push_back(l.direction);
     return out;
 }
 
@@ -124,6 +170,12 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
                 removedMeshIds.push_back(m->id);
                 meshes.erase(meshes.begin() + rm->mesh);
             }
+        } else if (auto* ml = std::get_if<input::MoveLight>(&action)) {
+            int i = ml->light < 0 ? selectedLight : ml->light;
+            if (i >= 0 && i < static_cast<int>(lights.size()))
+                lights[static_cast<std::size_t>(i)] = turnedLight(lights[static_cast<std::size_t>(i)], ml->yawPitchRad, camera);
+        } else if (std::holds_alternative<input::NextLight>(action)) {
+            if (!lights.empty()) selectedLight = (selectedLight + 1) % static_cast<int>(lights.size());
         } else if (std::holds_alternative<input::ToggleRecording>(action)) {
             toggleRecording = true;
         } else if (std::holds_alternative<input::Screenshot>(action)) {

@@ -61,6 +61,8 @@ SessionHeader headerNow(const std::string& scene, const InteractionState& state,
     h.shading = state.shading;
     h.meshes = state.sessionMeshes();
     h.nextMeshId = state.nextMeshId;
+    h.lights = state.sessionLights();
+    h.selectedLight = state.selectedLight;
     h.inputState = input.pipeline().state();
     h.keyboardMmPerSecond = input.keyboardMmPerSecond();
     h.keyboardDegPerSecond = input.keyboardDegPerSecond();
@@ -83,8 +85,10 @@ void LiveRecording::addFrame(double now, double dt, glm::ivec2 size, const Orbit
     f.camera = camera;
     f.shading = state.shading;
     f.meshes = state.sessionPoses();
+    f.lights = state.lightDirections();
     f.keys = keys.keys;
     f.drag = keys.rightDragPixels;
+    f.lightDrag = keys.lightDragPixels;
     f.devicesAdded = input.devicesAdded;
     f.devicesRemoved = input.devicesRemoved;
     for (int id : state.addedMeshIds) {

@@ -45,8 +45,8 @@ private:
     double keyboardMm_, keyboardDeg_;
 };
 
-// A recording in progress: the header is the state when it started; each frame adds the poses after the
-// frame's actions, the frame's input and the meshes that came and went.
+// A recording in progress: the header is the state when it started; each frame adds the poses and the lights'
+// directions after the frame's actions, the frame's input and the meshes that came and went.
 class LiveRecording {
 public:
     LiveRecording(const std::filesystem::path& path, const std::string& scene, const InteractionState& state, const LiveInput& input,

@@ -18,6 +18,8 @@ const char* kUsage =
     "                                   value range, histogram\n"
     "  render --scene S --out F.png     render one frame headless (EGL) and write a PNG\n"
     "         [--size WxH] [--shading MODE] [--azimuth DEG] [--elevation DEG] [--timings]\n"
+    "         [--stereo side-by-side|anaglyph] [--eye-separation MM]\n"
+    "         [--turntable N --out DIR [--fps F]]  N frames around the vertical axis, and an MP4 (ffmpeg)\n"
     "  view --scene S                   interactive viewer: devices, keyboard, F9 records a session\n"
     "         [--mapping F.json] [--record F.jsonl] [--no-devices]\n"
     "  record --scene S --out F.jsonl --synthetic DEVICES\n"
@@ -26,6 +28,7 @@ const char* kUsage =
     "  replay F.jsonl                   re-render a session headless, frame by frame\n"
     "         [--out DIR] [--every N] [--check] [--from-reports] [--no-render] [--lenient] [--size WxH]\n"
     "         [--report]                 with --out: the removal report every Nth frame, removal.csv/.png\n"
+    "         [--mp4]                    with --out: replay.mp4 of the frames (ffmpeg)\n"
     "  report --scene S --out DIR       what the carve removes (mL, per structure, per tract bundle, margins)\n"
     "         [--session F --frame N] [--lps] [--no-exports]\n"
     "                                   and the plan's exports: labelmap (.nii.gz, .seg.nrrd), cavity\n"
@@ -33,8 +36,11 @@ const char* kUsage =
     "  bench raycast|cao|dos|ismos --scene S  speed with the error against the CPU reference next to it\n"
     "  bench input                      report parsing throughput and report-to-pose latency\n"
     "  bench report --scene S           the removal report's time per stage, and its GPU inputs vs the CPU oracle\n"
+    "  bench stereo --scene S           per shading mode, how alike the two eyes shade one surface point\n"
+    "  info --gl                        the EGL devices and platforms, and the GL context headless commands get\n"
     "\n"
     "shading modes: solid, phong, lao, cao, dos, ismos\n"
+    "every headless command (render, replay, report, bench) takes --gpu N|llvmpipe|surfaceless\n"
     "exit codes: 0 success, 2 bad input (the message names file, field and expected form),\n"
     "            3 system problem (GL driver, disk), 1 a failed check or anything else\n";
 

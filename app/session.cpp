@@ -44,6 +44,18 @@ glm::dquat readQuaternion(const JsonReader& r) {
     return glm::dquat(q.x, q.y, q.z, q.w);
 }
 
+// A light's direction (version 2 records): three finite numbers, not all zero.
+glm::dvec3 readLightDirection(const JsonReader& r) {
+    glm::dvec3 d = r.vec3(-1e6, 1e6);
+    if (!(glm::length(d) > 1e-9)) r.fail("a light direction [x, y, z] of non-zero length");
+    return d;
+}
+
+// Keys a version 1 session cannot have (they came with version 2).
+void requireVersion2(const JsonReader& r, int version) {
+    if (version < 2) r.fail("nothing: session version " + std::to_string(version) + " has no lights (they came with version 2)");
+}
+
 nlohmann::ordered_json inputStateJson(const input::InputPipelineState& s) {
     nlohmann::ordered_json j;
     j["devices"] = nlohmann::ordered_json::array();
@@ -124,6 +136,11 @@ std::string sessionHeaderLine(const SessionHeader& h) {
         j["meshes"].push_back(e);
     }
     j["next_mesh_id"] = h.nextMeshId;
+    if (h.lights) {
+        j["lights"] = nlohmann::ordered_json::array();
+        for (const SessionLight& l : *h.lights) j["lights"].push_back({{"direction", vec(l.direction)}, {"space", l.cameraSpace ? "camera" : "world"}});
+        j["selected_light"] = h.selectedLight;
+    }
     j["input_state"] = inputStateJson(h.inputState);
     j["keyboard"] = {{"mm_per_s", h.keyboardMmPerSecond}, {"deg_per_s", h.keyboardDegPerSecond}};
     return j.dump();
@@ -144,8 +161,13 @@ std::string sessionFrameLine(const SessionFrame& f) {
         j["meshes"].push_back({{"id", m.id}, {"position_mm", vec(m.position)},
                                {"orientation", quaternion(m.orientation)},
                                {"scale", vec(m.scale)}});
+    if (f.lights) {
+        j["lights"] = nlohmann::ordered_json::array();
+        for (glm::dvec3 d : *f.lights) j["lights"].push_back(vec(d));
+    }
     j["keys"] = f.keys;
     j["drag"] = {f.drag.x, f.drag.y};
+    if (f.lightDrag != glm::dvec2(0.0)) j["light_drag"] = {f.lightDrag.x, f.lightDrag.y};
     if (!f.devicesAdded.empty()) {
         j["devices_added"] = nlohmann::ordered_json::array();
         for (const SessionDevice& d : f.devicesAdded) j["devices_added"].push_back(device(d));
@@ -186,9 +208,11 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
         if (!r.isObject() || !r.has("format") || r.at("format").string() != "curette-session")
             throw InputError(file, "line 1: format", "\"curette-session\" (is this a curette session?)");
         int version = r.at("version").integer(0, 1 << 20);
-        if (version != kSessionVersion)
-            throw InputError(file, "line 1: version", std::to_string(kSessionVersion) + " (this curette reads session version " +
-                                                          std::to_string(kSessionVersion) + ")", std::to_string(version));
+        if (version < kOldestSessionVersion || version > kSessionVersion)
+            throw InputError(file, "line 1: version",
+                             std::to_string(kOldestSessionVersion) + " to " + std::to_string(kSessionVersion) + " (this curette reads session versions " +
+                                 std::to_string(kOldestSessionVersion) + " to " + std::to_string(kSessionVersion) + ")",
+                             std::to_string(version));
         session.header.version = version;
         session.header.scene = r.at("scene").string();
         if (auto c = r.find("created")) session.header.created = c->string();
@@ -212,6 +236,19 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
         session.header.nextMeshId = r.at("next_mesh_id").integer(0, 1 << 20);
         for (const SessionMeshStart& m : session.header.meshes)
             if (m.id >= session.header.nextMeshId) r.at("next_mesh_id").fail("an id above every mesh id in \"meshes\"");
+        if (auto lights = r.find("lights")) {
+            requireVersion2(*lights, version);
+            std::vector<SessionLight> list;
+            for (const JsonReader& l : lights->elements(0, 64)) {
+                SessionLight light;
+                light.direction = readLightDirection(l.at("direction"));
+                light.cameraSpace = l.at("space").oneOf({"camera", "world"}) == "camera";
+                l.finish();
+                list.push_back(light);
+            }
+            session.header.selectedLight = r.at("selected_light").integer(0, std::max(0, static_cast<int>(list.size()) - 1));
+            session.header.lights = std::move(list);
+        }
         session.header.inputState = readInputState(r.at("input_state"), bindings);
         for (const auto& entry : session.header.inputState.devices) {
             int id = entry.first;
@@ -271,8 +308,22 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
                 m.finish();
                 f.meshes.push_back(mesh);
             }
+            if (auto lights = r.find("lights")) {
+                requireVersion2(*lights, session.header.version);
+                if (!session.header.lights) lights->fail("nothing (line 1 lists no lights)");
+                std::size_t count = session.header.lights->size();
+                if (!lights->isArray() || lights->size() != count)
+                    lights->fail("an array of " + std::to_string(count) + " light directions [x, y, z], one per light of line 1");
+                std::vector<glm::dvec3> directions;
+                for (const JsonReader& l : lights->elements(count, count)) directions.push_back(readLightDirection(l));
+                f.lights = std::move(directions);
+            }
             f.keys = static_cast<std::uint32_t>(r.at("keys").unsignedInteger(0xFFFFFFFFu));
             f.drag = r.at("drag").vec2(-1e5, 1e5);
+            if (auto drag = r.find("light_drag")) {
+                requireVersion2(*drag, session.header.version);
+                f.lightDrag = drag->vec2(-1e5, 1e5);
+            }
             if (auto added = r.find("devices_added"))
                 for (const JsonReader& d : added->elements(0, 64)) {
                     f.devicesAdded.push_back(readDevice(d));

@@ -19,7 +19,8 @@
 
 namespace curette {
 
-inline constexpr int kSessionVersion = 1;
+inline constexpr int kSessionVersion = 2;
+inline constexpr int kOldestSessionVersion = 1;
 
 struct SessionDevice {
     int id = 0;
@@ -40,6 +41,11 @@ struct SessionMesh {
     glm::dvec3 scale{1.0};
 };
 
+struct SessionLight {
+    glm::dvec3 direction{0.0, 0.0, 1.0};   // towards the light; camera space (right, up, towards the viewer) or world
+    bool cameraSpace = true;
+};
+
 struct SessionAddedMesh {
     int id = 0;
     std::string name;
@@ -53,8 +59,10 @@ struct SessionFrame {
     OrbitCamera camera;
     ShadingMode shading = ShadingMode::Phong;
     std::vector<SessionMesh> meshes;
+    std::optional<std::vector<glm::dvec3>> lights;   // every light's direction (version 2; absent: unchanged)
     std::uint32_t keys = 0;
     glm::dvec2 drag{0.0};
+    glm::dvec2 lightDrag{0.0};   // Shift + left drag (input::KeyboardMouseState::lightDragPixels)
     std::vector<SessionDevice> devicesAdded;
     std::vector<int> devicesRemoved;
     std::vector<SessionAddedMesh> meshesAdded;
@@ -81,6 +89,8 @@ struct SessionHeader {
     ShadingMode shading = ShadingMode::Phong;     // at the start
     std::vector<SessionMeshStart> meshes;         // at the start
     int nextMeshId = 0;                           // the id the next added mesh takes
+    std::optional<std::vector<SessionLight>> lights;   // at the start (version 2; absent: the scene's)
+    int selectedLight = 0;                        // the light MoveLight{-1} turns, at the start
     input::InputPipelineState inputState;         // at the start: device states, held meshes, previous buttons
     double keyboardMmPerSecond = 40.0, keyboardDegPerSecond = 60.0;
 };

@@ -14,29 +14,42 @@ bool samePoses(const std::vector<SessionMesh>& a, const std::vector<SessionMesh>
 
 SessionStep::SessionStep(InteractionState state, FrameDescription frame) : state_(std::move(state)), frame_(std::move(frame)) {
     frame_.shading = state_.shading;
+    if (state_.lights.empty()) state_.lights = frame_.lights;
+    frame_.lights = state_.lights;
 }
 
-StepChanges SessionStep::compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, bool meshesChanged) {
+StepChanges SessionStep::compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, const std::vector<Light>& lightsBefore,
+                                 bool meshesChanged) {
     StepChanges c;
     c.meshes = meshesChanged;
     c.poses = !samePoses(before, state_.sessionPoses());
     c.shading = state_.shading != shadingBefore;
+    c.lights = state_.lights != lightsBefore;
     frame_.shading = state_.shading;
+    frame_.lights = state_.lights;
     return c;
 }
 
 StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int viewportHeight) {
     std::vector<SessionMesh> before = state_.sessionPoses();
     ShadingMode shadingBefore = state_.shading;
+    std::vector<Light> lightsBefore = state_.lights;
     state_.addedMeshIds.clear();
     state_.removedMeshIds.clear();
     state_.apply(actions, frame_.camera, viewportHeight);
-    return compare(before, shadingBefore, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty());
+    return compare(before, shadingBefore, lightsBefore, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty());
 }
 
 StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::path& sceneDirectory, const std::string& where) {
     std::vector<SessionMesh> before = state_.sessionPoses();
     ShadingMode shadingBefore = state_.shading;
+    std::vector<Light> lightsBefore = state_.lights;
+    if (f.lights) {
+        if (f.lights->size() != state_.lights.size())
+            throw InputError(where, "lights", "one direction per light of the session (" + std::to_string(state_.lights.size()) + ")",
+                             std::to_string(f.lights->size()));
+        for (std::size_t i = 0; i < f.lights->size(); ++i) state_.lights[i].direction = (*f.lights)[i];
+    }
     for (const SessionAddedMesh& a : f.meshesAdded) {
         MeshState m;
         m.id = a.id;
@@ -56,7 +69,7 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     state_.shading = f.shading;
     frame_.camera = f.camera;
     frame_.size = f.size;
-    return compare(before, shadingBefore, !f.meshesAdded.empty() || !f.meshesRemoved.empty());
+    return compare(before, shadingBefore, lightsBefore, !f.meshesAdded.empty() || !f.meshesRemoved.empty());
 }
 
 void SessionStep::syncTo(clip::ClipMeshSet& set) const { syncClipMeshes(state_, set); }

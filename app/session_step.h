@@ -21,7 +21,8 @@ struct StepChanges {
     bool poses = false;    // a position, an orientation or a scale
     bool meshes = false;   // a mesh added or removed
     bool shading = false;
-    bool any() const { return poses || meshes || shading; }
+    bool lights = false;   // a light's direction (MoveLight, or a recorded frame's lights)
+    bool any() const { return poses || meshes || shading || lights; }
 };
 
 // SessionStep::syncTo for a state without a step (a scene's first frame: render, bench raycast/dos).
@@ -36,7 +37,8 @@ public:
 
     InteractionState& state() { return state_; }
     const InteractionState& state() const { return state_; }
-    // The frame to render: the camera, size and shading of the last step (callers move the camera and size).
+    // The frame to render: the camera, size, shading and lights of the last step (callers move the camera and
+    // size). A state without lights adopts the frame's (a scene's first frame has the scene's).
     FrameDescription& frame() { return frame_; }
     const FrameDescription& frame() const { return frame_; }
 
@@ -44,7 +46,7 @@ public:
     // state with the frame's camera, for a viewport `viewportHeight` pixels high (drags).
     StepChanges apply(const std::vector<input::Action>& actions, int viewportHeight);
     // A recorded frame followed as recorded (replay without --from-reports): meshes added and removed, every
-    // pose and scale, the shading, camera and image size. `where` names the line in errors.
+    // pose and scale, the lights' directions, the shading, camera and image size. `where` names the line in errors.
     StepChanges follow(const SessionFrame& recorded, const std::filesystem::path& sceneDirectory, const std::string& where);
 
     // Makes `set` match the state's meshes (index i = state().meshes[i]). Poses, scales and clips_tubes are set
@@ -52,7 +54,8 @@ public:
     void syncTo(clip::ClipMeshSet& set) const;
 
 private:
-    StepChanges compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, bool meshesChanged);
+    StepChanges compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, const std::vector<Light>& lightsBefore,
+                        bool meshesChanged);
 
     InteractionState state_;
     FrameDescription frame_;

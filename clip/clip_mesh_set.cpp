@@ -333,6 +333,31 @@ void ClipMeshSet::mapBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const {
     hi = glm::dvec3(c.mapOrigin + c.mapSizeMm, c.localMax.z + c.marginMm);
 }
 
+double ClipMeshSet::mapBoxSlackMm(int index) const {
+    // A thousandth of the box's size, far above float rounding of the map transform, so no point a map could
+    // call inside is ever taken for far.
+    glm::dvec3 lo, hi;
+    mapBoxLocal(index, lo, hi);
+    return 1e-3 * glm::length(hi - lo) + 1e-3;
+}
+
+void ClipMeshSet::dilatedBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const {
+    // Where a map lookup (clip_test.glsl insideMeshMaps, nearest pixel) can answer "inside":
+    //  - a depth map pixel is finite only where rasterising the mesh covered its centre, so that centre lies
+    //    in the mesh's local x, y bounds; its values are local depths in [localMin.z, localMax.z];
+    //  - a dilated pixel is finite only within floor(K / px) pixels along x and along y of a finite depth
+    //    pixel (dilation.comp's two passes, K = kernelRadiusMm), and its value moves the depth by at most
+    //    k(0, 0) = 2 (K - K/2) = K;
+    //  - a point is looked up in the pixel holding it, at most half a pixel from that pixel's centre.
+    // So every point either map calls inside lies within K + px/2 of the bounds across the map and within K
+    // along the depth; the map box's float slack (mapBoxSlackMm) is added for the rounding of the lookup.
+    const ClippingCamera& c = camera(index);
+    double k = kernelRadiusMm(index), slack = mapBoxSlackMm(index);
+    glm::dvec3 grow(k + 0.5 * c.pixelMm() + slack, k + 0.5 * c.pixelMm() + slack, k + slack);
+    lo = c.localMin - grow;
+    hi = c.localMax + grow;
+}
+
 ClipMeshSet::WorldBox ClipMeshSet::mapBoxWorldBounds(int index) const {
     glm::dvec3 lo, hi;
     mapBoxLocal(index, lo, hi);
@@ -360,15 +385,13 @@ void ClipMeshSet::uploadCameras() {
         cameras[i].info[1] = meshes_[i].intervals;
         cameras[i].info[2] = resolution_;
         cameras[i].info[3] = meshes_[i].clipsTubes ? 1 : 0;
-        // The map box (x, y across the map, z over the depth range plus margin) and a slack of a thousandth of
-        // its size, far above float rounding of the map transform, so no point a map could call inside is
-        // ever taken for far.
+        // The map box (x, y across the map, z over the depth range plus margin) and its slack (mapBoxSlackMm).
         glm::dvec3 lo, hi;
         mapBoxLocal(static_cast<int>(i), lo, hi);
         cameras[i].mapBox[0] = static_cast<float>(meshes_[i].camera.mapSizeMm);
         cameras[i].mapBox[1] = static_cast<float>(lo.z);
         cameras[i].mapBox[2] = static_cast<float>(hi.z);
-        cameras[i].mapBox[3] = static_cast<float>(1e-3 * glm::length(hi - lo) + 1e-3);
+        cameras[i].mapBox[3] = static_cast<float>(mapBoxSlackMm(static_cast<int>(i)));
     }
     if (!cameras.empty())
         glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());

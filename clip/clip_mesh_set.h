@@ -72,6 +72,15 @@ public:
         glm::dvec3 min, max;
     };
     WorldBox mapBoxWorldBounds(int index) const;
+    // Mesh `index`'s map box in its pose's local frame (x, y: the map; z: the depth range plus margin), and the
+    // slack the shaders' near test adds to it (clip_test.glsl nearAnyClipMesh) for float rounding of the map
+    // transform.
+    void mapBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
+    double mapBoxSlackMm(int index) const;
+    // The dilated box of mesh `index`, in its pose's local frame: the box outside which neither its depth maps
+    // nor its dilated maps call any point inside (derivation in the .cpp). It lies inside the map box. Steps IV
+    // and V visit the bricks these boxes reach (render/mesh_voxel_box.h). Valid after update().
+    void dilatedBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
 
     // Changes whenever the clipped region may have changed (a pose, a scale, a mesh added or removed).
     std::uint64_t version() const { return version_; }
@@ -116,8 +125,6 @@ private:
     void dilateMaps(int index);
     int wantedResolution() const;
     bool needsReallocation(int wanted, bool dilatedNeeded) const;
-    // Mesh `index`'s map box in its pose's local frame (x, y: the map; z: the depth range plus margin).
-    void mapBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
 
     ClipMapSettings settings_;
     std::vector<Mesh> meshes_;

@@ -40,6 +40,7 @@ inline constexpr unsigned imageIsmosFit = 10;
 
 inline constexpr unsigned ssboSampleCounter = 0;
 inline constexpr unsigned ssboLaoDirections = 1;
+inline constexpr unsigned ssboVisitBricks = 2;
 inline constexpr unsigned ssboRecomputeList = 3;
 inline constexpr unsigned ssboDispatch = 4;
 inline constexpr unsigned ssboAntiAliasing = 5;

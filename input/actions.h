@@ -28,7 +28,7 @@ struct SelectMesh {                // a binding now holds another mesh
     int mesh = 0;
 };
 struct SetShading {
-    std::string mode;              // "solid", "phong", "lao", "cao", "dos"
+    std::string mode;              // "solid", "phong", "lao", "cao", "dos", "ismos"
 };
 struct CycleShading {};
 struct ResetPose {
@@ -38,10 +38,19 @@ struct AddMesh {};
 struct RemoveMesh {
     int mesh = 0;
 };
+// Lights (any shading mode; ismos shadows follow them): turn the light's direction in the camera frame, yaw
+// about the camera's up axis (+: towards the right of the screen) and pitch towards it (+: up), in radians.
+// light -1: the selected light (NextLight selects the next one). The app applies it (turnedLight in
+// app/interaction.h), with the frame's camera for world-space lights.
+struct MoveLight {
+    int light = -1;
+    glm::dvec2 yawPitchRad{0.0};
+};
+struct NextLight {};
 struct ToggleRecording {};
 struct Screenshot {};
 
 using Action = std::variant<MoveMesh, DragMesh, SelectMesh, SetShading, CycleShading, ResetPose, AddMesh, RemoveMesh,
-                            ToggleRecording, Screenshot>;
+                            ToggleRecording, Screenshot, MoveLight, NextLight>;
 
 }  // namespace curette::input

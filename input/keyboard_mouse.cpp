@@ -19,6 +19,12 @@ std::vector<Action> KeyboardMapper::update(const KeyboardMouseState& s, double d
     if (edge(Key::F9)) actions.push_back(ToggleRecording{});
     if (edge(Key::P) || edge(Key::F12)) actions.push_back(Screenshot{});
     if (edge(Key::Insert)) actions.push_back(AddMesh{});
+    // Lights need no mesh.
+    if (edge(Key::O)) actions.push_back(NextLight{});
+    constexpr double degToRad = std::numbers::pi / 180.0;
+    glm::dvec2 turn = glm::dvec2(held(Key::L) - held(Key::J), held(Key::I) - held(Key::K)) * (rotationSpeed_ * dt * degToRad);
+    turn += glm::dvec2(s.lightDragPixels.x, -s.lightDragPixels.y) * (kLightDegPerPixel * degToRad);   // +y down on screen
+    if (turn != glm::dvec2(0.0)) actions.push_back(MoveLight{-1, turn});
     if (meshCount == 0) return actions;
     selected_ = std::clamp(selected_, 0, meshCount - 1);
     if (edge(Key::Tab)) {

@@ -3,7 +3,10 @@
 // GLFW each frame (and records it), and this turns it into actions for the selected mesh. Fixed keys:
 // W/S forward/back, A/D left/right, Q/E down/up (camera frame); Up/Down pitch, Left/Right yaw,
 // PageUp/PageDown roll; right-drag moves in the view plane; Tab next mesh; R reset; Insert add; Delete
-// remove; 1-5 solid/phong/lao/cao/dos (ismos: C cycle); C cycle shading; F9 recording; P or F12 screenshot.
+// remove; 1-6 solid/phong/lao/cao/dos/ismos; C cycle shading; F9 recording; P or F12 screenshot.
+// Lights: J/L turn the selected light left/right (yaw about the camera's up axis), I/K raise/lower it, O selects
+// the next light, at the keyboard's degrees per second; a Shift + left drag turns it by kLightDegPerPixel
+// (right: towards the right of the screen, up: up).
 
 #include "input/actions.h"
 
@@ -15,15 +18,22 @@ enum class Key : int {
     W, A, S, D, Q, E, Up, Down, Left, Right, PageUp, PageDown, Tab, R, Insert, Delete, Digit1, Digit2, Digit3, Digit4,
     Digit5, C, F9, P, F12,
     Digit6,   // after the others: recorded sessions store keys as bits, and old ones keep their meaning
+    I, J, K, L, O,   // lights (session version 2)
     Count
 };
 
 struct KeyboardMouseState {
     std::uint32_t keys = 0;          // bit per Key
     glm::dvec2 rightDragPixels{0.0}; // mouse motion this frame while the right button is held
+    glm::dvec2 lightDragPixels{0.0}; // mouse motion this frame while Shift + the left button are held
     bool down(Key k) const { return (keys >> static_cast<int>(k)) & 1u; }
     bool operator==(const KeyboardMouseState&) const = default;
 };
+
+static_assert(static_cast<int>(Key::Count) <= 32, "keys are recorded as the bits of one 32-bit word");
+
+// A Shift + left drag turns the selected light by this much per framebuffer pixel.
+inline constexpr double kLightDegPerPixel = 0.25;
 
 struct KeyboardMapperState {
     std::uint32_t previousKeys = 0;

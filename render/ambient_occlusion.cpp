@@ -3,11 +3,13 @@
 #include "base/error.h"
 #include "base/progress.h"
 #include "gl/bindings.h"
-#include "render/mesh_voxel_box.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include <limits>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 
 namespace curette {
 
@@ -30,7 +32,8 @@ gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label,
 
 }  // namespace
 
-AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings) : volume_(volume), settings_(settings) {
+AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings)
+    : volume_(volume), settings_(settings), laoReach_(volume.geometry(), reachMm(settings)) {
     if (settings.samples < 1 || settings.samples > 1024)
         throw InputError("<lao settings>", "samples", "an integer in [1, 1024]", std::to_string(settings.samples));
     if (!(settings.stepMm > 0.0))
@@ -42,6 +45,9 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     // Step V numbers voxels as 32-bit uints (lao_common.glsl, the recompute list).
     if (std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z) > 0xFFFFFFFFull)
         throw SystemError("the volume has more than 2^32 - 1 voxels, more than step V can number; lao and cao need a smaller volume");
+    std::size_t bricks = BrickSet::none(dims).brickCount();
+    // The visited-brick list numbers bricks in 30 bits (shaders/visit_bricks.glsl).
+    if (bricks > 0x3FFFFFFFull) throw SystemError("the volume has more than 2^30 bricks of 4^3 voxels, more than steps IV and V can number");
     opacity_ = makeVolumeTexture(dims, GL_R16, "V_o (clipped opacity)", true);
     mask_ = makeVolumeTexture(dims, GL_R8UI, "V_m (categories)", false);
     precomputed_ = makeVolumeTexture(dims, GL_R16, "V_PAO (unclipped LAO)", false);
@@ -73,6 +79,8 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
         list_ = gl::createBuffer();  // holds only the counters in the full-grid variant
         glNamedBufferStorage(list_.name(), 8, nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
+    visitBricks_ = gl::createBuffer();
+    glNamedBufferStorage(visitBricks_.name(), static_cast<GLsizeiptr>(4 * bricks), nullptr, GL_DYNAMIC_STORAGE_BIT);
     laoProgram_ = gl::Program::compute("lao.comp");
     compactProgram_ = gl::Program::compute("lao_compact.comp");
 }
@@ -103,14 +111,58 @@ void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
     p.set("laoOpacityExponent", opacityExponent);
 }
 
-AmbientOcclusion::VoxelRegion AmbientOcclusion::meshRegion(const clip::ClipMeshSet& clip) const {
-    // The voxels a clip sample of which can fall in a map box (render/mesh_voxel_box.h).
-    plan::VoxelBox box = voxelBoxAroundMeshes(volume_.geometry(), clip);
-    return {box.origin, box.size};
+namespace {
+// Work groups for `items` jobs spread over a 2-D grid (at most 32768 along x; shaders/visit_bricks.glsl and
+// lao_common.glsl linearInvocation number them y * width + x).
+glm::uvec2 groupGrid(std::uint64_t groups) {
+    std::uint64_t x = std::min<std::uint64_t>(groups, 32768);
+    return glm::uvec2(static_cast<unsigned>(std::max<std::uint64_t>(x, 1)), static_cast<unsigned>(x ? (groups + x - 1) / x : 0));
+}
+}  // namespace
+
+std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, bool laoEverywhere) {
+    std::vector<std::uint32_t> list = bricks.visitedIndices();
+    if (laoEverywhere)
+        for (std::uint32_t& entry : list) entry |= kVisitLaoCanChange;
+    laoFlagsPending_ = !laoEverywhere;
+    if (!list.empty())
+        glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * list.size()), list.data());
+    visitCount_ = static_cast<std::uint32_t>(list.size());
+    return visitCount_;
 }
 
-void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
-                                        const VoxelRegion& region) {
+void AmbientOcclusion::markLaoBricks() {
+    // Step IV set kVisitOpacityChanged on the bricks where it clipped a voxel with opacity; read the list back,
+    // flag the bricks a changed brick lies within LAO reach of, and upload it for step V.
+    std::vector<std::uint32_t> list(visitCount_);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // the flags were written by shader atomics
+    glGetNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * list.size()), list.data());
+    const glm::ivec3 grid = visitBrickGrid(volume_.geometry().dims);
+    std::vector<std::uint8_t> changed(std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z), 0);
+    for (std::uint32_t entry : list)
+        if (entry & kVisitOpacityChanged) changed[entry & kVisitBrickNumber] = 1;
+    laoReach_.setChanged(grid, changed);
+    std::uint64_t lao = 0;
+    for (std::uint32_t& entry : list) {
+        std::uint32_t b = entry & kVisitBrickNumber;
+        glm::ivec3 brick(int(b % std::uint32_t(grid.x)), int((b / std::uint32_t(grid.x)) % std::uint32_t(grid.y)),
+                         int(b / (std::uint32_t(grid.x) * std::uint32_t(grid.y))));
+        bool can = laoReach_.canChange(brick);
+        entry = b | (can ? kVisitLaoCanChange : 0u);
+        lao += can;
+    }
+    stats_.laoBricks = lao;
+    glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * list.size()), list.data());
+    laoFlagsPending_ = false;
+}
+
+void AmbientOcclusion::setVisitUniforms(gl::Program& p) const {
+    p.set("visitBrickCount", visitCount_);
+    p.set("brickGrid", visitBrickGrid(volume_.geometry().dims));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboVisitBricks, visitBricks_.name());
+}
+
+void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation) {
     gl::Defines defines;
     tf.addDefines(defines);
     gl::Program& p = clipPrograms_.get(defines);
@@ -123,20 +175,19 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
     if (clip) clip->apply(p);
     else p.set("clipMeshCount", 0);
-    // Clip samples lie within one voxel step along every axis: at most a cell diagonal from the centre.
-    p.set("sampleReachMm", static_cast<float>(g.cellDiagonalMm() * 1.001));
+    p.set("sampleReachMm", static_cast<float>(clipSampleReachMm(g)));
     glBindTextureUnit(binding::volume, volume_.texture());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboAntiAliasing, antiAliasing_.name());
     glBindImageTexture(binding::imageOpacity, opacity_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
     glBindImageTexture(binding::imageMask, mask_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8UI);
-    p.set("regionOrigin", region.origin);
-    p.set("regionSize", region.size);
-    p.dispatchCovering(glm::uvec3(region.size));
+    setVisitUniforms(p);
+    glm::uvec2 grid = groupGrid(visitCount_);
+    p.use();
+    glDispatchCompute(grid.x, grid.y, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExponent, const VoxelRegion& region) {
-    std::uint64_t voxels = region.voxels();
+void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExponent) {
     const std::uint32_t zero[2] = {0, 0};
     glNamedBufferSubData(list_.name(), 0, 8, zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboRecomputeList, list_.name());
@@ -145,31 +196,29 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
     glBindTextureUnit(binding::mask, mask_.name());
     glBindTextureUnit(binding::precomputedAo, precomputed_.name());
     glBindImageTexture(binding::imageAmbient, target, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
-    // 1-D jobs over a 2-D grid of work groups of 64 (lao_common.glsl linearInvocation).
-    auto groupsFor = [](std::uint64_t items) {
-        std::uint64_t groups = (items + 63) / 64;
-        std::uint64_t x = std::min<std::uint64_t>(groups, 32768);
-        return glm::uvec2(static_cast<unsigned>(std::max<std::uint64_t>(x, 1)), static_cast<unsigned>(x ? (groups + x - 1) / x : 1));
-    };
-    glm::uvec2 grid = groupsFor(voxels);
+    // One work group per visited brick (shaders/visit_bricks.glsl).
+    glm::uvec2 grid = groupGrid(visitCount_);
     setLaoUniforms(laoProgram_, opacityExponent);
     laoProgram_.set("volumeSize", volume_.geometry().dims);
-    laoProgram_.set("regionOrigin", region.origin);
-    laoProgram_.set("regionSize", region.size);
+    setVisitUniforms(laoProgram_);
     if (!compacted) {
         laoProgram_.set("laoMode", 0);
         laoProgram_.use();
         glDispatchCompute(grid.x, grid.y, 1);
     } else {
+        static bool diag = std::getenv("CURETTE_DIAG_V") != nullptr;
+        auto t0 = std::chrono::steady_clock::now();
+        auto lap = [&](const char* what) { if (!diag) return; glFinish(); auto t = std::chrono::steady_clock::now(); std::fprintf(stderr, "DIAGV %s %.1f ms\n", what, std::chrono::duration<double, std::milli>(t - t0).count()); t0 = t; };
+        lap("before");
         compactProgram_.set("volumeSize", volume_.geometry().dims);
         compactProgram_.set("maxGroupsX", 32768u);
-        compactProgram_.set("regionOrigin", region.origin);
-        compactProgram_.set("regionSize", region.size);
+        setVisitUniforms(compactProgram_);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
         compactProgram_.set("prepareDispatch", 0);
         compactProgram_.use();
         glDispatchCompute(grid.x, grid.y, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        lap("compaction");
         compactProgram_.set("prepareDispatch", 1);
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -178,56 +227,58 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatch_.name());
         glDispatchComputeIndirect(0);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        lap("lao list");
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     std::uint32_t counts[2] = {0, 0};
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // the counters were written by shader atomics
     glGetNamedBufferSubData(list_.name(), 0, 8, counts);
     stats_.recomputed = counts[1];
+    if (std::getenv("CURETTE_DIAG_V")) std::fprintf(stderr, "DIAGV recomputed %u listed %u\n", counts[1], counts[0]);
 }
 
 void AmbientOcclusion::precompute(const TransferFunctionTexture& tf) {
     // Step I is step IV without meshes (every voxel keeps its TF opacity, all category b) followed by the
     // LAO of every voxel, written to V_PAO.
     Progress progress("LAO precompute (step I)", 2);
-    runVoxelClipping(tf, nullptr, false, wholeVolume());
+    uploadVisit(BrickSet::all(volume_.geometry().dims), true);
+    runVoxelClipping(tf, nullptr, false);
     progress.update(1);
-    runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()), wholeVolume());
+    runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
     progress.finish();
-    lastMeshRegion_.reset();
+    lastMeshBricks_.reset();
 }
 
 void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode) {
     bool cao = mode == ShadingMode::Cao;
     // Full LAO (the baseline) and the first update after step I visit every voxel. A CAO update visits the
-    // bounding box of this frame's mesh region and the last update's: outside both, every voxel is category
-    // c now and was outside every map box last time, so V_o (unclipped) and V_AO (= V_PAO) already hold what
-    // a whole-grid pass would write.
-    VoxelRegion current = meshRegion(clip);
-    VoxelRegion visit = wholeVolume();
-    if (cao && lastMeshRegion_) {
-        const VoxelRegion& last = *lastMeshRegion_;
-        if (current.empty()) visit = last;
-        else if (last.empty()) visit = current;
-        else {
-            glm::ivec3 first = glm::min(current.origin, last.origin);
-            glm::ivec3 end = glm::max(current.origin + current.size, last.origin + last.size);
-            visit = {first, end - first};
-        }
-    }
-    lastMeshRegion_ = current;
+    // bricks this frame's meshes reach and those the last update's reached (render/mesh_voxel_box.h): outside
+    // both, every voxel is category c now and was outside every map box last time, so V_o (unclipped) and
+    // V_AO (= V_PAO) already hold what a whole-grid pass would write.
     glm::ivec3 dims = volume_.geometry().dims;
+    BrickSet current = bricksAroundMeshes(volume_.geometry(), clip);
+    BrickSet visit = BrickSet::all(dims);
+    if (cao && lastMeshBricks_) {
+        visit = current;
+        visit.unite(*lastMeshBricks_);
+    }
+    lastMeshBricks_ = std::move(current);
     stats_.voxels = std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
-    stats_.dispatched = visit.voxels();
+    stats_.dispatched = visit.visitedVoxels();
     stats_.recomputed = 0;
-    visit_ = visit;
-    if (!visit.empty()) runVoxelClipping(tf, &clip, cao, visit);
+    // Full LAO recomputes every visible voxel; CAO only where a changed V_o is within reach (markLaoBricks).
+    stats_.bricks = uploadVisit(visit, !cao);
+    stats_.laoBricks = cao ? 0 : stats_.bricks;
+    if (visitCount_ > 0) runVoxelClipping(tf, &clip, cao);
 }
 
 void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {
-    if (visit_.empty()) return;
+    if (visitCount_ == 0) return;
+    auto m0 = std::chrono::steady_clock::now();
+    if (laoFlagsPending_) markLaoBricks();
+    if (std::getenv("CURETTE_DIAG_V")) std::fprintf(stderr, "DIAGV mark %.1f ms (%u bricks)\n", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m0).count(), visitCount_);
     runLao(ambient_.name(), settings_.dispatch == LaoSettings::Dispatch::Compacted,
-           static_cast<float>(settings_.stepMm / tf.unitLengthMm()), visit_);
+           static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
 }
 
 std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
@@ -237,7 +288,9 @@ std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
                                     {Resource::CategoryMask, n, {}},
                                     {Resource::PrecomputedAo, 2 * n, {}},
                                     {Resource::Ambient, 2 * n, {}},
-                                    {Resource::RecomputeList, settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * n + 8 : 8, {}},
+                                    // with the visited-brick list (4 bytes per brick)
+                                    {Resource::RecomputeList, (settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * n + 8 : 8) +
+                                                                  4 * BrickSet::none(d).brickCount(), {}},
                                     {Resource::LaoDirections, 16u * std::size_t(settings_.directions.count), {}}};
     return list;
 }

@@ -2,16 +2,20 @@
 // Contextual Ambient Occlusion (seed 002): steps I, IV and V (docs/architecture.md, "The frame plan").
 //   I   precompute(): LAO of every voxel without clipping -> V_PAO
 //   IV  update():     anti-aliased voxel clipping -> V_o (clipped opacity) and V_m (categories a/b/c)
-//   V   update():     V_AO: category c copies V_PAO, b (and a voxels next to a visible one) recompute LAO
-// A CAO update visits only the voxels whose category can differ from c now or could at the previous update
-// (the bounding box of both frames' mesh regions); everywhere else V_o, V_AO are what a whole-grid pass would
-// write again. V_m outside that box may still say b from an earlier `lao` update: only step V reads it, and
-// only inside the box.
+//   V   update():     V_AO: category c copies V_PAO, b (and a voxels next to a visible one) recompute LAO,
+//                     in CAO only in bricks within LAO reach of a V_o step IV changed (render/lao_reach.h);
+//                     elsewhere the rays read only step I's V_o, so they copy V_PAO
+// A CAO update visits only the voxels whose category can differ from c now or could at the previous update:
+// the bricks (render/mesh_voxel_box.h, 4^3 voxels) the meshes' oriented dilated boxes reach in either frame;
+// everywhere else V_o, V_AO are what a whole-grid pass would write again. V_m outside those bricks may still
+// say b from an earlier `lao` update: only step V reads it, at visited voxels and at the 26 neighbours of
+// visited clipped ones, which lie within a cell diagonal of the mesh, inside its dilated box, and so are
+// visited too.
 // Shading `lao` is the baseline CAO is measured against: the same passes without the dilation test, so every
 // visible voxel recomputes. Both produce bit-identical V_AO (the exactness contract, tested).
 //
 // Stored (only for lao/cao shading): V_o R16 (opacity per TF unit length), V_m R8UI, V_PAO R16, V_AO R16,
-// and in the compacted variant a recompute list of 4 bytes per voxel.
+// and in the compacted variant a recompute list of 4 bytes per voxel; the visited-brick list, 4 bytes per brick.
 
 #include "clip/clip_mesh_set.h"
 #include "clip/coverage.h"
@@ -19,7 +23,9 @@
 #include "render/gpu_resources.h"
 #include "render/gpu_volume.h"
 #include "render/lao_directions.h"
+#include "render/lao_reach.h"
 #include "render/lao_settings.h"
+#include "render/mesh_voxel_box.h"
 #include "render/shading_mode.h"
 #include "render/transfer_function_texture.h"
 
@@ -33,7 +39,9 @@ using clip::antiAliasingOffsets;
 
 struct AmbientOcclusionStats {
     std::uint64_t voxels = 0;
-    std::uint64_t dispatched = 0;      // voxels steps IV and V visited (the dispatch region, below)
+    std::uint64_t dispatched = 0;      // voxels steps IV and V visited (the visited bricks, below)
+    std::uint64_t bricks = 0;          // bricks steps IV and V visited
+    std::uint64_t laoBricks = 0;       // of those, bricks where LAO can change (render/lao_reach.h)
     std::uint64_t recomputed = 0;      // voxels whose LAO ray ran in step V
     double recomputedFraction() const { return voxels ? double(recomputed) / double(voxels) : 0.0; }
 };
@@ -55,10 +63,10 @@ public:
     // record says what V_PAO and V_AO were computed from).
     // Step I for the volume under `tf`. Run again when the TF or the settings change.
     void precompute(const TransferFunctionTexture& tf);
-    // Step IV under the meshes' current poses. mode: Cao (masked, over the dispatch region) or Lao (every
+    // Step IV under the meshes' current poses. mode: Cao (masked, over the visited bricks) or Lao (every
     // voxel). Must follow step I.
     void clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode);
-    // Step V over the region step IV just visited.
+    // Step V over the bricks step IV just visited.
     void recomputeLao(const TransferFunctionTexture& tf);
 
     GLuint ambientTexture() const { return ambient_.name(); }
@@ -72,31 +80,30 @@ public:
     std::vector<std::uint8_t> readMask() const;
 
 private:
-    // A box of voxels [origin, origin + size) that steps IV and V visit.
-    struct VoxelRegion {
-        glm::ivec3 origin{0}, size{0};
-        bool empty() const { return size.x <= 0 || size.y <= 0 || size.z <= 0; }
-        std::uint64_t voxels() const { return empty() ? 0 : std::uint64_t(size.x) * std::uint64_t(size.y) * std::uint64_t(size.z); }
-    };
-    VoxelRegion wholeVolume() const { return {glm::ivec3(0), volume_.geometry().dims}; }
-    // The voxels whose category can be a or b under the meshes' current poses (their map boxes, padded).
-    VoxelRegion meshRegion(const clip::ClipMeshSet& clip) const;
-    void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
-                          const VoxelRegion& region);
-    void runLao(GLuint target, bool compacted, float opacityExponent, const VoxelRegion& region);
+    // Uploads the visited bricks' list (shaders/visit_bricks.glsl) for the next passes, flagged "LAO can
+    // change" everywhere or nowhere (then markLaoBricks sets it after step IV); returns their number.
+    std::uint32_t uploadVisit(const BrickSet& bricks, bool laoEverywhere);
+    // Between steps IV and V of a CAO update: flags the visited bricks within LAO reach of a brick whose V_o
+    // step IV changed (render/lao_reach.h).
+    void markLaoBricks();
+    void setVisitUniforms(gl::Program& program) const;
+    void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation);
+    void runLao(GLuint target, bool compacted, float opacityExponent);
     void setLaoUniforms(gl::Program& program, float opacityExponent);
 
     const GpuVolume& volume_;
     LaoSettings settings_;
     gl::Texture opacity_, mask_, precomputed_, ambient_;
-    gl::Buffer directions_, antiAliasing_, list_, dispatch_;
+    gl::Buffer directions_, antiAliasing_, list_, dispatch_, visitBricks_;
     gl::ComputeVariants clipPrograms_{"voxel_clip.comp"};
     gl::Program laoProgram_, compactProgram_;
     AmbientOcclusionStats stats_;
-    VoxelRegion visit_;   // what the last step IV visited: step V visits the same
-    // Outside this region (of the last update) V_o holds the unclipped opacity and V_AO equals V_PAO, so the
-    // next CAO update only visits it and its own mesh region. Unset after step I (V_AO not yet written).
-    std::optional<VoxelRegion> lastMeshRegion_;
+    std::uint32_t visitCount_ = 0;   // bricks in the uploaded list: what the last step IV visited, step V visits the same
+    bool laoFlagsPending_ = false;   // a CAO list without its "LAO can change" flags yet: markLaoBricks before step V
+    LaoReachBricks laoReach_;
+    // Outside these bricks (of the last update) V_o holds the unclipped opacity and V_AO equals V_PAO, so the
+    // next CAO update only visits them and its own meshes' bricks. Unset after step I (V_AO not yet written).
+    std::optional<BrickSet> lastMeshBricks_;
 };
 
 }  // namespace curette

@@ -32,6 +32,12 @@ void OrbitCamera::fit(glm::dvec3 center, double radiusMm) {
     farMm = distanceMm + 4.0 * radiusMm;
 }
 
+OrbitCamera OrbitCamera::movedRight(double mm) const {
+    OrbitCamera moved = *this;
+    moved.target += mm * right();
+    return moved;
+}
+
 void OrbitCamera::orbit(double dAz, double dEl) {
     azimuthDeg = std::fmod(azimuthDeg + dAz, 360.0);
     elevationDeg = std::clamp(elevationDeg + dEl, -89.0, 89.0);

@@ -26,6 +26,9 @@ struct OrbitCamera {
 
     // Places the camera so a sphere of `radiusMm` around `center` fills the view with a small margin.
     void fit(glm::dvec3 center, double radiusMm);
+    // The same camera moved `mm` along its right axis (negative: to the left), target and all: its view axis
+    // stays parallel to this one's (an eye of an off-axis stereo pair, render/stereo.h).
+    OrbitCamera movedRight(double mm) const;
     // Mouse-style orbit/zoom (degrees, multiplicative factor).
     void orbit(double deltaAzimuthDeg, double deltaElevationDeg);
     void zoom(double factor);

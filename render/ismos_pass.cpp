@@ -117,6 +117,12 @@ void IsmosPass::runOcclusion(const FrameDescription& frame, const IsmosSpace& sp
     if (back_) glBindTextureUnit(binding::ismosLayerBack, back_.name());
     if (beta_) glBindTextureUnit(binding::ismosFit, beta_.name());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboIsmosLightSamples, samples_.name());
+    if (capture_) {
+        std::size_t n = static_cast<std::size_t>(frame.size.x) * static_cast<std::size_t>(frame.size.y);
+        pass1Colour_.resize(n);
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        glGetTextureImage(output, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(n * sizeof(glm::vec4)), pass1Colour_.data());
+    }
     p.dispatchCovering(glm::uvec3(static_cast<unsigned>(frame.size.x), static_cast<unsigned>(frame.size.y), 1u));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }

@@ -30,6 +30,13 @@ public:
     int lightRebuilds() const { return lightRebuilds_; }
     const std::vector<IsmosLight>& lights() const { return lights_; }
     IsmosLayerImages readLayers() const;
+    // The bench's colour reference: when on, pass 2 first reads back the colour pass 1 (and the tube
+    // compositor) left, C_p of eq. 3 (CPU memory only; nothing is allocated on the GPU).
+    void capturePass1Colour(bool on) {
+        capture_ = on;
+        if (!on) pass1Colour_.clear();
+    }
+    const std::vector<glm::vec4>& pass1Colour() const { return pass1Colour_; }   // row 0 at the top
     std::vector<GpuAllocation> allocations() const;
 
 private:
@@ -52,6 +59,8 @@ private:
     };
     std::optional<LightKey> lightKey_;
     int lightRebuilds_ = 0;
+    bool capture_ = false;
+    std::vector<glm::vec4> pass1Colour_;
     double stepDepth_ = 0;
     gl::ComputeVariants programs_{"ismos_occlusion.comp"};
 };

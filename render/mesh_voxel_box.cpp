@@ -1,5 +1,7 @@
 #include "render/mesh_voxel_box.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace curette {
@@ -23,6 +25,138 @@ plan::VoxelBox voxelBoxAroundMeshes(const VolumeGeometry& g, const clip::ClipMes
     glm::dvec3 first = glm::clamp(glm::floor(lo) - 2.0, glm::dvec3(0.0), dims);
     glm::dvec3 end = glm::clamp(glm::ceil(hi) + 3.0, glm::dvec3(0.0), dims);
     return {glm::ivec3(first), glm::max(glm::ivec3(end) - glm::ivec3(first), glm::ivec3(0))};
+}
+
+double clipSampleReachMm(const VolumeGeometry& g) { return g.cellDiagonalMm() * 1.001; }
+
+BrickSet BrickSet::none(glm::ivec3 dims) {
+    BrickSet s;
+    s.dims = dims;
+    s.grid = visitBrickGrid(dims);
+    s.visited.assign(std::size_t(s.grid.x) * std::size_t(s.grid.y) * std::size_t(s.grid.z), 0);
+    return s;
+}
+
+BrickSet BrickSet::all(glm::ivec3 dims) {
+    BrickSet s = none(dims);
+    std::fill(s.visited.begin(), s.visited.end(), std::uint8_t(1));
+    return s;
+}
+
+std::size_t BrickSet::visitedCount() const { return static_cast<std::size_t>(std::count(visited.begin(), visited.end(), std::uint8_t(1))); }
+
+std::uint64_t BrickSet::visitedVoxels() const {
+    std::uint64_t voxels = 0;
+    std::size_t b = 0;
+    for (int z = 0; z < grid.z; ++z)
+        for (int y = 0; y < grid.y; ++y)
+            for (int x = 0; x < grid.x; ++x, ++b) {
+                if (!visited[b]) continue;
+                glm::ivec3 size = glm::min(glm::ivec3(kVisitBrickSize), dims - kVisitBrickSize * glm::ivec3(x, y, z));
+                voxels += std::uint64_t(size.x) * std::uint64_t(size.y) * std::uint64_t(size.z);
+            }
+    return voxels;
+}
+
+bool BrickSet::visits(glm::ivec3 v) const {
+    glm::ivec3 b = v / kVisitBrickSize;
+    return visited[std::size_t(b.x) + std::size_t(grid.x) * (std::size_t(b.y) + std::size_t(grid.y) * std::size_t(b.z))] != 0;
+}
+
+void BrickSet::unite(const BrickSet& other) {
+    for (std::size_t b = 0; b < visited.size(); ++b) visited[b] |= other.visited[b];
+}
+
+std::vector<std::uint32_t> BrickSet::visitedIndices() const {
+    std::vector<std::uint32_t> list;
+    list.reserve(visitedCount());
+    for (std::size_t b = 0; b < visited.size(); ++b)
+        if (visited[b]) list.push_back(static_cast<std::uint32_t>(b));
+    return list;
+}
+
+namespace {
+
+// A parallelepiped in world millimetres: a centre, three edge directions and the half length along each
+// (a half length may be 0: a brick one voxel thick on the grid's upper face).
+struct Parallelepiped {
+    glm::dvec3 centre;
+    glm::dvec3 axis[3];   // edge directions (not necessarily unit, never zero)
+    double half[3];       // half edge lengths in units of `axis`
+    double radiusAlong(glm::dvec3 n) const {
+        return std::abs(glm::dot(n, axis[0])) * half[0] + std::abs(glm::dot(n, axis[1])) * half[1] + std::abs(glm::dot(n, axis[2])) * half[2];
+    }
+};
+
+// Separating axis theorem for two parallelepipeds (convex, three edge directions each): they are disjoint
+// iff their projections are disjoint on one of the 3 + 3 face normals or the 9 cross products of edge
+// directions. Conservative: an axis separates only by more than a rounding margin, so touching or nearly
+// touching counts as intersecting.
+bool mayIntersect(const Parallelepiped& a, const Parallelepiped& b) {
+    glm::dvec3 axes[15];
+    int n = 0;
+    for (int i = 0; i < 3; ++i) axes[n++] = glm::cross(a.axis[(i + 1) % 3], a.axis[(i + 2) % 3]);
+    for (int i = 0; i < 3; ++i) axes[n++] = glm::cross(b.axis[(i + 1) % 3], b.axis[(i + 2) % 3]);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) axes[n++] = glm::cross(a.axis[i], b.axis[j]);
+    glm::dvec3 d = b.centre - a.centre;
+    for (const glm::dvec3& axis : axes) {
+        double length = glm::length(axis);
+        if (!(length > 1e-12)) continue;   // parallel edges: covered by the face normals
+        glm::dvec3 u = axis / length;
+        double ra = a.radiusAlong(u), rb = b.radiusAlong(u);
+        double gap = std::abs(glm::dot(u, d)) - ra - rb;
+        if (gap > 1e-9 * (glm::length(d) + ra + rb) + 1e-9) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+BrickSet bricksAroundMeshes(const VolumeGeometry& g, const clip::ClipMeshSet& clip) {
+    BrickSet set = BrickSet::none(g.dims);
+    const glm::dmat3 linear(g.indexToWorld);
+    const glm::dmat4 worldToIndex = g.worldToIndex();
+    for (int i = 0; i < clip.count(); ++i) {
+        // The mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal).
+        glm::dvec3 lo, hi;
+        clip.dilatedBoxLocal(i, lo, hi);
+        glm::dmat4 toWorld = clip.pose(i).matrix();
+        Parallelepiped box;
+        box.centre = glm::dvec3(toWorld * glm::dvec4(0.5 * (lo + hi), 1.0));
+        for (int a = 0; a < 3; ++a) {
+            box.axis[a] = glm::dvec3(toWorld[a]);   // the pose's rotation: unit axes
+            box.half[a] = 0.5 * (hi[a] - lo[a]);
+        }
+        // Only the bricks within the box's index-space bounds can meet it.
+        glm::dvec3 first(std::numeric_limits<double>::infinity()), last(-std::numeric_limits<double>::infinity());
+        for (int corner = 0; corner < 8; ++corner) {
+            glm::dvec3 world = box.centre;
+            for (int a = 0; a < 3; ++a) world += ((corner >> a) & 1 ? 1.0 : -1.0) * box.half[a] * box.axis[a];
+            glm::dvec3 index(worldToIndex * glm::dvec4(world, 1.0));
+            first = glm::min(first, index);
+            last = glm::max(last, index);
+        }
+        glm::ivec3 from = glm::ivec3(glm::clamp(glm::floor(first / double(kVisitBrickSize)) - 1.0, glm::dvec3(0.0), glm::dvec3(set.grid)));
+        glm::ivec3 to = glm::ivec3(glm::clamp(glm::floor(last / double(kVisitBrickSize)) + 2.0, glm::dvec3(0.0), glm::dvec3(set.grid)));
+        for (int bz = from.z; bz < to.z; ++bz)
+            for (int by = from.y; by < to.y; ++by)
+                for (int bx = from.x; bx < to.x; ++bx) {
+                    std::size_t b = std::size_t(bx) + std::size_t(set.grid.x) * (std::size_t(by) + std::size_t(set.grid.y) * std::size_t(bz));
+                    if (set.visited[b]) continue;
+                    // The brick's voxel centres span [o, o + size - 1] in index space.
+                    glm::ivec3 o = kVisitBrickSize * glm::ivec3(bx, by, bz);
+                    glm::dvec3 size(glm::min(glm::ivec3(kVisitBrickSize), g.dims - o));
+                    Parallelepiped brick;
+                    brick.centre = glm::dvec3(g.indexToWorld * glm::dvec4(glm::dvec3(o) + 0.5 * (size - 1.0), 1.0));
+                    for (int a = 0; a < 3; ++a) {
+                        brick.axis[a] = linear[a];
+                        brick.half[a] = 0.5 * (size[a] - 1.0);
+                    }
+                    if (mayIntersect(box, brick)) set.visited[b] = 1;
+                }
+    }
+    return set;
 }
 
 }  // namespace curette

@@ -217,6 +217,7 @@ void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
     ShadingMode shading = ismosLayers ? frame.ismos.base : frame.shading;
     gl::Defines defines;
     SampleShadingPiece::addDefines(defines, shading);
+    SampleShadingPiece::addCutFaceDefines(defines, frame.raycast.cutFace, clip_.count());
     bool tubes = ismosLayers && lastPlan_.runs(Pass::TubeGBuffer);
     if (ismosLayers) IsmosPass::addLayerDefines(defines, frame.ismos);
     if (tubes) defines.emplace_back("ISMOS_TUBES", "1");
@@ -228,7 +229,7 @@ void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
     VolumePiece{volume_}.apply(p);
     tf_->apply(p);
     clip_.apply(p);
-    SampleShadingPiece{shading, laoSettings_.ambientScale, ao_ ? ao_->ambientTexture() : 0}.apply(p);
+    SampleShadingPiece{shading, laoSettings_.ambientScale, ao_ ? ao_->ambientTexture() : 0, frame.raycast.cutFace}.apply(p);
     setLightingUniforms(p, frame, tf_->material());
     if (ismosLayers) ismos_->applyLayers(p, frame, ismosSpaceOf(frame), resolveStepMm(frame.raycast));
     if (tubes) glBindTextureUnit(binding::tubeDepth, gbuffer_.depth());
@@ -256,7 +257,7 @@ void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
 void Renderer::runSlabPass(const FrameDescription& frame, bool withTubes) {
     // Without tubes only dos comes here (all rays advance slice by slice together); with tubes every mode.
     GLuint ambient = usesAmbientOcclusion(frame.shading) && ao_ ? ao_->ambientTexture() : 0;
-    slab_.run(SlabInputs{frame, volume_, *tf_, clip_, SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ambient}, output_.name(),
+    slab_.run(SlabInputs{frame, volume_, *tf_, clip_, SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ambient, frame.raycast.cutFace}, output_.name(),
                          withTubes ? &gbuffer_ : nullptr, withTubes ? tubeShading_.geometryOpacity : 0.0, tubeShading_.thicknessMm});
     slabUsed_ = true;
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);

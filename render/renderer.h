@@ -46,6 +46,7 @@ public:
     const SlabPass& slabPass() const { return slab_; }
     // The ISMOS passes' state (layers, light samples), allocated at the first ismos frame (null before).
     const IsmosPass* ismos() const { return ismos_.get(); }
+    IsmosPass* ismos() { return ismos_.get(); }
     // The frame's ISMOS texture-space box (render/ismos_model.h).
     IsmosSpace ismosSpaceOf(const FrameDescription& frame) const;
     // Tubes (or illuminated lines) in world millimetres; a scene with tubes in view renders through the

@@ -36,6 +36,7 @@
 
 #define SSBO_SAMPLE_COUNTER 0       // uint: samples taken (bench only)
 #define SSBO_LAO_DIRECTIONS 1       // vec4[]: LAO step in texture space, weight / (K * M)
+#define SSBO_VISIT_BRICKS 2         // uint[]: the bricks steps IV and V visit (visit_bricks.glsl)
 #define SSBO_RECOMPUTE_LIST 3       // uint count, uint voxels[]: category-b voxels (step V, compacted)
 #define SSBO_DISPATCH 4             // uvec3: indirect dispatch size of the compacted step V
 #define SSBO_ANTIALIASING 5         // vec4[]: the N extra anti-aliasing offsets of step IV

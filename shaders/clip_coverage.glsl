@@ -13,18 +13,32 @@ layout(std430, binding = SSBO_ANTIALIASING) readonly buffer AntiAliasing { vec4 
 uniform mat4 indexToWorld;
 uniform int antiAliasingSamples;   // N
 
-bool clippedAtIndex(vec3 index) { return insideAnyClipMesh((indexToWorld * vec4(index, 1.0)).xyz); }
+// Every active mesh, as a set of mesh bits (at most MAX_CLIP_MESHES = 16).
+uint allClipMeshes() { return (1u << uint(clipMeshCount)) - 1u; }
 
-// Of the 9 + N samples of voxel `centre` (index coordinates), how many lie inside a clip mesh. The N extra
-// samples are taken only when the first nine disagree, so the result is 0 or 9 + N wherever they agree.
-int insideSampleCount(vec3 centre) {
-    int inside = clippedAtIndex(centre) ? 1 : 0;
+// Inside one of the meshes of the set `meshes` (bit i: mesh i); with allClipMeshes(), insideAnyClipMesh.
+bool clippedAtIndex(vec3 index, uint meshes) {
+    vec3 world = (indexToWorld * vec4(index, 1.0)).xyz;
+    for (int i = 0; i < clipMeshCount; ++i)
+        if ((meshes & (1u << uint(i))) != 0u && insideMeshMaps(i, world, false)) return true;
+    return false;
+}
+
+// Of the 9 + N samples of voxel `centre` (index coordinates), how many lie inside a mesh of `meshes`. The
+// N extra samples are taken only when the first nine disagree, so the result is 0 or 9 + N wherever they
+// agree. A caller that knows some meshes cannot hold any sample of this voxel may leave them out (step IV
+// with the dilated maps); the count is the same.
+int insideSampleCount(vec3 centre, uint meshes) {
+    int inside = clippedAtIndex(centre, meshes) ? 1 : 0;
     for (int c = 0; c < 8; ++c) {
         vec3 corner = vec3((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0);
-        inside += clippedAtIndex(centre + corner) ? 1 : 0;
+        inside += clippedAtIndex(centre + corner, meshes) ? 1 : 0;
     }
     if (inside == 0) return 0;
     if (inside == 9) return 9 + antiAliasingSamples;
-    for (int s = 0; s < antiAliasingSamples; ++s) inside += clippedAtIndex(centre + antiAliasingOffsets[s].xyz) ? 1 : 0;
+    for (int s = 0; s < antiAliasingSamples; ++s) inside += clippedAtIndex(centre + antiAliasingOffsets[s].xyz, meshes) ? 1 : 0;
     return inside;
 }
+
+// ... inside any mesh.
+int insideSampleCount(vec3 centre) { return insideSampleCount(centre, allClipMeshes()); }

@@ -1,6 +1,6 @@
 #version 450
 // Steps I and V: LAO per voxel (lao_ray.glsl). One program for both so V_PAO and V_AO agree bit for bit.
-//   mode GRID: one invocation per voxel of the dispatch region; the decision (lao_common.glsl) is taken
+//   mode GRID: one invocation per voxel of the visited bricks (visit_bricks.glsl); the decision (lao_common.glsl) is taken
 //              here, so skipped voxels cost a mask read and a copy ("full-grid dispatch with early exit").
 //   mode LIST: one invocation per entry of the recompute list built by lao_compact.comp (indirect dispatch).
 // Step I runs GRID over a mask that marks every voxel b, writing V_PAO.
@@ -26,8 +26,9 @@ void main() {
         if (id >= listCount) return;
         v = voxelFromIndex(listVoxels[id], volumeSize);
     } else {
-        if (!regionVoxel(id, v)) return;
-        uint decision = stepVDecision(v, volumeSize);
+        uint entry;
+        if (!brickVoxel(volumeSize, v, entry)) return;
+        uint decision = stepVDecision(v, volumeSize, entry);
         if (decision == DECISION_COPY) {
             imageStore(ambientOut, v, texelFetch(precomputedAmbient, v, 0));
             return;

@@ -1,5 +1,6 @@
 #version 450
-// Step V, compacted variant, first half: take every voxel's decision (lao_common.glsl); write the copies and
+// Step V, compacted variant, first half: over the visited bricks (visit_bricks.glsl), take every voxel's
+// decision (lao_common.glsl); write the copies and
 // the unreachable ones directly and append the voxels to recompute to a list (atomic append). A second
 // one-invocation pass turns the count into an indirect dispatch of lao.comp in LIST mode.
 #include "bindings.glsl"
@@ -23,8 +24,9 @@ void main() {
         return;
     }
     ivec3 v;
-    if (!regionVoxel(linearInvocation(), v)) return;
-    uint decision = stepVDecision(v, volumeSize);
+    uint entry;
+    if (!brickVoxel(volumeSize, v, entry)) return;
+    uint decision = stepVDecision(v, volumeSize, entry);
     if (decision == DECISION_COPY) {
         imageStore(ambientOut, v, texelFetch(precomputedAmbient, v, 0));
     } else if (decision == DECISION_UNREACHABLE) {

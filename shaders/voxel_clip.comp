@@ -1,5 +1,5 @@
 #version 450
-// Step IV: anti-aliased shadow-test clipping of every voxel in a box (CAO Algorithm 2), writing the clipped opacity
+// Step IV: anti-aliased shadow-test clipping of every voxel of a list of bricks (CAO Algorithm 2), writing the clipped opacity
 // V_o and the category mask V_m. Nine samples (the centre and the eight corners one voxel step away along
 // the diagonals); where they disagree, N more at fixed offsets in [-1, 1]^3 and V_o is scaled by the visible
 // fraction (line 10). Category: a (clipped) when no sample is visible; otherwise b (affected) when the
@@ -8,14 +8,13 @@
 #include "bindings.glsl"
 #include "transfer_function.glsl"
 #include "clip_coverage.glsl"
+#include "visit_bricks.glsl"
 
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
+layout(local_size_x = 64) in;   // one brick (visit_bricks.glsl)
 layout(binding = BINDING_VOLUME) uniform sampler3D volumeData;
 layout(r16, binding = IMAGE_OPACITY) uniform writeonly image3D clippedOpacityOut;
 layout(r8ui, binding = IMAGE_MASK) uniform writeonly uimage3D maskOut;
 uniform ivec3 volumeSize;
-uniform ivec3 regionOrigin;        // the box of voxels this dispatch visits (render/ambient_occlusion.cpp)
-uniform ivec3 regionSize;
 uniform bool testDilation;
 uniform mat3 gradientToWorld;      // index gradient -> world gradient (value per mm)
 uniform float sampleReachMm;       // the farthest any of a voxel's clip samples lies from its centre
@@ -38,25 +37,45 @@ float voxelOpacity(ivec3 v) {
 }
 
 void main() {
-    if (any(greaterThanEqual(ivec3(gl_GlobalInvocationID), regionSize))) return;
-    ivec3 v = regionOrigin + ivec3(gl_GlobalInvocationID);
+    ivec3 v;
+    uint entry;
+    if (!brickVoxel(volumeSize, v, entry)) return;
     vec3 centre = vec3(v);
 
     vec3 centreWorld = (indexToWorld * vec4(centre, 1.0)).xyz;
     // Far from every mesh's map box, every sample is visible and the centre is in no dilated shape: the
     // full test would conclude exactly this, so skip it.
     bool near = clipMeshCount > 0 && nearAnyClipMesh(centreWorld, sampleReachMm);
+    // The meshes a clip sample of this voxel can lie in. With the dilated maps (cao): those whose dilated
+    // shape holds the centre. A dilated shape holds every point within R of a point its depth maps call
+    // inside (step III; R = reach + 2 cell diagonals, render/ambient_occlusion.cpp), and every clip sample
+    // lies within a cell diagonal of the centre, so a mesh whose dilated shape misses the centre holds none
+    // of the samples: leaving it out changes no count. Without them (lao, step I): every mesh.
+    uint meshes = 0u;
+    if (near) {
+        if (testDilation) {
+            for (int i = 0; i < clipMeshCount; ++i)
+                if (insideMeshMaps(i, centreWorld, true)) meshes |= 1u << uint(i);
+        } else {
+            meshes = allClipMeshes();
+        }
+    }
     int samples = 9 + antiAliasingSamples;
-    int visible = samples - (near ? insideSampleCount(centre) : 0);
-    float opacity = voxelOpacity(v);
+    int visible = samples - (meshes != 0u ? insideSampleCount(centre, meshes) : 0);
+    float unclipped = voxelOpacity(v);
+    float opacity = unclipped;
     if (visible == 0) {
         opacity = 0.0;
     } else if (visible < samples) {
         opacity *= float(visible) / float(samples);  // line 10: scaled by the visible fraction
     }
+    // Whether V_o here may differ from step I's (unclipped) value: step V recomputes LAO only within reach
+    // of such voxels (visit_bricks.glsl).
+    if (visible < samples && unclipped > 0.0) markOpacityChanged();
+    // b: the centre lies in a dilated shape (with testDilation), i.e. some mesh is left in `meshes`.
     uint category = visible == 0 ? CATEGORY_CLIPPED
-                    : (testDilation && !(near && insideAnyDilatedMesh(centreWorld))) ? CATEGORY_UNAFFECTED
-                                                                                     : CATEGORY_AFFECTED;
+                    : (testDilation && meshes == 0u) ? CATEGORY_UNAFFECTED
+                                                     : CATEGORY_AFFECTED;
     imageStore(clippedOpacityOut, v, vec4(opacity));
     imageStore(maskOut, v, uvec4(category));
 }

@@ -14,7 +14,10 @@
 #include "render/reference/lao_reference.h"
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <random>
@@ -59,9 +62,12 @@ glm::dvec3 pathPoint(const VolumeGeometry& g, int frame, std::uint32_t seed) {
 
 struct ModeResult {
     double msPerFrame = 0;
+    double msSpread = 0;                   // half the range of the frame times (min..max) around the median
     std::map<std::string, double> stepMs;  // median per step name
     double recomputedFraction = 0;
-    double visitedFraction = 0;   // voxels steps IV and V visited (the box around the meshes' map boxes)
+    double visitedFraction = 0;   // voxels steps IV and V visited (the bricks the meshes' dilated boxes reach)
+    double visitedVoxels = 0;     // the same as a count, mean over frames
+    double laoBrickFraction = 0;  // of the visited bricks, those where LAO can change (render/lao_reach.h)
     std::vector<std::uint64_t> aoHashes, imageHashes;
 };
 
@@ -77,7 +83,7 @@ int benchCao(const CommandLine& cl) {
     std::string jsonPath = cl.valueOr("json", "bench-cao.json");
     const std::uint32_t seed = 20231101;
 
-    auto context = gl::createHeadlessContext();
+    auto context = gl::createHeadlessContext(gpuChoice(cl));
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     const VolumeGeometry& g = renderer.geometry();
@@ -118,7 +124,7 @@ int benchCao(const CommandLine& cl) {
         frame.shading = mode;
         std::vector<double> wall;
         std::map<std::string, std::vector<double>> steps;   // by pass name (render/frame_plan.h)
-        double fractions = 0, visited = 0;
+        double fractions = 0, visited = 0, visitedVoxels = 0, laoBricks = 0;
         for (int f = -1; f < frames; ++f) {
             setMeshes(meshes, f + 1);
             renderer.finish();
@@ -135,6 +141,8 @@ int benchCao(const CommandLine& cl) {
                 const AmbientOcclusionStats& stats = renderer.ambientOcclusion()->lastStats();
                 fractions += stats.recomputedFraction();
                 visited += static_cast<double>(stats.dispatched) / static_cast<double>(stats.voxels);
+                visitedVoxels += static_cast<double>(stats.dispatched);
+                laoBricks += stats.bricks ? static_cast<double>(stats.laoBricks) / static_cast<double>(stats.bricks) : 0.0;
                 result.aoHashes.push_back(hashWords(renderer.ambientOcclusion()->readAmbient()));
             }
             Image image = renderer.readImage();
@@ -142,19 +150,23 @@ int benchCao(const CommandLine& cl) {
                 std::string_view(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size() * sizeof(glm::vec4))));
         }
         result.msPerFrame = median(wall);
+        result.msSpread = 0.5 * (*std::max_element(wall.begin(), wall.end()) - *std::min_element(wall.begin(), wall.end()));
         for (auto& [name, list] : steps) result.stepMs[name] = median(list);
         result.recomputedFraction = fractions / frames;
         result.visitedFraction = visited / frames;
+        result.visitedVoxels = visitedVoxels / frames;
+        result.laoBrickFraction = laoBricks / frames;
         return result;
     };
 
     Table speed("Table 3: frame time while the sphere moves (ours, ms) and CAO speedup over full LAO (ours vs paper)",
-                {"rays K", "meshes", "solid ms", "LAO ms", "CAO ms", "speedup", "paper speedup Engine", "paper Beetle",
+                {"rays K", "meshes", "solid ms", "LAO ms", "LAO +- ms", "CAO ms", "CAO +- ms", "speedup", "paper speedup Engine", "paper Beetle",
                  "paper Skeleton", "CAO == LAO (V_AO, image)", "RMS vs 512 rays (visible voxels)",
                  "RMS vs 512 rays (recomputed voxels, category b)"});
-    Table fraction("Table 2: voxels recomputed by CAO (category b plus the seam), mean over frames",
+    Table fraction("Table 2: voxels whose LAO CAO recomputed (category b and the seam, where a clipped opacity is within reach), "
+                   "and the voxels steps IV and V visited, mean over frames",
                    {"rays K", "meshes", "recomputed %", "paper Engine %", "paper Beetle %", "paper Skeleton %",
-                    "visited by IV and V %"});
+                    "visited by IV and V %", "visited voxels", "visited bricks where LAO can change %"});
     Table perStep("Fig. 10: GPU time per step (ms, median)",
                   {"rays K", "meshes", "mode", passInfo(Pass::VoxelClipping).name, passInfo(Pass::LaoRecompute).name,
                    passInfo(Pass::RayCast).name, "total frame"});
@@ -174,8 +186,9 @@ int benchCao(const CommandLine& cl) {
             if (row.rays == rays) paper = &row;
         std::map<int, ModeResult> caoByMeshes;
         for (int meshes : meshCounts) {
-            ModeResult solid = runMode(ShadingMode::Solid, meshes);
-            ModeResult full = runMode(ShadingMode::Lao, meshes);
+            bool caoOnly = std::getenv("CURETTE_CAO_ONLY") != nullptr;
+            ModeResult solid = caoOnly ? ModeResult{} : runMode(ShadingMode::Solid, meshes);
+            ModeResult full = caoOnly ? ModeResult{} : runMode(ShadingMode::Lao, meshes);
             ModeResult cao = runMode(ShadingMode::Cao, meshes);
             bool identical = full.aoHashes == cao.aoHashes && full.imageHashes == cao.imageHashes;
             allIdentical = allIdentical && identical;
@@ -215,20 +228,22 @@ int benchCao(const CommandLine& cl) {
                 rmsRecomputed = sampleRms(true);
             }
             double speedup = full.msPerFrame / cao.msPerFrame;
-            speed.add({rays, meshes, solid.msPerFrame, full.msPerFrame, cao.msPerFrame, speedup,
+            speed.add({rays, meshes, solid.msPerFrame, full.msPerFrame, full.msSpread, cao.msPerFrame, cao.msSpread, speedup,
                        paper ? nlohmann::json(paper->engineSpeedup) : nlohmann::json(),
                        paper ? nlohmann::json(paper->beetleSpeedup) : nlohmann::json(),
                        paper ? nlohmann::json(paper->skeletonSpeedup) : nlohmann::json(), identical ? "yes" : "NO",
                        groundTruthVoxels ? nlohmann::json(rms) : nlohmann::json(),
                        groundTruthVoxels ? nlohmann::json(rmsRecomputed) : nlohmann::json()});
-            fraction.add({rays, meshes, 100.0 * cao.recomputedFraction, 14.94, 20.24, 16.13, 100.0 * cao.visitedFraction});
+            fraction.add({rays, meshes, 100.0 * cao.recomputedFraction, 14.94, 20.24, 16.13, 100.0 * cao.visitedFraction,
+                          std::llround(cao.visitedVoxels), 100.0 * cao.laoBrickFraction});
             for (auto [name, r] : {std::pair<const char*, ModeResult*>{"LAO", &full}, {"CAO", &cao}})
                 perStep.add({rays, meshes, name, r->stepMs[passInfo(Pass::VoxelClipping).name], r->stepMs[passInfo(Pass::LaoRecompute).name],
                              r->stepMs[passInfo(Pass::RayCast).name], r->msPerFrame});
             caoByMeshes[meshes] = cao;
             raw.push_back({{"rays", rays}, {"meshes", meshes}, {"solid_ms", solid.msPerFrame}, {"lao_ms", full.msPerFrame},
                            {"cao_ms", cao.msPerFrame}, {"recomputed_fraction", cao.recomputedFraction},
-                           {"visited_fraction", cao.visitedFraction},
+                           {"visited_fraction", cao.visitedFraction}, {"visited_voxels", cao.visitedVoxels},
+                           {"lao_brick_fraction", cao.laoBrickFraction}, {"lao_ms_spread", full.msSpread}, {"cao_ms_spread", cao.msSpread},
                            {"identical", identical}, {"rms_vs_512", rms}, {"rms_vs_512_recomputed", rmsRecomputed}, {"lao_steps_ms", full.stepMs}, {"cao_steps_ms", cao.stepMs}});
         }
         if (caoByMeshes.count(1) && caoByMeshes.count(2)) {

@@ -30,7 +30,7 @@ int benchDos(const CommandLine& cl) {
     int referenceDirections = CommandLine::parseInt("reference-directions", cl.valueOr("reference-directions", "48"), 4, 100000);
     std::string jsonPath = cl.valueOr("json", "bench-dos.json");
 
-    auto context = gl::createHeadlessContext();
+    auto context = gl::createHeadlessContext(gpuChoice(cl));
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     if (!renderer.hasTubes()) throw InputError(cl.required("scene"), "tubes", "a scene with tubes (e.g. assets/scenes/fibers.json)", "none");

@@ -23,7 +23,7 @@ int benchRaycast(const CommandLine& cl) {
     int referencePixels = CommandLine::parseInt("reference-pixels", cl.valueOr("reference-pixels", "48"), 0, 100000);
     std::string jsonPath = cl.valueOr("json", "bench-raycast.json");
 
-    auto context = gl::createHeadlessContext();
+    auto context = gl::createHeadlessContext(gpuChoice(cl));
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     FrameDescription base = initialFrame(loaded.scene, renderer.geometry());

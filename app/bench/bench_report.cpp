@@ -36,7 +36,7 @@ int benchReport(const CommandLine& cl) {
     std::string jsonPath = cl.valueOr("json", "bench-report.json");
     if (loaded.scene.clipMeshes.empty()) throw InputError(cl.required("scene"), "clip_meshes", "a scene with clip meshes", "none");
 
-    auto context = gl::createHeadlessContext();
+    auto context = gl::createHeadlessContext(gpuChoice(cl));
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     CarveReporter reporter(loaded, renderer.geometry());

@@ -45,10 +45,57 @@ VolumeData listAndReadDicom(const std::string& path, const io::VolumeReadOptions
     return io::readDicomSeries(series[choice.index], path, choice, options.showIdentifiers);
 }
 
+// --gl: the EGL platforms and devices found, and the context a headless command would use (--gpu).
+int describeGl(const CommandLine& cl) {
+    gl::GpuChoice choice = gpuChoice(cl);   // a bad --gpu is an error before anything is listed
+    gl::EglPlatforms platforms = gl::queryEglPlatforms();
+    auto yesNo = [](bool b) { return b ? "yes" : "no"; };
+    std::printf("EGL platforms\n");
+    std::printf("  device (EGL_EXT_device_enumeration + EGL_EXT_platform_device)  %s\n",
+                yesNo(platforms.deviceEnumeration && platforms.platformDevice));
+    std::printf("  surfaceless (EGL_MESA_platform_surfaceless)                    %s\n", yesNo(platforms.surfaceless));
+    std::printf("EGL devices  %zu\n", platforms.devices.size());
+    // The device extensions that decide how curette uses a device.
+    const char* telling[] = {"EGL_MESA_device_software", "EGL_EXT_device_drm", "EGL_EXT_device_drm_render_node", "EGL_NV_device_cuda",
+                             "EGL_EXT_device_persistent_id"};
+    for (const gl::EglDevice& d : platforms.devices) {
+        std::printf("  %s\n", d.describe().c_str());
+        std::string found;
+        for (const char* e : telling)
+            if (d.hasExtension(e)) found += std::string(found.empty() ? "" : " ") + e;
+        std::printf("     extensions %s\n", found.empty() ? "(none of the ones curette looks at)" : found.c_str());
+        if (!d.problem.empty()) continue;
+        try {
+            auto probe = gl::createHeadlessContext({gl::GpuChoice::Kind::Device, d.index});
+            std::printf("     GL         %s | %s | %s\n", probe->info().vendor.c_str(), probe->info().renderer.c_str(), probe->info().version.c_str());
+        } catch (const SystemError& e) {
+            std::printf("     GL         none: %s\n", e.what());
+        }
+    }
+    std::string asked = cl.valueOr("gpu", "automatic");
+    std::vector<gl::HeadlessTarget> targets = gl::headlessTargets(platforms, choice);
+    std::printf("--gpu %s tries  ", asked.c_str());
+    for (std::size_t i = 0; i < targets.size(); ++i) std::printf("%s%s", i ? ", then " : "", targets[i].describe().c_str());
+    std::printf("\n");
+    std::fflush(stdout);
+    auto context = gl::createHeadlessContext(choice);
+    const gl::ContextInfo& i = context->info();
+    std::printf("context      %s\n", i.platform.c_str());
+    std::printf("GL_VENDOR    %s\nGL_RENDERER  %s\nGL_VERSION   %s\nGLSL         %s\n", i.vendor.c_str(), i.renderer.c_str(), i.version.c_str(),
+                i.glslVersion.c_str());
+    std::printf("limits       3D textures %d, 2D textures %d, compute groups %d x %d x %d\n", i.max3DTextureSize, i.maxTextureSize,
+                i.maxComputeWorkGroupCount[0], i.maxComputeWorkGroupCount[1], i.maxComputeWorkGroupCount[2]);
+    std::printf("timing       %s\n", i.softwareRenderer ? "software renderer: benches time with the wall clock"
+                                                         : (i.timerQueries ? "GPU timer queries" : "no timer queries: the wall clock"));
+    return 0;
+}
+
 }  // namespace
 
 int info(const Arguments& args) {
-    CommandLine cl(args, {{"raw-dims", true, "raw file: dimensions XxYxZ"},
+    CommandLine cl(args, {{"gl", false, "instead of a file: the EGL devices and platforms, and the GL context headless commands get"},
+                          gpuOption(),
+                          {"raw-dims", true, "raw file: dimensions XxYxZ"},
                           {"raw-type", true, "raw file: uint8|int16|uint16|int32|float32|float64"},
                           {"raw-spacing", true, "raw file: spacing in mm, e.g. 1,1,2 (default 1,1,1)"},
                           {"raw-big-endian", false, "raw file: samples are big-endian"},
@@ -57,8 +104,13 @@ int info(const Arguments& args) {
                           {"volume", true, "4-D/5-D files: the volume to describe (0-based, default 0)"},
                           {"series", true, "DICOM: the series to describe, by number or SeriesInstanceUID"},
                           {"show-identifiers", false, "DICOM: print patient name and ids (never printed otherwise)"}});
+    if (cl.flag("gl")) {
+        if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no FILE with --gl (curette info --gl [--gpu N])");
+        return describeGl(cl);
+    }
+    if (cl.value("gpu")) throw InputError("<command line>", "--gpu", "together with --gl (a volume file needs no GL)");
     if (cl.positional().size() != 1)
-        throw InputError("<command line>", "FILE", "exactly one volume file or DICOM folder: curette info FILE [options]",
+        throw InputError("<command line>", "FILE", "exactly one volume file or DICOM folder: curette info FILE [options], or curette info --gl",
                          std::to_string(cl.positional().size()) + " arguments");
     io::VolumeReadOptions options;
     if (auto v = cl.value("volume")) options.volumeIndex = CommandLine::parseInt("volume", *v, 0, 1 << 20);

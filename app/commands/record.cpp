@@ -3,6 +3,8 @@
 // scripted motion, and they go through the fake hidapi backend, the device manager, the parsers, the mapping
 // and the interaction step exactly as live reports do in the viewer; the session is written the same way.
 // It makes demo sessions and test sessions; a person records with `curette view` (F9 or a mapped button).
+// --move-lights adds a scripted keyboard and mouse that turn the lights (I/J/K/L held, O to the next light, Shift +
+// left drags), recorded as keys and drags like the viewer's.
 #include "app/command_line.h"
 #include "app/commands/commands.h"
 #include "app/interaction.h"
@@ -94,27 +96,46 @@ struct ScriptedMotion {
     }
 };
 
+// The scripted light motion of --move-lights at frame f of `frames`: J/L and I/K held in slow alternation, O
+// pressed once a third of the way in (the next light), a Shift + left drag every fifth frame.
+input::KeyboardMouseState scriptedLightKeys(int f, int frames, double phase) {
+    using input::Key;
+    input::KeyboardMouseState k;
+    auto hold = [&](Key key) { k.keys |= 1u << static_cast<int>(key); };
+    double t = 2.0 * std::numbers::pi * f / std::max(frames, 1);
+    double yaw = std::sin(t + phase), pitch = std::sin(2.0 * t + 2.0 * phase);
+    if (yaw > 0.3) hold(Key::L);
+    if (yaw < -0.3) hold(Key::J);
+    if (pitch > 0.3) hold(Key::I);
+    if (pitch < -0.3) hold(Key::K);
+    if (f == frames / 3) hold(Key::O);
+    if (f % 5 == 2) k.lightDragPixels = {6.0 * std::cos(t + phase), -4.0 * std::sin(t)};
+    return k;
+}
+
 }  // namespace
 
 int record(const Arguments& args) {
     CommandLine cl(args, {{"scene", true, "scene file (JSON)"},
                           {"out", true, "session file to write (.jsonl)"},
-                          {"synthetic", true, "comma-separated devices: " + kindList()},
+                          {"synthetic", true, "comma-separated devices: " + kindList() + " (optional with --move-lights)"},
                           {"frames", true, "frames to record (default 150)"},
                           {"fps", true, "frames per second of session time (default 30)"},
                           {"report-hz", true, "reports per second per device (default 125)"},
                           {"seed", true, "seed of the scripted motion (default 1)"},
                           {"mapping", true, "mapping JSON (default: the shipped assets/input/default_mapping.json)"},
                           {"size", true, "image size WxH recorded for the frames (default: the scene's)"},
-                          {"unplug", true, "FRAME: unplug the last device there and plug it back one second later"}});
+                          {"unplug", true, "FRAME: unplug the last device there and plug it back one second later"},
+                          {"move-lights", false, "also turn the lights with scripted keys (I/J/K/L, O) and Shift + left drags"}});
     std::filesystem::path scenePath = cl.required("scene"), out = cl.required("out");
     int frames = CommandLine::parseInt("frames", cl.valueOr("frames", "150"), 1, 1000000);
     double fps = CommandLine::parseDouble("fps", cl.valueOr("fps", "30"), 1, 1000);
     double reportHz = CommandLine::parseDouble("report-hz", cl.valueOr("report-hz", "125"), 1, 8000);
     int seed = CommandLine::parseInt("seed", cl.valueOr("seed", "1"), 0, 1 << 30);
     int unplugFrame = cl.value("unplug") ? CommandLine::parseInt("unplug", *cl.value("unplug"), 0, frames - 1) : -1;
+    bool moveLights = cl.flag("move-lights");
     std::vector<const SyntheticKind*> kinds;
-    {
+    if (!moveLights || cl.value("synthetic")) {   // with --move-lights, devices are optional
         std::string list = cl.required("synthetic");
         std::size_t start = 0;
         while (start <= list.size()) {
@@ -128,6 +149,7 @@ int record(const Arguments& args) {
             start = comma + 1;
         }
     }
+    if (unplugFrame >= 0 && kinds.empty()) throw InputError("<command line>", "--unplug", "together with --synthetic (a device to unplug)");
     input::MappingConfig mapping = cl.value("mapping") ? input::loadMapping(*cl.value("mapping")) : input::defaultMapping();
 
     LoadedScene loaded = loadSceneWithVolume(scenePath);
@@ -167,6 +189,8 @@ int record(const Arguments& args) {
     LiveRecording recording(out, sceneFromSession.string(), state, input, 0.0);
     std::vector<input::DeviceState> previous(kinds.size());
     double nextReport = 0.0;
+    std::uniform_real_distribution<double> phaseDistribution(0.0, 2.0 * std::numbers::pi);
+    double lightPhase = phaseDistribution(random);
     int replugFrame = unplugFrame >= 0 ? unplugFrame + static_cast<int>(std::ceil(fps)) + 1 : -1;
     for (int f = 0; f < frames; ++f) {
         double now = f * dt;
@@ -181,10 +205,11 @@ int record(const Arguments& args) {
                 previous[i] = s;
             }
         double frameDt = f == 0 ? 0.0 : dt;
-        InputFrame inputFrame = input.step(now, input::KeyboardMouseState{}, frameDt, static_cast<int>(state.meshes.size()));
+        input::KeyboardMouseState keys = moveLights ? scriptedLightKeys(f, frames, lightPhase) : input::KeyboardMouseState{};
+        InputFrame inputFrame = input.step(now, keys, frameDt, static_cast<int>(state.meshes.size()));
         step.apply(inputFrame.actions, size.y);
         state.toggleRecording = state.screenshot = false;   // nothing to toggle or capture headless
-        recording.addFrame(now, frameDt, size, step.frame().camera, state, input::KeyboardMouseState{}, inputFrame);
+        recording.addFrame(now, frameDt, size, step.frame().camera, state, keys, inputFrame);
     }
     recording.finish();
     std::printf("wrote %s: %d frames, %zu synthetic devices, %zu meshes, scene %s\n", out.c_str(), frames, kinds.size(), state.meshes.size(),

@@ -3,10 +3,11 @@
 //   --every N        render every Nth frame (poses are still followed on every frame)
 //   --check          per frame: CAO equals full LAO (V_AO and image, for cao/lao frames), render time,
 //                    recompute fraction and image hash, as CSV and a plot
-//   --from-reports   re-derive every pose from the raw reports through the parsers and the recorded mapping,
-//                    and check they equal the recorded poses exactly
+//   --from-reports   re-derive every pose and light direction from the raw reports and keys through the parsers
+//                    and the recorded mapping, and check they equal the recorded ones exactly
 //   --no-render      with --from-reports: check the poses only (no GL context)
 //   --lenient        replay the valid prefix of a session with a bad line instead of refusing it
+//   --mp4            with --out: DIR/replay.mp4 of the frames at the recorded rate (app/movie.h; needs ffmpeg)
 //   --report         with --out: the removal report (app/carve_report.h) of every Nth frame in
 //                    DIR/report/frame_NNNNNN/, the plan's exports for the last of them, and removal.csv and
 //                    removal.png (removed mL and cut streamlines over time)
@@ -15,6 +16,7 @@
 #include "app/commands/commands.h"
 #include "app/interaction.h"
 #include "app/loaded_scene.h"
+#include "app/movie.h"
 #include "app/session.h"
 #include "app/session_step.h"
 #include "base/atomic_file.h"
@@ -62,14 +64,15 @@ void plotRemoval(const std::filesystem::path& dir) {
 }  // namespace
 
 int replay(const Arguments& args) {
-    CommandLine cl(args, {{"out", true, "directory for PNGs, frames.csv and frames.png"},
+    CommandLine cl(args, withGpuOption({{"out", true, "directory for PNGs, frames.csv and frames.png"},
                           {"every", true, "render every Nth frame (default 1)"},
                           {"check", false, "verify CAO == LAO per frame, write timing/recompute/hash CSV and a plot"},
                           {"from-reports", false, "re-derive poses from the raw reports and check them"},
                           {"lenient", false, "replay the valid prefix of a damaged session"},
                           {"size", true, "render at WxH instead of the recorded size"},
                           {"no-render", false, "with --from-reports: only check the poses, render nothing"},
-                          {"report", false, "with --out: the removal report every Nth frame, removal.csv and removal.png"}});
+                          {"report", false, "with --out: the removal report every Nth frame, removal.csv and removal.png"},
+                          {"mp4", false, "with --out: also DIR/replay.mp4 of the frames, at the recorded rate (needs ffmpeg on PATH)"}}));
     if (cl.positional().size() != 1) throw InputError("<command line>", "FILE", "one session file: curette replay FILE [options]");
     std::filesystem::path file = cl.positional()[0];
     int every = CommandLine::parseInt("every", cl.valueOr("every", "1"), 1, 1 << 20);
@@ -90,13 +93,16 @@ int replay(const Arguments& args) {
     LoadedScene loaded = loadSceneWithVolume(scenePath);
     bool render = !cl.flag("no-render");
     bool reporting = cl.flag("report");
+    bool movie = cl.flag("mp4");
+    if (movie && !out) throw InputError("<command line>", "--mp4", "together with --out DIR (where the frames and the movie go)");
+    if (movie && !ffmpegAvailable()) throw SystemError("--mp4 needs ffmpeg on PATH (apt-get install ffmpeg)");
     if (reporting && !out) throw InputError("<command line>", "--report", "together with --out DIR (where the reports go)");
     if (!render && !fromReports) throw InputError("<command line>", "--no-render", "together with --from-reports (otherwise there is nothing to do)");
     if (!render && reporting) throw InputError("<command line>", "--report", "without --no-render (the report uses the renderer's clip maps)");
     std::unique_ptr<gl::Context> context;
     std::unique_ptr<Renderer> renderer;
     if (render) {
-        context = gl::createHeadlessContext();
+        context = gl::createHeadlessContext(gpuChoice(cl));
         renderer = std::make_unique<Renderer>(*context, loaded.volume, loaded.scene.transferFunction);
         configureRenderer(loaded, *renderer);
     }
@@ -119,6 +125,7 @@ int replay(const Arguments& args) {
 
     std::string csv = "frame,time_s,render_ms,ao_ms,recomputed_fraction,image_hash,cao_equals_lao\n";
     int rendered = 0, poseMismatches = 0, caoMismatches = 0, checked = 0;
+    std::vector<std::string> movieFrames;
     std::printf("curette replay: %s, %zu frames, scene %s%s\n", file.c_str(), session.frames.size(), scenePath.c_str(),
                 session.warning.empty() ? "" : " (lenient: a bad tail was dropped)");
     for (std::size_t n = 0; n < session.frames.size(); ++n) {
@@ -130,14 +137,14 @@ int replay(const Arguments& args) {
             for (int id : f.devicesRemoved) pipeline->removeDevice(id);
             std::vector<input::RawReport> reports;
             for (const SessionReport& r : f.reports) reports.push_back({r.device, r.time, r.bytes});
-            input::KeyboardMouseState keys{f.keys, f.drag};
+            input::KeyboardMouseState keys{f.keys, f.drag, f.lightDrag};
             step.frame().camera = f.camera;
             step.frame().size = f.size;
             step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size())), f.size.y);
-            // The re-derived poses (and shading) must be the recorded ones, bit for bit.
-            bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes);
+            // The re-derived poses, lights (version 2) and shading must be the recorded ones, bit for bit.
+            bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights);
             if (!same && poseMismatches++ == 0)
-                std::fprintf(stderr, "curette replay: %s: poses re-derived from the reports differ from the recorded ones\n", where.c_str());
+                std::fprintf(stderr, "curette replay: %s: poses or lights re-derived from the reports differ from the recorded ones\n", where.c_str());
         } else {
             // Follow the recorded poses: meshes added and removed, then every pose.
             step.follow(f, scenePath.parent_path(), where);
@@ -175,9 +182,8 @@ int replay(const Arguments& args) {
         std::snprintf(line, sizeof line, "%zu,%.4f,%.2f,%.2f,%.6f,%s,%s\n", f.index, f.time, ms, aoMs, fraction, hash.c_str(), equal.c_str());
         csv += line;
         if (out) {
-            char name[64];
-            std::snprintf(name, sizeof name, "frame_%06zu.png", f.index);
-            writePng(*out / name, image, glm::vec4(loaded.scene.background));
+            movieFrames.push_back(movieFrameName(f.index));
+            writePng(*out / movieFrames.back(), image, glm::vec4(loaded.scene.background));
         }
         if (reporter) {
             plan::Report report = reporter->compute(renderer->clipMeshes());
@@ -206,6 +212,13 @@ int replay(const Arguments& args) {
         plotRemoval(*out);
         std::printf("wrote %s, %s and the plan of the last reported frame in %s\n", (*out / "removal.csv").c_str(),
                     (*out / "removal.png").c_str(), (*out / "report").c_str());
+    }
+    if (movie && !movieFrames.empty()) {
+        // The recorded rate, over the frames rendered: a movie as long as the session.
+        double seconds = session.frames.back().time - session.frames.front().time;
+        double fps = seconds > 0 && session.frames.size() > 1 ? double(session.frames.size() - 1) / seconds / every : 30.0;
+        encodeMovie(*out, movieFrames, fps, *out / "replay.mp4");
+        std::printf("wrote %s (%zu frames at %.3g fps)\n", (*out / "replay.mp4").c_str(), movieFrames.size(), fps);
     }
     if (out && check) {
         writeFileAtomically(*out / "frames.csv", csv);

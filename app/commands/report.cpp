@@ -14,12 +14,12 @@
 namespace curette::commands {
 
 int report(const Arguments& args) {
-    CommandLine cl(args, {{"scene", true, "scene file (JSON; default with --session: the session's scene)"},
+    CommandLine cl(args, withGpuOption({{"scene", true, "scene file (JSON; default with --session: the session's scene)"},
                           {"session", true, "a recorded session (JSONL): report the carve at one of its frames"},
                           {"frame", true, "with --session: the frame index (default: the last frame)"},
                           {"out", true, "directory for report.json, the CSVs and the exports"},
                           {"lps", false, "write the cavity surface in LPS (default RAS)"},
-                          {"no-exports", false, "only report.json and the CSVs"}});
+                          {"no-exports", false, "only report.json and the CSVs"}}));
     if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no positional arguments for report");
     std::filesystem::path out = cl.required("out");
     if (cl.value("frame") && !cl.value("session")) throw InputError("<command line>", "--frame", "together with --session");
@@ -34,7 +34,7 @@ int report(const Arguments& args) {
     if (scenePath.empty()) throw InputError("<command line>", "--scene", "a scene file (or --session)");
 
     LoadedScene loaded = loadSceneWithVolume(scenePath);
-    auto context = gl::createHeadlessContext();
+    auto context = gl::createHeadlessContext(gpuChoice(cl));
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};

@@ -1,6 +1,6 @@
 // curette view --scene S: the interactive viewer. Devices (hidapi: gamepads, SpaceMice) and the keyboard and
 // mouse drive the clip meshes through the mapping (input/mapping.h); left drag orbits the camera and the wheel
-// zooms. F9 (or a mapped button) starts and stops recording a session; P or F12 saves a screenshot. The overlay
+// zooms; Shift + left drag or I/J/K/L turns the selected light (O: the next one), as recorded input actions. F9 (or a mapped button) starts and stops recording a session; P or F12 saves a screenshot. The overlay
 // shows which device holds which mesh, the shading, and the time of every pass of the frame plan. The frame is
 // re-rendered only when the renderer is not already showing it (Renderer::showing), at reduced resolution
 // while the camera moves (llvmpipe renders on the CPU). The plan panel shows the removal report (removed mL,
@@ -18,6 +18,7 @@
 #include "input/hid/fake_backend.h"
 #include "render/presenter.h"
 #include "render/renderer.h"
+#include "render/stereo_render.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -38,7 +39,8 @@ namespace {
 constexpr int kGlfwKeys[] = {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E, GLFW_KEY_UP, GLFW_KEY_DOWN,
                              GLFW_KEY_LEFT, GLFW_KEY_RIGHT, GLFW_KEY_PAGE_UP, GLFW_KEY_PAGE_DOWN, GLFW_KEY_TAB, GLFW_KEY_R,
                              GLFW_KEY_INSERT, GLFW_KEY_DELETE, GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5,
-                             GLFW_KEY_C, GLFW_KEY_F9, GLFW_KEY_P, GLFW_KEY_F12, GLFW_KEY_6};
+                             GLFW_KEY_C, GLFW_KEY_F9, GLFW_KEY_P, GLFW_KEY_F12, GLFW_KEY_6, GLFW_KEY_I, GLFW_KEY_J, GLFW_KEY_K,
+                             GLFW_KEY_L, GLFW_KEY_O};
 static_assert(std::size(kGlfwKeys) == static_cast<std::size_t>(input::Key::Count));
 
 // Presses latched between frames: a key pressed and released while a slow frame renders still counts.
@@ -99,6 +101,11 @@ int view(const Arguments& args) {
     std::uint64_t reportedVersion = 0, seenVersion = 0;
     double versionChangedAt = -1e9, reportMs = 0;
     bool exportKeyWasDown = false;
+    // F3 cycles stereo (off, side-by-side, anaglyph; render/stereo.h): a way of showing, not a scene action, so
+    // sessions do not record it.
+    StereoMode stereo = StereoMode::Off;
+    StereoView stereoView;
+    bool stereoKeyWasDown = false;
     int exports = 0;
 
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
@@ -156,8 +163,10 @@ int view(const Arguments& args) {
         lastCursor = cursor;
         bool left = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
         bool right = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        // Shift + left drag turns the selected light instead (an input action, so sessions record it).
+        bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
         OrbitCamera cameraBefore = frame.camera;
-        if (left && orbiting) frame.camera.orbit(-0.4 * delta.x / pixelsPerPoint, 0.4 * delta.y / pixelsPerPoint);
+        if (left && orbiting && !shift) frame.camera.orbit(-0.4 * delta.x / pixelsPerPoint, 0.4 * delta.y / pixelsPerPoint);
         if (!io.WantCaptureMouse && io.MouseWheel != 0) frame.camera.zoom(std::pow(0.9, io.MouseWheel));
 
         // Keyboard and mouse as the input pipeline sees them.
@@ -169,12 +178,13 @@ int view(const Arguments& args) {
         }
         latchedKeys = 0;
         if (right && dragging) keys.rightDragPixels = delta;
+        if (left && orbiting && shift) keys.lightDragPixels = delta;
         orbiting = left;
         dragging = right;
 
         // Devices and keys -> actions -> the scene (the session step every command runs).
         InputFrame input = live.step(now, keys, dt, static_cast<int>(state.meshes.size()));
-        step.apply(input.actions, framebuffer.y);
+        bool lightMoving = step.apply(input.actions, framebuffer.y).lights;
         for (std::string& m : live.takeMessages()) {
             messages.push_back(std::move(m));
             if (messages.size() > 6) messages.pop_front();
@@ -193,8 +203,8 @@ int view(const Arguments& args) {
         ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
         ImGui::Begin("curette", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
         // Shading changes only through input (1-6, C, mapped buttons), so a session replays it from its reports.
-        ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-6, C) | %dx%d", lastFrameMs, lastTimings.ambientOcclusionMs(),
-                    shadingModeName(frame.shading), renderer.outputSize().x, renderer.outputSize().y);
+        ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-6, C) | %dx%d | stereo %s (F3)", lastFrameMs, lastTimings.ambientOcclusionMs(),
+                    shadingModeName(frame.shading), renderer.outputSize().x, renderer.outputSize().y, stereoModeName(stereo));
         for (const FrameTimings::Entry& e : lastTimings.passes) ImGui::Text("  %-22s %8.1f ms", passInfo(e.pass).name, e.ms);
         auto meshLabel = [&](int index) {
             return index >= 0 && index < static_cast<int>(state.meshes.size()) ? "mesh " + std::to_string(index) + " \"" + state.meshes[static_cast<std::size_t>(index)].name + "\""
@@ -234,28 +244,39 @@ int view(const Arguments& args) {
         }
         float scale = static_cast<float>(renderScale);
         if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) renderScale = scale;
+        ImGui::Text("light %d of %zu (O: next; I/J/K/L or Shift + left drag: turn it)", state.selectedLight + 1, state.lights.size());
         ImGui::TextUnformatted("left drag: orbit  wheel: zoom  WASDQE, arrows, PgUp/PgDn, right drag: move mesh\n"
-                               "Tab: next mesh  R: reset  Ins/Del: add/remove  F9: record  P: screenshot");
+                               "Tab: next mesh  R: reset  Ins/Del: add/remove  F9: record  P: screenshot  F3: stereo");
         ImGui::End();
         ImGui::Render();
 
         if (framebuffer.x > 0 && framebuffer.y > 0) {
             step.syncTo(renderer.clipMeshes());
-            double scaleNow = cameraMoving ? std::min(movingScale, renderScale) : renderScale;
+            double scaleNow = cameraMoving || lightMoving ? std::min(movingScale, renderScale) : renderScale;
             frame.size = glm::max(glm::ivec2(glm::dvec2(framebuffer) * scaleNow), glm::ivec2(1));
-            if (!renderer.showing(frame)) {
-                auto start = std::chrono::steady_clock::now();
+            bool stereoKeyDown = !io.WantCaptureKeyboard && glfwGetKey(w, GLFW_KEY_F3) == GLFW_PRESS;
+            if (stereoKeyDown && !stereoKeyWasDown) stereo = nextStereoMode(stereo);
+            stereoKeyWasDown = stereoKeyDown;
+            auto renderStart = std::chrono::steady_clock::now();
+            bool rendered = false;
+            if (stereo != StereoMode::Off) {
+                rendered = stereoView.update(renderer, frame, stereo, kDefaultEyeSeparationMm, glm::vec4(loaded.scene.background));
+            } else if (!renderer.showing(frame)) {
                 renderer.render(frame);
+                rendered = true;
+            }
+            if (rendered) {
                 renderer.finish();
-                lastFrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                lastFrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - renderStart).count();
                 lastTimings = renderer.collectTimings();
             }
             if (state.screenshot) {
                 std::string name = "curette-screenshot-" + std::to_string(++screenshots) + ".png";
-                writePng(name, renderer.readImage(), glm::vec4(loaded.scene.background));
+                writePng(name, stereo != StereoMode::Off ? stereoView.image() : renderer.readImage(), glm::vec4(loaded.scene.background));
                 std::printf("saved %s\n", name.c_str());
             }
-            presenter.present(renderer.outputTexture(), framebuffer, glm::vec4(loaded.scene.background));
+            presenter.present(stereo != StereoMode::Off ? stereoView.texture() : renderer.outputTexture(), framebuffer,
+                              glm::vec4(loaded.scene.background));
 
             std::uint64_t version = renderer.clipMeshes().version();
             if (version != seenVersion) seenVersion = version, versionChangedAt = now;

@@ -124,7 +124,7 @@ IsmosPixel ismosOcclusionPixel(const IsmosLayerImages& layers, const std::vector
 }
 
 IsmosLayersPixel ismosLayersPixel(const VolumeData& volume, const TransferFunction& tf, const FrameDescription& frame, double stepMm,
-                                  const IsmosSpace& space, glm::ivec2 pixel) {
+                                  const IsmosSpace& space, glm::ivec2 pixel, const OccluderTriangles* tubes) {
     VolumeGeometry g{volume.dims, volume.indexToWorld};
     glm::dmat4 worldToTexture = g.worldToTexture();
     const auto [eye, direction] = cameraRay(frame, pixel);
@@ -135,45 +135,16 @@ IsmosLayersPixel ismosLayersPixel(const VolumeData& volume, const TransferFuncti
     glm::dvec3 texelSize = 1.0 / glm::dvec3(volume.dims);
     glm::dmat3 gradientToWorld = g.gradientIndexToWorld() * volume.valueScale;
     int maxLayers = std::clamp(frame.ismos.layers, 1, 4);
+    double range = space.farMm - space.nearMm, cosine = glm::dot(direction, space.forward);
 
     IsmosLayersPixel out;
-    double tNear = -1e300, tFar = 1e300;
-    for (int a = 0; a < 3; ++a) {
-        if (directionTex[a] == 0.0) {
-            if (originTex[a] < 0 || originTex[a] > 1) return out;
-            continue;
-        }
-        double t0 = (0 - originTex[a]) / directionTex[a], t1 = (1 - originTex[a]) / directionTex[a];
-        tNear = std::max(tNear, std::min(t0, t1));
-        tFar = std::min(tFar, std::max(t0, t1));
-    }
-    if (tFar < std::max(tNear, 0.0)) return out;
-    double jitter = frame.raycast.jitterSeed ? pixelRandom(glm::uvec2(pixel), frame.raycast.jitterSeed) : 0.0;
-    long k = static_cast<long>(std::ceil(std::max(tNear, 0.0) / stepMm - jitter));
-    long kLast = static_cast<long>(std::floor(tFar / stepMm - jitter));
-    double accumulated = 0, range = space.farMm - space.nearMm, cosine = glm::dot(direction, space.forward);
     glm::dvec4 transmittance(1.0);
     int count = 0;
     bool open = false;
     TransmittanceFit fit;
-    for (; k <= kLast; ++k) {
-        double t = (static_cast<double>(k) + jitter) * stepMm;
-        glm::dvec3 tex = originTex + t * directionTex;
-        double value = volume.valueScale * sample(tex) + volume.valueOffset;
-        double alphaUnit = tf.evaluateOpacity(value);
-        if (tf.hasGradientOpacity()) {
-            glm::dvec3 d(sample(tex + glm::dvec3(texelSize.x, 0, 0)) - sample(tex - glm::dvec3(texelSize.x, 0, 0)),
-                         sample(tex + glm::dvec3(0, texelSize.y, 0)) - sample(tex - glm::dvec3(0, texelSize.y, 0)),
-                         sample(tex + glm::dvec3(0, 0, texelSize.z)) - sample(tex - glm::dvec3(0, 0, texelSize.z)));
-            alphaUnit *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
-        }
-        double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), stepMm / tf.unitLengthMm);
-        if (alpha <= 0) {
-            open = false;
-            continue;
-        }
-        accumulated += (1.0 - accumulated) * alpha;
-        double depth = (t * cosine - space.nearMm) / range;
+    double accumulated = 0;
+    // ismos_layers.glsl's ismosSample and ismosTerminated.
+    auto addSample = [&](double depth, double alpha, double transmittanceAfter) {
         if (!open) {
             open = true;
             if (count < maxLayers) out.front[count++] = 1.0 - depth;
@@ -183,15 +154,161 @@ IsmosLayersPixel ismosLayersPixel(const VolumeData& volume, const TransferFuncti
             transmittance[count - 1] *= 1.0 - alpha;
             out.back[count - 1] = 1.0 - depth;
         }
-        fit.add(depth, 1.0 - accumulated);
-        if (accumulated >= frame.raycast.earlyTerminationAlpha) {
-            if (count <= maxLayers) out.back[count - 1] = -1e30;
-            break;
+        fit.add(depth, transmittanceAfter);
+    };
+    auto terminated = [&] {
+        if (open && count <= maxLayers) out.back[count - 1] = -1e30;
+    };
+    // The first tube surface on the ray (mm along it), where the ray cast stops (raycast.comp, ISMOS_TUBES).
+    double tubeT = -1;
+    if (tubes && !tubes->empty()) {
+        constexpr double reach = 1e6;
+        double hit = tubes->firstHit(eye, eye + reach * direction);
+        if (hit > 0) tubeT = hit * reach;
+    }
+
+    double tNear = -1e300, tFar = 1e300;
+    bool inBox = true;
+    for (int a = 0; a < 3; ++a) {
+        if (directionTex[a] == 0.0) {
+            if (originTex[a] < 0 || originTex[a] > 1) inBox = false;
+            continue;
         }
+        double t0 = (0 - originTex[a]) / directionTex[a], t1 = (1 - originTex[a]) / directionTex[a];
+        tNear = std::max(tNear, std::min(t0, t1));
+        tFar = std::min(tFar, std::max(t0, t1));
+    }
+    if (inBox && tFar >= std::max(tNear, 0.0)) {
+        double jitter = frame.raycast.jitterSeed ? pixelRandom(glm::uvec2(pixel), frame.raycast.jitterSeed) : 0.0;
+        long k = static_cast<long>(std::ceil(std::max(tNear, 0.0) / stepMm - jitter));
+        long kLast = static_cast<long>(std::floor(tFar / stepMm - jitter));
+        if (tubeT > 0) kLast = std::min(kLast, static_cast<long>(std::ceil(tubeT / stepMm - jitter)) - 1);
+        for (; k <= kLast; ++k) {
+            double t = (static_cast<double>(k) + jitter) * stepMm;
+            glm::dvec3 tex = originTex + t * directionTex;
+            double value = volume.valueScale * sample(tex) + volume.valueOffset;
+            double alphaUnit = tf.evaluateOpacity(value);
+            if (tf.hasGradientOpacity()) {
+                glm::dvec3 d(sample(tex + glm::dvec3(texelSize.x, 0, 0)) - sample(tex - glm::dvec3(texelSize.x, 0, 0)),
+                             sample(tex + glm::dvec3(0, texelSize.y, 0)) - sample(tex - glm::dvec3(0, texelSize.y, 0)),
+                             sample(tex + glm::dvec3(0, 0, texelSize.z)) - sample(tex - glm::dvec3(0, 0, texelSize.z)));
+                alphaUnit *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
+            }
+            double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), stepMm / tf.unitLengthMm);
+            if (alpha <= 0) {
+                open = false;
+                continue;
+            }
+            accumulated += (1.0 - accumulated) * alpha;
+            addSample((t * cosine - space.nearMm) / range, alpha, 1.0 - accumulated);
+            if (accumulated >= frame.raycast.earlyTerminationAlpha) {
+                terminated();
+                break;
+            }
+        }
+    }
+    // The tube is an opaque layer at its depth.
+    if (tubeT > 0 && accumulated < frame.raycast.earlyTerminationAlpha) {
+        open = false;
+        addSample((tubeT * cosine - space.nearMm) / range, 1.0, 1.0 - frame.raycast.earlyTerminationAlpha);
+        terminated();
     }
     out.alpha = glm::dvec4(1.0) - transmittance;
     out.beta = fit.beta();
     return out;
+}
+
+OccluderTriangles::OccluderTriangles(const TubeVertices& tubes) {
+    if (tubes.lines) return;
+    for (std::size_t i = 0; i + 2 < tubes.indices.size(); i += 3) {
+        glm::dvec3 a(tubes.positions[tubes.indices[i]]), b(tubes.positions[tubes.indices[i + 1]]), c(tubes.positions[tubes.indices[i + 2]]);
+        if (glm::length(glm::cross(b - a, c - a)) <= 0) continue;   // degenerate: no area
+        triangles_.push_back({a, b - a, c - a});
+    }
+    if (triangles_.empty()) return;
+    std::vector<glm::dvec3> centroids;
+    for (const Triangle& t : triangles_) centroids.push_back(t.p0 + (t.e1 + t.e2) / 3.0);
+    nodes_.reserve(2 * triangles_.size() / 4 + 2);
+    build(0, static_cast<std::uint32_t>(triangles_.size()), centroids);
+}
+
+std::uint32_t OccluderTriangles::build(std::uint32_t first, std::uint32_t count, std::vector<glm::dvec3>& centroids) {
+    std::uint32_t index = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.push_back({});
+    Node node;
+    node.lo = glm::dvec3(1e300), node.hi = glm::dvec3(-1e300);
+    glm::dvec3 cLo(1e300), cHi(-1e300);
+    for (std::uint32_t i = first; i < first + count; ++i) {
+        const Triangle& t = triangles_[i];
+        for (glm::dvec3 v : {t.p0, t.p0 + t.e1, t.p0 + t.e2}) node.lo = glm::min(node.lo, v), node.hi = glm::max(node.hi, v);
+        cLo = glm::min(cLo, centroids[i]), cHi = glm::max(cHi, centroids[i]);
+    }
+    if (count <= 4) {
+        node.first = first, node.count = count;
+    } else {
+        glm::dvec3 extent = cHi - cLo;
+        int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+        std::uint32_t half = count / 2;
+        std::vector<std::uint32_t> order(count);
+        for (std::uint32_t i = 0; i < count; ++i) order[i] = first + i;
+        std::nth_element(order.begin(), order.begin() + half, order.end(),
+                         [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+        std::vector<Triangle> triangles;
+        std::vector<glm::dvec3> cs;
+        for (std::uint32_t i : order) triangles.push_back(triangles_[i]), cs.push_back(centroids[i]);
+        std::copy(triangles.begin(), triangles.end(), triangles_.begin() + first);
+        std::copy(cs.begin(), cs.end(), centroids.begin() + first);
+        node.left = build(first, half, centroids);
+        node.right = build(first + half, count - half, centroids);
+    }
+    nodes_[index] = node;
+    return index;
+}
+
+double OccluderTriangles::firstHit(glm::dvec3 a, glm::dvec3 b, double tMin, double tMax) const {
+    if (nodes_.empty()) return -1.0;
+    glm::dvec3 d = b - a;
+    glm::dvec3 inv(d.x != 0 ? 1.0 / d.x : 1e300, d.y != 0 ? 1.0 / d.y : 1e300, d.z != 0 ? 1.0 / d.z : 1e300);
+    double best = -1.0;
+    std::vector<std::uint32_t> stack{0};
+    while (!stack.empty()) {
+        const Node& n = nodes_[stack.back()];
+        stack.pop_back();
+        double t0 = tMin, t1 = best >= 0 ? best : tMax;
+        bool miss = false;
+        for (int k = 0; k < 3 && !miss; ++k) {
+            if (d[k] == 0) {
+                miss = a[k] < n.lo[k] || a[k] > n.hi[k];
+                continue;
+            }
+            double ta = (n.lo[k] - a[k]) * inv[k], tb = (n.hi[k] - a[k]) * inv[k];
+            t0 = std::max(t0, std::min(ta, tb));
+            t1 = std::min(t1, std::max(ta, tb));
+            miss = t0 > t1;
+        }
+        if (miss) continue;
+        if (n.count == 0) {
+            stack.push_back(n.left);
+            stack.push_back(n.right);
+            continue;
+        }
+        for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+            // Moller-Trumbore.
+            const Triangle& t = triangles_[i];
+            glm::dvec3 p = glm::cross(d, t.e2);
+            double det = glm::dot(t.e1, p);
+            if (std::abs(det) < 1e-300) continue;
+            glm::dvec3 s = a - t.p0;
+            double u = glm::dot(s, p) / det;
+            if (u < 0 || u > 1) continue;
+            glm::dvec3 q = glm::cross(s, t.e1);
+            double v = glm::dot(d, q) / det;
+            if (v < 0 || u + v > 1) continue;
+            double hit = glm::dot(t.e2, q) / det;
+            if (hit > tMin && hit <= tMax && (best < 0 || hit < best)) best = hit;
+        }
+    }
+    return best;
 }
 
 glm::dvec3 lightPointWorld(const IsmosSpace& space, glm::dvec3 volumeCentre, glm::dvec3 tex) {
@@ -213,6 +330,7 @@ double physicalOcclusion(const VolumeData& volume, const TransferFunction& tf, c
     auto transmittance = [&](glm::dvec3 q) {
         glm::dvec3 dir = glm::normalize(q - p);
         double reach = 2.0 * g.boundingRadiusMm() + glm::length(p - volumeCentre);
+        if (ps.tubes && glm::length(q - p) > ps.startOffsetMm && ps.tubes->blocks(p + ps.startOffsetMm * dir, q)) return 0.0;
         double T = 1.0;
         for (double t = ps.startOffsetMm; t < reach && T > 1e-6; t += ps.stepMm) {
             glm::dvec3 w = p + t * dir;

@@ -48,7 +48,7 @@ glm::dvec3 shadePhong(const TransferFunction::Material& m, const std::vector<std
 }  // namespace
 
 RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf, const FrameDescription& frame,
-                           double stepMm, glm::ivec2 pixel) {
+                           double stepMm, glm::ivec2 pixel, const RaycastOptions& options) {
     VolumeGeometry g{volume.dims, volume.indexToWorld};
     glm::dmat4 worldToTexture = g.worldToTexture();
     const auto [eye, direction] = cameraRay(frame, pixel);
@@ -73,8 +73,35 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
     long k = static_cast<long>(std::ceil(std::max(tNear, 0.0) / stepMm - jitter));
     long kLast = static_cast<long>(std::floor(tFar / stepMm - jitter));
     glm::dvec4& acc = result.rgba;
+    // Cut faces (the rules of shaders/raycast.comp and shade_sample.glsl, render/frame.h CutFaceSettings): the
+    // first visible lattice sample after clipped ones is taken at the crossing (here by bisection with the
+    // exact inside test), standing for the ray to the end of its half step; phong lights the layer behind the
+    // face with the face normal, blended into the gradient normal over normalDepthMm.
+    const CutFaceSettings& faces = frame.raycast.cutFace;
+    bool cutFaces = faces.enabled && options.clipped && options.clipNormal;
+    bool afterClipped = false;
+    double faceT = -1.0;
+    glm::dvec3 faceNormal(0.0);
     for (; k <= kLast; ++k) {
         double t = (static_cast<double>(k) + jitter) * stepMm;
+        if (t >= options.opaqueAtMm) break;
+        double segment = stepMm;
+        if (options.clipped && options.clipped(eye + t * direction)) {
+            afterClipped = true;
+            continue;
+        }
+        if (cutFaces && afterClipped) {
+            double inside = t - stepMm, outside = t;
+            for (int i = 0; i < 48; ++i) {
+                double middle = 0.5 * (inside + outside);
+                (options.clipped(eye + middle * direction) ? inside : outside) = middle;
+            }
+            faceT = outside;
+            faceNormal = -options.clipNormal(eye + faceT * direction);
+            segment = t + 0.5 * stepMm - faceT;
+            t = faceT;
+        }
+        afterClipped = false;
         glm::dvec3 tex = originTex + t * directionTex;
         double value = volume.valueScale * sample(tex) + volume.valueOffset;
         glm::dvec3 gradient(0);
@@ -85,14 +112,27 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
             gradient = gradientToWorld * (0.5 * d);
         }
         double alphaUnit = tf.evaluateOpacity(value) * tf.evaluateGradientOpacity(glm::length(gradient));
-        double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), stepMm / tf.unitLengthMm);
-        if (alpha <= 0) continue;
+        double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), segment / tf.unitLengthMm);
+        if (alpha <= 0) {
+            faceT = -1.0;
+            continue;
+        }
         glm::dvec3 albedo = tf.evaluateColor(value);
+        if (cutFaces && faceT >= 0 && frame.shading == ShadingMode::Phong) {
+            double depth = (t - faceT) * std::abs(glm::dot(direction, faceNormal));
+            double x = std::clamp(depth / faces.normalDepthMm, 0.0, 1.0);
+            double faceWeight = 1.0 - x * x * (3.0 - 2.0 * x);
+            double magnitude = glm::length(gradient);
+            glm::dvec3 volumeNormal = magnitude < 1e-6 ? faceNormal : -gradient / magnitude;
+            if (glm::dot(volumeNormal, faceNormal) < 0) volumeNormal = -volumeNormal;
+            if (faceWeight > 0) gradient = -glm::normalize(glm::mix(volumeNormal, faceNormal, faceWeight));
+        }
         glm::dvec3 color = frame.shading == ShadingMode::Phong
                                ? shadePhong(tf.material, lights, albedo, gradient, -direction, 1.0)
                                : albedo;
         acc += glm::dvec4((1.0 - acc.a) * alpha * color, (1.0 - acc.a) * alpha);
         ++result.samples;
+        if (acc.a >= 0.5 && result.halfOpacityDistanceMm < 0) result.halfOpacityDistanceMm = t;
         if (acc.a >= frame.raycast.earlyTerminationAlpha) break;
     }
     return result;

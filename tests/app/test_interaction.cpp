@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <numbers>
 #include <fstream>
 #include <sys/wait.h>
 
@@ -66,6 +67,43 @@ TEST(Interaction, CameraFrameMotionDragsResetAddRemoveAndShading) {
     EXPECT_EQ(s.removedMeshIds, std::vector<int>{0});
     for (int i = 0; i < 40; ++i) s.apply({input::AddMesh{}}, camera, 100);
     EXPECT_EQ(static_cast<int>(s.meshes.size()), clip::kMaxClipMeshes) << "adding stops at the limit";
+}
+
+// MoveLight turns the selected light's direction: yaw about the camera's up axis (towards the right of the
+// screen), pitch towards the camera's up, the elevation held within +-89 degrees; a world-space light turns
+// in the frame's camera and stays in world space; NextLight cycles; the length is kept.
+TEST(Interaction, MoveLightTurnsTheSelectedLightInTheCameraFrame) {
+    InteractionState s;
+    s.lights = {Light{{0, 0, 2}, glm::dvec3(1), true}, Light{{0, 0, 1}, glm::dvec3(1), false}};
+    OrbitCamera camera;
+    camera.azimuthDeg = 90;
+    camera.elevationDeg = 20;
+    const double degree = std::numbers::pi / 180.0;
+    s.apply({input::MoveLight{-1, {90 * degree, 0}}}, camera, 100);
+    EXPECT_NEAR(glm::length(s.lights[0].direction - glm::dvec3(2, 0, 0)), 0.0, 1e-12) << "a front light turned 90 degrees right is at the right";
+    s.apply({input::MoveLight{-1, {0, 30 * degree}}}, camera, 100);
+    EXPECT_NEAR(s.lights[0].direction.y, 2 * std::sin(30 * degree), 1e-12) << "raised 30 degrees";
+    EXPECT_NEAR(glm::length(s.lights[0].direction), 2.0, 1e-12) << "the length is kept";
+    s.apply({input::MoveLight{-1, {0, 100 * degree}}}, camera, 100);
+    EXPECT_NEAR(std::asin(s.lights[0].direction.y / 2.0), 89 * degree, 1e-9) << "held below the pole";
+    EXPECT_EQ(s.lights[1].direction, glm::dvec3(0, 0, 1)) << "only the selected light turns";
+
+    // A world-space light: turning it is the same motion in the camera's frame.
+    s.apply({input::NextLight{}}, camera, 100);
+    EXPECT_EQ(s.selectedLight, 1);
+    glm::dvec3 world = glm::normalize(glm::dvec3(0.3, -0.5, 0.8));
+    s.lights[1].direction = world;
+    auto toCamera = [&](glm::dvec3 w) { return glm::dvec3(glm::dot(w, camera.right()), glm::dot(w, camera.up()), -glm::dot(w, camera.forward())); };
+    Light asCamera{toCamera(world), glm::dvec3(1), true};
+    s.apply({input::MoveLight{-1, {25 * degree, -10 * degree}}}, camera, 100);
+    EXPECT_FALSE(s.lights[1].cameraSpace);
+    glm::dvec3 expected = turnedLight(asCamera, {25 * degree, -10 * degree}, camera).direction;
+    EXPECT_NEAR(glm::length(toCamera(s.lights[1].direction) - expected), 0.0, 1e-12);
+    EXPECT_NEAR(std::atan2(expected.x, expected.z) - std::atan2(asCamera.direction.x, asCamera.direction.z), 25 * degree, 1e-12);
+    s.apply({input::NextLight{}}, camera, 100);
+    EXPECT_EQ(s.selectedLight, 0) << "cycles";
+    s.apply({input::MoveLight{5, {1, 1}}}, camera, 100);   // no such light: nothing
+    EXPECT_NEAR(glm::length(s.lights[0].direction), 2.0, 1e-12);
 }
 
 using curette::testing::Invocation;

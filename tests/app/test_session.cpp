@@ -1,8 +1,13 @@
 // Sessions: the file format (round trip, corrupt files named by line, the lenient prefix), the recorder's
 // atomic checkpoints, and record/replay through the real binary on a small CAO scene: poses re-derived from the
 // raw reports equal the recorded ones, a replay is deterministic, CAO equals LAO on every frame.
+#include "app/live_input.h"
+#include "app/loaded_scene.h"
 #include "app/session.h"
+#include "app/session_step.h"
 #include "base/error.h"
+#include "input/hid/fake_backend.h"
+#include "render/renderer.h"
 
 #include <nlohmann/json.hpp>
 
@@ -156,6 +161,97 @@ std::string replaced(std::string s, const std::string& from, const std::string& 
     return s;
 }
 
+// Version 2 records the lights: the header's (direction, space, the selected one) and each frame's directions
+// and light drag read back to the same doubles; a version 1 file (the format before lights) still loads, with
+// no lights (the scene's stay), and one that has light keys is refused.
+TEST(Session, LightRecordsRoundTripAndVersion1SessionsStillLoad) {
+    SessionHeader header = exampleHeader();
+    header.lights = std::vector<SessionLight>{{{0.1, 0.2, 0.3}, true}, {{-1.0 / 3.0, 1e-17, 0.7}, false}};
+    header.selectedLight = 1;
+    std::string text = sessionHeaderLine(header) + "\n";
+    std::mt19937 random(9);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<SessionFrame> frames;
+    for (std::size_t i = 0; i < 5; ++i) {
+        SessionFrame f = exampleFrame(i, random);
+        f.lights = std::vector<glm::dvec3>{{u(random), u(random), u(random)}, {u(random), u(random), 1.0 + u(random)}};
+        if (i == 2) f.lightDrag = {u(random), -3.0};
+        frames.push_back(f);
+        text += sessionFrameLine(f) + "\n";
+    }
+    Session s = parseSession(text, "lights.jsonl", false);
+    EXPECT_EQ(s.header.version, kSessionVersion);
+    ASSERT_TRUE(s.header.lights.has_value());
+    ASSERT_EQ(s.header.lights->size(), 2u);
+    EXPECT_EQ((*s.header.lights)[1].direction, (*header.lights)[1].direction);
+    EXPECT_FALSE((*s.header.lights)[1].cameraSpace);
+    EXPECT_EQ(s.header.selectedLight, 1);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        ASSERT_TRUE(s.frames[i].lights.has_value());
+        EXPECT_EQ(*s.frames[i].lights, *frames[i].lights) << "frame " << i;
+        EXPECT_EQ(s.frames[i].lightDrag, frames[i].lightDrag) << "frame " << i;
+    }
+
+    // Version 1, as curette wrote it before lights.
+    std::mt19937 random1(3);
+    std::string v1 = replaced(sessionHeaderLine(exampleHeader()), "\"version\":" + std::to_string(kSessionVersion), "\"version\":1") + "\n" +
+                     sessionFrameLine(exampleFrame(0, random1)) + "\n";
+    Session old = parseSession(v1, "old.jsonl", false);
+    EXPECT_EQ(old.header.version, 1);
+    EXPECT_FALSE(old.header.lights.has_value());
+    ASSERT_EQ(old.frames.size(), 1u);
+    EXPECT_FALSE(old.frames[0].lights.has_value());
+    std::string v1WithLights = replaced(text, "\"version\":" + std::to_string(kSessionVersion), "\"version\":1");
+    try {
+        parseSession(v1WithLights, "old.jsonl", false);
+        ADD_FAILURE() << "a version 1 session with lights was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("line 1: lights"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("version 2"), std::string::npos) << e.what();
+    }
+}
+
+// A bad light record is an InputError naming the file, the line and the field, and the form expected.
+TEST(Session, ABadLightRecordNamesTheFileAndTheField) {
+    SessionHeader header = exampleHeader();
+    header.lights = std::vector<SessionLight>{{{0.1, 0.2, 0.9}, true}, {{-0.5, 0.5, 0.5}, true}};
+    std::mt19937 random(4);
+    std::vector<std::string> v = {sessionHeaderLine(header)};
+    for (std::size_t i = 0; i < 3; ++i) {
+        SessionFrame f = exampleFrame(i, random);
+        f.lights = std::vector<glm::dvec3>{{0.25, 0.5, 1.0}, {-0.5, 0.5, 0.5}};
+        v.push_back(sessionFrameLine(f));
+    }
+    struct Case {
+        const char* what;
+        int line;
+        std::string from, to;
+        std::string field, expected;
+    };
+    const Case cases[] = {
+        {"zero direction", 2, "\"lights\":[[0.25,0.5,1.0]", "\"lights\":[[0,0,0]", "line 3: lights[0]", "non-zero length"},
+        {"a direction that is not three numbers", 3, "\"lights\":[[0.25,0.5,1.0]", "\"lights\":[[0.25,\"up\",1.0]", "line 4: lights[0][1]", "a number"},
+        {"one light too few", 1, "\"lights\":[[0.25,0.5,1.0],", "\"lights\":[", "line 2: lights", "an array of 2 light directions"},
+        {"null (NaN as JSON writes it)", 2, "[-0.5,0.5,0.5]]", "[-0.5,null,0.5]]", "line 3: lights[1][1]", "a number"},
+        {"a bad space in the header", 0, "\"space\":\"camera\"", "\"space\":\"screen\"", "line 1: lights[0].space", "camera"},
+        {"a selected light that does not exist", 0, "\"selected_light\":0", "\"selected_light\":2", "line 1: selected_light", "0"},
+        {"a bad light drag", 3, "\"keys\"", "\"light_drag\":[1],\"keys\"", "line 4: light_drag", "2"},
+    };
+    for (const Case& c : cases) {
+        std::vector<std::string> t = v;
+        t[static_cast<std::size_t>(c.line)] = replaced(t[static_cast<std::size_t>(c.line)], c.from, c.to);
+        try {
+            parseSession(joined(t), "bad.jsonl", false);
+            ADD_FAILURE() << c.what << ": accepted";
+        } catch (const InputError& e) {
+            std::string message = e.what();
+            EXPECT_NE(message.find("bad.jsonl"), std::string::npos) << c.what << ": " << message;
+            EXPECT_NE(message.find(c.field), std::string::npos) << c.what << ": " << message;
+            EXPECT_NE(message.find(c.expected), std::string::npos) << c.what << ": " << message;
+        }
+    }
+}
+
 TEST(Session, CorruptSessionsAreNamedByLineAndTheLenientModeKeepsThePrefix) {
     struct Case {
         const char* what;
@@ -172,7 +268,7 @@ TEST(Session, CorruptSessionsAreNamedByLineAndTheLenientModeKeepsThePrefix) {
     }
     {
         auto t = v;
-        t[0] = replaced(t[0], "\"version\":1", "\"version\":7");
+        t[0] = replaced(t[0], "\"version\":" + std::to_string(kSessionVersion), "\"version\":7");
         cases.push_back({"wrong version", t, "version", -1});
     }
     {
@@ -383,6 +479,127 @@ TEST(Replay, CorruptFilesFailCleanlyAndLenientReplaysThePrefix) {
     EXPECT_EQ(badOption.exitCode, 2);
     EXPECT_NE(badOption.output.find("--synthetic"), std::string::npos) << badOption.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "x.jsonl"));
+}
+
+// The small ball in ismos with two lights (one world-space), for the light sessions.
+std::filesystem::path writeSmallIsmosScene(const std::filesystem::path& dir) {
+    writeSmallScene(dir);
+    writeText(dir / "ismos.json", R"({
+  "volume": {"path": "ball.raw", "format": "raw", "raw": {"dims": [32, 32, 32], "type": "uint8", "spacing": [2, 2, 2]}},
+  "transfer_function": {"color": [[0, 0, 0, 0], [100, 0.8, 0.6, 0.5], [255, 1, 1, 1]], "opacity": [[0, 0], [60, 0], [100, 0.2], [255, 0.8]]},
+  "camera": {"target": "center", "distance_mm": 200, "azimuth_deg": 20, "elevation_deg": 25, "fov_deg": 30},
+  "shading": "ismos",
+  "lights": [{"direction": [0.7, 0.4, 0.6], "space": "camera"}, {"direction": [-0.5, 0.6, 0.3], "space": "world", "intensity": 0.6}],
+  "ismos": {"light_samples": 4, "test_points": 16},
+  "image": {"width": 40, "height": 40}
+})");
+    return dir / "ismos.json";
+}
+
+// The viewer's loop without a window: live keys (I/J/K/L held, O, a Shift + left drag) turn the lights through
+// the input pipeline and the session step while a renderer draws each frame and the session is recorded. Each
+// light move plans only the ISMOS passes; the recorded session replays, following the recorded lights and
+// re-deriving them from the recorded keys, to the image hashes the live frames had.
+TEST(Replay, ASessionThatMovesALightReplaysToTheLiveImageHashes) {
+    auto dir = scratch("lights");
+    auto scene = writeSmallIsmosScene(dir);
+    auto session = dir / "lights.jsonl";
+    std::vector<std::string> live;
+    {
+        LoadedScene loaded = loadSceneWithVolume(scene);
+        auto context = gl::createHeadlessContext();
+        Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
+        configureRenderer(loaded, renderer);
+        SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+        LiveInput input(std::make_unique<input::FakeHidBackend>(std::make_shared<input::FakeHidBackend::Ports>()), input::defaultMapping(), 40.0,
+                        60.0);
+        LiveRecording recording(session, "ismos.json", step.state(), input, 0.0);
+        int moves = 0;
+        for (int f = 0; f < 12; ++f) {
+            input::KeyboardMouseState keys;
+            auto hold = [&](input::Key k) { keys.keys |= 1u << static_cast<int>(k); };
+            if (f >= 1 && f < 4) hold(input::Key::L);
+            if (f >= 3 && f < 6) hold(input::Key::I);
+            if (f == 6) hold(input::Key::O);   // the world-space light from here on
+            if (f == 7 || f == 8) keys.lightDragPixels = {5.0, -3.0};
+            if (f == 10) hold(input::Key::J), hold(input::Key::K);
+            double now = f / 10.0, dt = f == 0 ? 0.0 : 0.1;
+            InputFrame in = input.step(now, keys, dt, static_cast<int>(step.state().meshes.size()));
+            StepChanges changes = step.apply(in.actions, step.frame().size.y);
+            recording.addFrame(now, dt, step.frame().size, step.frame().camera, step.state(), keys, in);
+            step.syncTo(renderer.clipMeshes());
+            FrameDescription frame = step.frame();
+            if (f > 0) {
+                EXPECT_EQ(changes.lights, !renderer.showing(frame)) << "frame " << f << ": only a light move changes the frame";
+            }
+            renderer.render(frame);
+            if (changes.lights) {
+                ++moves;
+                std::vector<Pass> planned;
+                for (const PlannedPass& p : renderer.lastPlan().passes) planned.push_back(p.pass);
+                EXPECT_EQ(planned, (std::vector<Pass>{Pass::IsmosRayCast, Pass::IsmosOcclusion})) << "frame " << f;
+            }
+            live.push_back(imageHash(toRgba8(renderer.readImage(), glm::vec4(loaded.scene.background))));
+        }
+        recording.finish();
+        EXPECT_EQ(moves, 8) << "frames 1-5, 7, 8 and 10 turn a light";
+        EXPECT_NE(live.front(), live.back()) << "the moves must show in the image for the comparison to mean something";
+        EXPECT_NE(live[6], live[9]) << "and so must the second light's";
+    }
+    Session s = readSession(session, false);
+    ASSERT_EQ(s.frames.size(), 12u);
+    ASSERT_TRUE(s.frames.back().lights.has_value());
+    EXPECT_NE((*s.frames.back().lights)[0], (*s.frames.front().lights)[0]);
+    EXPECT_NE((*s.frames.back().lights)[1], (*s.frames.front().lights)[1]);
+    EXPECT_EQ(s.frames[7].lightDrag, glm::dvec2(5.0, -3.0));
+    std::string expected = "image_hash\n";
+    for (const std::string& h : live) expected += h + "\n";
+    for (const char* mode : {"", " --from-reports"}) {
+        std::filesystem::path out = dir / (std::string("replay") + (*mode ? "-reports" : ""));
+        Invocation r = run("replay " + session.string() + " --check --out " + out.string() + mode);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_EQ(column(readText(out / "frames.csv"), 5), expected) << "replay" << mode << " differs from the live frames";
+        if (*mode) {
+            EXPECT_NE(r.output.find("identical to the recorded ones"), std::string::npos) << r.output;
+        }
+    }
+}
+
+// curette record --move-lights: scripted light keys and drags (no device needed) turn both lights, and the
+// lights re-derived from the recorded keys equal the recorded ones bit for bit; one recorded light direction
+// off in its last digit is caught.
+TEST(Replay, RecordMoveLightsReDerivesTheLightsFromTheKeys) {
+    auto dir = scratch("record-lights");
+    auto scene = writeSmallIsmosScene(dir);
+    auto session = dir / "lights.jsonl";
+    Invocation rec = run("record --scene " + scene.string() + " --out " + session.string() + " --move-lights --frames 40");
+    ASSERT_EQ(rec.exitCode, 0) << rec.output;
+    Session s = readSession(session, false);
+    ASSERT_EQ(s.frames.size(), 40u);
+    ASSERT_TRUE(s.header.lights.has_value());
+    EXPECT_EQ(s.header.lights->size(), 2u);
+    EXPECT_NE((*s.frames.back().lights)[0], (*s.header.lights)[0].direction) << "light 0 turned";
+    EXPECT_NE((*s.frames.back().lights)[1], (*s.header.lights)[1].direction) << "light 1 turned after O";
+    Invocation ok = run("replay " + session.string() + " --from-reports --no-render");
+    EXPECT_EQ(ok.exitCode, 0) << ok.output;
+    EXPECT_NE(ok.output.find("identical to the recorded ones"), std::string::npos) << ok.output;
+
+    std::vector<std::string> ls = lines(readText(session));
+    std::string& line = ls[30];
+    std::size_t at = line.find("\"lights\":[[") + 11;
+    std::size_t end = line.find(',', at);
+    double x = std::stod(line.substr(at, end - at));
+    char text[64];
+    std::snprintf(text, sizeof text, "%.17g", std::nextafter(x, 2.0));
+    line = line.substr(0, at) + text + line.substr(end);
+    writeText(dir / "tampered.jsonl", joined(ls));
+    Invocation bad = run("replay " + (dir / "tampered.jsonl").string() + " --from-reports --no-render");
+    EXPECT_EQ(bad.exitCode, 1) << bad.output;
+    EXPECT_NE(bad.output.find("line 31"), std::string::npos) << bad.output;
+
+    Invocation unplug = run("record --scene " + scene.string() + " --out " + (dir / "x.jsonl").string() + " --move-lights --unplug 3");
+    EXPECT_EQ(unplug.exitCode, 2) << unplug.output;
+    EXPECT_NE(unplug.output.find("--unplug"), std::string::npos) << unplug.output;
 }
 
 TEST(Replay, TheShippedDemoReproducesItsPosesFromItsReports) {

@@ -234,6 +234,39 @@ TEST(Keyboard, SameActionsAsTheDevices) {
     EXPECT_EQ(std::get<DragMesh>(a[0]).mesh, 1);
 }
 
+// Lights: J/L and I/K turn the selected light at the keyboard's degrees per second, O selects the next one,
+// and a Shift + left drag turns it by kLightDegPerPixel (right: yaw +, up on screen: pitch +); no mesh needed.
+TEST(Keyboard, LightKeysAndShiftDragTurnTheSelectedLight) {
+    KeyboardMapper keys(40.0, 60.0);
+    KeyboardMouseState s;
+    const double degree = std::numbers::pi / 180.0;
+    s.keys = (1u << static_cast<int>(Key::L)) | (1u << static_cast<int>(Key::K));
+    std::vector<Action> a = keys.update(s, 0.5, 0);
+    ASSERT_EQ(a.size(), 1u);
+    const MoveLight& m = std::get<MoveLight>(a[0]);
+    EXPECT_EQ(m.light, -1) << "the selected light";
+    EXPECT_NEAR(m.yawPitchRad.x, 30.0 * degree, 1e-15);
+    EXPECT_NEAR(m.yawPitchRad.y, -30.0 * degree, 1e-15);
+    s.keys = (1u << static_cast<int>(Key::J)) | (1u << static_cast<int>(Key::I));
+    a = keys.update(s, 0.25, 3);
+    ASSERT_EQ(a.size(), 1u);
+    EXPECT_NEAR(std::get<MoveLight>(a[0]).yawPitchRad.x, -15.0 * degree, 1e-15);
+    EXPECT_NEAR(std::get<MoveLight>(a[0]).yawPitchRad.y, 15.0 * degree, 1e-15);
+    s.keys = 1u << static_cast<int>(Key::O);
+    a = keys.update(s, 0.016, 0);
+    ASSERT_EQ(a.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<NextLight>(a[0]));
+    EXPECT_TRUE(keys.update(s, 0.016, 0).empty()) << "held: no repeat";
+    s.keys = 0;
+    s.lightDragPixels = {8, -4};   // right and up on the screen
+    a = keys.update(s, 0.016, 2);
+    ASSERT_EQ(a.size(), 1u);
+    EXPECT_NEAR(std::get<MoveLight>(a[0]).yawPitchRad.x, 8 * kLightDegPerPixel * degree, 1e-15);
+    EXPECT_NEAR(std::get<MoveLight>(a[0]).yawPitchRad.y, 4 * kLightDegPerPixel * degree, 1e-15);
+    s.lightDragPixels = {0, 0};
+    EXPECT_TRUE(keys.update(s, 0.016, 2).empty()) << "nothing held: no light action";
+}
+
 TEST(RawReports, HexRoundTripAndErrors) {
     std::vector<std::uint8_t> bytes = {0x00, 0x11, 0xab, 0xff};
     EXPECT_EQ(toHex(bytes), "0011abff");

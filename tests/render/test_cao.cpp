@@ -4,6 +4,7 @@
 #include "base/error.h"
 #include "clip/primitives.h"
 #include "gl/bindings.h"
+#include "render/mesh_voxel_box.h"
 #include "render/reference/lao_reference.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
@@ -279,6 +280,65 @@ TEST(Cao, EqualsFreshLaoOnAnisotropicObliqueGrids) {
         EXPECT_LT(recomputed, total) << "CAO must skip voxels";
         EXPECT_GT(partial, updates / 8) << "updates must also visit boxes inside the volume";
     }
+}
+
+// Turned meshes: a rod (its map box long along the rod) turned towards the grid's diagonals, whose
+// axis-aligned bounds hold several times the voxels of its oriented map box, and for part of the path a
+// turned box beside it. A CAO update visits only the bricks the oriented map boxes reach, now or at the last
+// update (render/mesh_voxel_box.h); along a path of small steps, wobbles and a jump, CAO must equal fresh full
+// LAO bit for bit on every frame, while visiting well under what the axis-aligned boxes of both frames held.
+// Opacity everywhere (waves), so a voxel left out that needed its LAO recomputed or reset shows.
+TEST(Cao, TurnedMeshesVisitOnlyTheirOrientedBoxesAndStayEqualToFullLao) {
+    CaoSpec spec{.dims = glm::ivec3(48), .field = waves, .samples = 4};   // reach 3 mm, R = 6.5 mm
+    CaoAgainstFreshLao pair(spec);
+    const VolumeGeometry& g = pair.cao.renderer->geometry();
+    auto rod = std::make_shared<const clip::TriangleMesh>(clip::makeCylinder(2.5, 30.0, 24));
+    auto box = std::make_shared<const clip::TriangleMesh>(clip::makeBox(glm::dvec3(4.0, 5.0, 12.0)));
+    pair.meshes([&](clip::ClipMeshSet& set) { set.add(rod, glm::dvec3(1.0), {}, "rod"); });
+    auto turnFromZ = [](glm::dvec3 to) {   // the turn taking local +z (the rod's axis, its map box's depth) to `to`
+        glm::dvec3 from(0, 0, 1);
+        to = glm::normalize(to);
+        return glm::angleAxis(std::acos(glm::dot(from, to)), glm::normalize(glm::cross(from, to)));
+    };
+    const glm::dquat diagonal = turnFromZ({1, 1, 1}), otherDiagonal = turnFromZ({-1, 1, 1});
+    std::mt19937 random(17);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    glm::dvec3 position(-4, 2, 1);
+    std::optional<plan::VoxelBox> lastBox;
+    std::uint64_t visited = 0, axisAligned = 0;
+    int partial = 0;
+    const int frames = 24;
+    for (int frame = 0; frame < frames; ++frame) {
+        position = frame == 12 ? glm::dvec3(6, -5, 3) : position + 1.2 * glm::dvec3(u(random), u(random), u(random));
+        glm::dquat wobble = glm::angleAxis(0.15 * u(random), glm::normalize(glm::dvec3(u(random), u(random), u(random)) + glm::dvec3(1e-9)));
+        clip::RigidPose pose{position, wobble * (frame < 16 ? diagonal : otherDiagonal)};
+        pair.meshes([&](clip::ClipMeshSet& set) {
+            if (frame == 6) set.add(box, glm::dvec3(1.0), {}, "box");
+            if (frame == 18) set.remove(1);
+            set.setPose(0, pose);
+            if (set.count() > 1) set.setPose(1, {position + glm::dvec3(-7, 6, -3), wobble * otherDiagonal});
+        });
+        CaoAgainstFreshLao::Frame f = pair.render();
+        expectBitIdentical(f.lao, f.cao, "turned meshes, frame " + std::to_string(frame));
+        if (HasFailure()) return;
+        // What visiting the axis-aligned box around both frames' map boxes (before bricks) would have visited.
+        plan::VoxelBox box = voxelBoxAroundMeshes(g, pair.cao.renderer->clipMeshes());
+        plan::VoxelBox both = box;
+        if (lastBox) {
+            glm::ivec3 first = glm::min(box.origin, lastBox->origin), end = glm::max(box.origin + box.size, lastBox->origin + lastBox->size);
+            both = {first, end - first};
+        }
+        lastBox = box;
+        const AmbientOcclusionStats& stats = pair.cao.renderer->ambientOcclusion()->lastStats();
+        if (frame == 0) continue;   // the first update after step I visits every voxel
+        visited += stats.dispatched;
+        axisAligned += both.voxelCount();
+        partial += stats.dispatched < stats.voxels;
+    }
+    std::printf("[ cao turned ] CAO visited %.1f%% of the voxels the axis-aligned boxes held; %d of %d updates partial\n",
+                100.0 * double(visited) / double(axisAligned), partial, frames - 1);
+    EXPECT_EQ(partial, frames - 1);
+    EXPECT_LT(visited, axisAligned / 2) << "the oriented boxes' bricks must hold well under the axis-aligned boxes";
 }
 
 // A scene where the dilation radius R = reach + 2 cell diagonals and the kernel's sqrt(2) map pixels are

@@ -555,25 +555,34 @@ TubeVertices tubeAlongX(glm::dvec3 centre, double length, double radius) {
     return v;
 }
 
-// Tubes are an opaque layer of pass 1: a tube in front of a slab shadows it, a ball in front of a tube
-// shadows the tube (the plan: G-buffer, ISMOS 1, composite, ISMOS 2).
-TEST(Ismos, TubesShadowTheVolumeAndTheVolumeShadowsTubes) {
+// The tube scenes' TF (opaque above 125: the slab and the ball) and frame (full occlusion of a hard light from
+// straight above, two layers, no ambient floor).
+TransferFunction tubeSceneTransferFunction() {
     TransferFunction tf;
     tf.color = {{0, {1, 1, 1}}, {255, {1, 1, 1}}};
     tf.opacity = {{0, 0}, {124, 0}, {126, 1}, {255, 1}};
     tf.material = {0.3, 0.7, 0.0, 8.0};
-    auto frame = [] {
-        FrameDescription f = frameAt(300, 0, 0, {64, 64});
-        f.ismos.partial = false;
-        f.ismos.diskRadius = 0;
-        f.ismos.lightSamples = 1;
-        f.ismos.testPoints = 128;
-        f.ismos.hemisphereRadius = 60;
-        f.ismos.ambient = 0;
-        f.ismos.layers = 2;
-        f.ismos.blendLayers = false;
-        return f;
-    };
+    return tf;
+}
+
+FrameDescription tubeSceneFrame() {
+    FrameDescription f = frameAt(300, 0, 0, {64, 64});
+    f.ismos.partial = false;
+    f.ismos.diskRadius = 0;
+    f.ismos.lightSamples = 1;
+    f.ismos.testPoints = 128;
+    f.ismos.hemisphereRadius = 60;
+    f.ismos.ambient = 0;
+    f.ismos.layers = 2;
+    f.ismos.blendLayers = false;
+    return f;
+}
+
+// Tubes are an opaque layer of pass 1: a tube in front of a slab shadows it, a ball in front of a tube
+// shadows the tube (the plan: G-buffer, ISMOS 1, composite, ISMOS 2).
+TEST(Ismos, TubesShadowTheVolumeAndTheVolumeShadowsTubes) {
+    TransferFunction tf = tubeSceneTransferFunction();
+    auto frame = tubeSceneFrame;
     TubeShading shading;
     int darkened = 0;
     {
@@ -623,6 +632,144 @@ TEST(Ismos, TubesShadowTheVolumeAndTheVolumeShadowsTubes) {
         std::printf("[ tubes ] %d of %d visible tube pixels in the ball's shadow\n", shadowedTube, tubePixels);
         EXPECT_GT(shadowedTube, 8);
         EXPECT_LT(shadowedTube, tubePixels);
+    }
+}
+
+// The occluders' hierarchy finds the same first crossing as testing every triangle on its own, for random
+// segments through two tubes (some miss, some graze, some run along a tube).
+TEST(Ismos, OccluderTrianglesFindTheFirstCrossingLikeTestingEveryTriangle) {
+    TubeVertices tubes = tubeAlongX(glm::dvec3(0, 0, 0), 30, 3);
+    TubeVertices second = tubeAlongX(glm::dvec3(2, 7, -4), 24, 2);
+    std::uint32_t offset = static_cast<std::uint32_t>(tubes.positions.size());
+    tubes.positions.insert(tubes.positions.end(), second.positions.begin(), second.positions.end());
+    for (std::uint32_t i : second.indices) tubes.indices.push_back(i + offset);
+    reference::OccluderTriangles all(tubes);
+    ASSERT_EQ(all.size(), tubes.indices.size() / 3);
+    std::vector<reference::OccluderTriangles> single;
+    for (std::size_t t = 0; t < tubes.indices.size(); t += 3) {
+        TubeVertices one;
+        one.positions = tubes.positions;
+        one.indices = {tubes.indices[t], tubes.indices[t + 1], tubes.indices[t + 2]};
+        single.emplace_back(one);
+    }
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> u(-20, 20);
+    int hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+        glm::dvec3 a(u(random), u(random), u(random)), b(u(random), u(random), u(random));
+        if (i % 5 == 0) b = a + glm::dvec3(40, 0.01 * u(random), 0);   // along the tubes
+        double brute = -1;
+        for (const reference::OccluderTriangles& o : single) {
+            double t = o.firstHit(a, b);
+            if (t >= 0 && (brute < 0 || t < brute)) brute = t;
+        }
+        double got = all.firstHit(a, b);
+        ASSERT_EQ(got, brute) << "segment " << i;
+        hits += brute >= 0;
+    }
+    std::printf("[ occluders ] %d of 2000 segments cross a tube\n", hits);
+    EXPECT_GT(hits, 200);
+    EXPECT_LT(hits, 1800);
+}
+
+// The tube scenes of TubesShadowTheVolumeAndTheVolumeShadowsTubes through the physical reference: its rays
+// stop at tube triangles, so the slab pixels the GPU shows in the tube's shadow are occluded there too (and
+// not without the triangles), and the tube pixels the ball shadows on the GPU are occluded by the real ball.
+// Pass 1's layers with tubes equal their CPU twin, whose ray stops at the triangles.
+TEST(Ismos, PhysicalReferenceAndLayerTwinStopAtTubes) {
+    TransferFunction tf = tubeSceneTransferFunction();
+    auto frame = tubeSceneFrame;
+    TubeShading shading;
+    reference::PhysicalSettings physical;
+    physical.stepMm = 0.5;
+    {
+        VolumeData slab = test::makeVolume({48, 48, 48}, test::centredAffine({48, 48, 48}), ScalarType::Float32,
+                                           [](glm::dvec3 p) { return p.y < -14 && p.y > -22 ? 250.0 : 0.0; });
+        Renderer r(glContext(), slab, tf);
+        FrameDescription f = frame();
+        f.lights = {Light{{0.0, 0.5, 0.8}, glm::dvec3(1.0), true}};
+        f.ismos.partial = true;   // the exact layers' backs, for the twin
+        TubeVertices tube = tubeAlongX(glm::dvec3(0), 30, 3);
+        reference::OccluderTriangles occluders(tube);
+        r.setTubes(tube, shading);
+        r.render(f);
+        Image with = r.readImage();
+        IsmosLayerImages layers = r.ismos()->readLayers();
+        std::vector<float> tubeDepth = r.gbuffer().readDepth();
+        IsmosSpace space = r.ismosSpaceOf(f);
+        std::vector<IsmosLight> lights = r.ismos()->lights();
+        std::vector<std::vector<glm::dvec3>> points;
+        for (const IsmosLight& l : lights) points.push_back(l.samples);
+        double step = r.resolveStepMm(f.raycast);
+        physical.startOffsetMm = f.ismos.depthBias * space.boxMm.z;
+        int tubeShadow = 0, agree = 0, slabPixels = 0, twinOff = 0, tubePixels = 0, missed = 0;
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                std::size_t i = layers.index({x, y});
+                reference::IsmosLayersPixel twin = reference::ismosLayersPixel(slab, tf, f, step, space, {x, y}, &occluders);
+                bool same = true;
+                for (int k = 0; k < 2; ++k)
+                    same = same && std::abs(layers.front[i][k] - twin.front[k]) < 1e-3 && std::abs(layers.alpha[i][k] - twin.alpha[k]) < 2e-3 &&
+                           (twin.back[k] < -1e29 ? layers.back[i][k] < -1e29f : std::abs(layers.back[i][k] - twin.back[k]) < 1e-3);
+                twinOff += !same;
+                bool onTube = tubeDepth[i] > 0;
+                tubePixels += onTube;
+                if (onTube || layers.front[i].x == -1.0f) continue;
+                glm::dvec3 p((x + 0.5) / 64.0, (y + 0.5) / 64.0, layers.front[i].x);
+                physical.tubes = &occluders;
+                double occ = reference::physicalOcclusion(slab, tf, space, r.geometry().worldCenter(), lights, points, p, physical);
+                physical.tubes = nullptr;
+                double without = reference::physicalOcclusion(slab, tf, space, r.geometry().worldCenter(), lights, points, p, physical);
+                EXPECT_LT(without, 0.01) << x << "," << y << ": nothing but the tube is above the slab";
+                bool dark = with.at(x, y).r < 0.01f;
+                ++slabPixels;
+                tubeShadow += occ > 0.99;
+                agree += dark == (occ > 0.5);
+                missed += occ > 0.99 && !dark;
+            }
+        std::printf("[ tubes ] reference: %d of %d slab pixels in the tube's shadow (the GPU lit at %d of them), GPU agrees at %d; layer twin off "
+                    "at %d of 4096 (%d tube pixels)\n",
+                    tubeShadow, slabPixels, missed, agree, twinOff, tubePixels);
+        EXPECT_GT(tubeShadow, 20);
+        // The image-space tube is its height-field column (extruded away from the viewer), whose shadow holds
+        // the tube's own: every traced shadow pixel is dark on the GPU; a band beside it is the model's error.
+        EXPECT_LE(missed, tubeShadow / 20) << "the GPU lit pixels the traced tube shadows";
+        EXPECT_GE(agree, slabPixels * 9 / 10) << "the image-space shadow and the traced one disagree";
+        EXPECT_GT(tubePixels, 50);
+        EXPECT_LE(twinOff, tubePixels / 50) << "pass 1 stops at the G-buffer's tube, the twin at the triangles: the same surface";
+    }
+    {
+        auto ballField = [](glm::dvec3 p) { return glm::length(p - glm::dvec3(0, 6, 0)) < 6 ? 250.0 : 0.0; };
+        VolumeData ball = test::makeVolume({48, 48, 48}, test::centredAffine({48, 48, 48}), ScalarType::Float32, ballField);
+        Renderer r(glContext(), ball, tf);
+        FrameDescription f = frame();
+        f.lights = {Light{{0.5, 0.0, 0.8}, glm::dvec3(1.0), true}};
+        TubeVertices tube = tubeAlongX(glm::dvec3(0, -10, 0), 40, 3);
+        reference::OccluderTriangles occluders(tube);
+        r.setTubes(tube, shading);
+        r.render(f);
+        Image with = r.readImage();
+        IsmosLayerImages layers = r.ismos()->readLayers();
+        std::vector<float> tubeDepth = r.gbuffer().readDepth();
+        IsmosSpace space = r.ismosSpaceOf(f);
+        std::vector<IsmosLight> lights = r.ismos()->lights();
+        std::vector<std::vector<glm::dvec3>> points;
+        for (const IsmosLight& l : lights) points.push_back(l.samples);
+        physical.startOffsetMm = f.ismos.depthBias * space.boxMm.z;
+        physical.tubes = &occluders;
+        int shadowedGpu = 0, shadowedBoth = 0;
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                std::size_t i = layers.index({x, y});
+                if (tubeDepth[i] <= 0 || layers.front[i].x == -1.0f || with.at(x, y).a < 0.99f) continue;
+                if (!(with.at(x, y).r < 0.01f)) continue;
+                ++shadowedGpu;
+                glm::dvec3 p((x + 0.5) / 64.0, (y + 0.5) / 64.0, layers.front[i].x);
+                shadowedBoth += reference::physicalOcclusion(ball, tf, space, r.geometry().worldCenter(), lights, points, p, physical) > 0.99;
+            }
+        std::printf("[ tubes ] %d tube pixels in the ball's shadow on the GPU, %d of them in the reference\n", shadowedGpu, shadowedBoth);
+        EXPECT_GT(shadowedGpu, 8);
+        EXPECT_GE(shadowedBoth, shadowedGpu * 9 / 10);
     }
 }
 

@@ -1,0 +1,139 @@
+// The bricks steps IV and V visit (render/mesh_voxel_box.h) against a brute-force check of every voxel, on
+// an oblique anisotropic grid with turned meshes, where the axis-aligned box around the map boxes is several
+// times larger; and the brick set's bookkeeping.
+#include "clip/primitives.h"
+#include "gl/bindings.h"
+#include "render/mesh_voxel_box.h"
+#include "render/renderer.h"
+#include "tests/render/gl_test_support.h"
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace curette {
+namespace {
+
+using test::glContext;
+
+// Distance from world point p to mesh i's dilated box (clip::ClipMeshSet::dilatedBoxLocal) in the mesh's
+// (rigid) frame, in double.
+double distanceToDilatedBox(const clip::ClipMeshSet& set, int i, glm::dvec3 p) {
+    glm::dvec3 lo, hi;
+    set.dilatedBoxLocal(i, lo, hi);
+    glm::dvec3 q(set.pose(i).inverseMatrix() * glm::dvec4(p, 1.0));
+    return glm::length(glm::max(glm::max(lo - q, q - hi), glm::dvec3(0.0)));
+}
+
+// The clip probe (clip_probe.comp) at `points`: bit 0 inside a mesh, bit 1 inside a dilated shape.
+std::vector<std::uint32_t> probe(const clip::ClipMeshSet& set, const std::vector<glm::vec4>& points) {
+    gl::Buffer in = gl::createBuffer(), out = gl::createBuffer();
+    glNamedBufferStorage(in.name(), static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(), 0);
+    glNamedBufferStorage(out.name(), static_cast<GLsizeiptr>(points.size() * 4), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    static gl::Program program = gl::Program::compute("clip_probe.comp");
+    set.apply(program);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboProbePoints, in.name());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboProbeResults, out.name());
+    program.set("pointCount", static_cast<unsigned>(points.size()));
+    program.dispatchCovering(glm::uvec3(static_cast<unsigned>(points.size()), 1, 1));
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<std::uint32_t> results(points.size());
+    glGetNamedBufferSubData(out.name(), 0, static_cast<GLsizeiptr>(results.size() * 4), results.data());
+    return results;
+}
+
+// Conservative: every voxel the GPU's own maps can touch (its centre in a dilated shape, or one of its nine
+// clip samples, clip_coverage.glsl, inside a mesh) lies in a visited brick, and so does every voxel centre
+// in a dilated box. Tight: every visited brick holds a voxel centre within a cell diagonal of a dilated box
+// (the separating axis test is exact for the parallelepiped of the brick's voxel centres). On an oblique,
+// anisotropic grid with turned meshes, the bricks hold far fewer voxels than the axis-aligned box.
+TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
+    glContext();
+    glm::ivec3 dims(48, 44, 40);
+    glm::dmat4 turn = glm::mat4_cast(glm::angleAxis(glm::radians(25.0), glm::normalize(glm::dvec3(2.0, -1.0, 3.0))));
+    glm::dmat4 affine = turn * test::centredAffine(dims, glm::dvec3(0.8, 1.0, 1.3));
+    VolumeData volume = test::makeVolume(dims, affine, ScalarType::UInt8, [](glm::dvec3) { return 100.0; });
+    Renderer renderer(glContext(), volume, test::rampTransferFunction(0, 255, 0.5));
+    const VolumeGeometry& g = renderer.geometry();
+    clip::ClipMeshSet& set = renderer.clipMeshes();
+    auto rod = std::make_shared<const clip::TriangleMesh>(clip::makeCylinder(2.5, 30.0, 24));
+    auto ball = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 2));
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::uint64_t visitedVoxels = 0, boxVoxels = 0, touched = 0;
+    for (int round = 0; round < 10; ++round) {
+        set.clear();
+        int meshes = 1 + round % 2;
+        for (int m = 0; m < meshes; ++m) {
+            glm::dvec3 axis = glm::normalize(glm::dvec3(u(random), u(random), u(random)) + glm::dvec3(1e-9));
+            clip::RigidPose pose{16.0 * glm::dvec3(u(random), u(random), u(random)), glm::angleAxis(3.14159 * u(random), axis)};
+            set.add(m == 0 ? rod : ball, glm::dvec3(1.0), pose, m == 0 ? "rod" : "ball");
+        }
+        set.setDilationRadiusMm(4.0);
+        set.setDilatedMapsNeeded(true);
+        set.update();
+        BrickSet bricks = bricksAroundMeshes(g, set);
+        visitedVoxels += bricks.visitedVoxels();
+        boxVoxels += voxelBoxAroundMeshes(g, set).voxelCount();
+        std::vector<glm::vec4> points;
+        std::vector<glm::ivec3> voxels;
+        std::vector<double> brickNearest(bricks.brickCount(), 1e300);
+        std::uint64_t outsideBricks = 0, touchedOutside = 0;
+        for (int k = 0; k < dims.z; ++k)
+            for (int j = 0; j < dims.y; ++j)
+                for (int i = 0; i < dims.x; ++i) {
+                    glm::dvec3 p(g.indexToWorld * glm::dvec4(i, j, k, 1.0));
+                    double nearest = 1e300;
+                    for (int m = 0; m < set.count(); ++m) nearest = std::min(nearest, distanceToDilatedBox(set, m, p));
+                    if (nearest == 0.0 && !bricks.visits({i, j, k})) ++outsideBricks;
+                    glm::ivec3 b = glm::ivec3(i, j, k) / kVisitBrickSize;
+                    double& n = brickNearest[std::size_t(b.x) + std::size_t(bricks.grid.x) * (std::size_t(b.y) + std::size_t(bricks.grid.y) * std::size_t(b.z))];
+                    n = std::min(n, nearest);
+                    // The voxel centre and its eight corner samples, as step IV takes them.
+                    for (int c = 0; c < 9; ++c) {
+                        glm::dvec3 offset = c == 0 ? glm::dvec3(0.0) : glm::dvec3((c - 1) & 1 ? 1 : -1, (c - 1) & 2 ? 1 : -1, (c - 1) & 4 ? 1 : -1);
+                        points.emplace_back(glm::vec3(g.indexToWorld * glm::dvec4(glm::dvec3(i, j, k) + offset, 1.0)), 0.0f);
+                        voxels.push_back({i, j, k});
+                    }
+                }
+        std::vector<std::uint32_t> results = probe(set, points);
+        for (std::size_t p = 0; p < points.size(); ++p) {
+            bool centre = p % 9 == 0;
+            if ((results[p] & 1u) || (centre && (results[p] & 2u))) {
+                ++touched;
+                touchedOutside += !bricks.visits(voxels[p]);
+            }
+        }
+        ASSERT_EQ(touchedOutside, 0u) << "round " << round << ": the maps touch voxels whose bricks are not visited";
+        ASSERT_EQ(outsideBricks, 0u) << "round " << round << ": voxel centres in a dilated box whose bricks are not visited";
+        for (std::size_t b = 0; b < bricks.brickCount(); ++b)
+            if (bricks.visited[b]) {
+                ASSERT_LE(brickNearest[b], g.cellDiagonalMm()) << "round " << round << ": brick " << b << " is visited but no voxel centre in it is near a dilated box";
+            }
+    }
+    std::printf("[ visit bricks ] turned meshes: %llu voxel touches checked; bricks hold %.1f%% of the voxels of the axis-aligned boxes\n",
+                static_cast<unsigned long long>(touched), 100.0 * double(visitedVoxels) / double(boxVoxels));
+    EXPECT_GT(touched, 10000u);
+    EXPECT_LT(visitedVoxels, boxVoxels / 2) << "turned meshes: the oriented boxes' bricks must hold well under the axis-aligned box";
+}
+
+TEST(VisitBricks, BrickSetCountsPartialBricksAndUnites) {
+    BrickSet a = BrickSet::none({9, 4, 5}), b = BrickSet::none({9, 4, 5});
+    EXPECT_EQ(a.grid, glm::ivec3(3, 1, 2));
+    a.visited[2] = 1;       // x 8..8, y 0..3, z 0..3: 1 * 4 * 4
+    b.visited[5] = 1;       // x 8..8, z 4..4: 1 * 4 * 1
+    EXPECT_EQ(a.visitedVoxels(), 16u);
+    a.unite(b);
+    EXPECT_EQ(a.visitedCount(), 2u);
+    EXPECT_EQ(a.visitedVoxels(), 20u);
+    EXPECT_EQ(a.visitedIndices(), (std::vector<std::uint32_t>{2, 5}));
+    EXPECT_TRUE(a.visits({8, 3, 4}));
+    EXPECT_FALSE(a.visits({7, 3, 4}));
+    EXPECT_EQ(BrickSet::all({9, 4, 5}).visitedVoxels(), 9u * 4u * 5u);
+}
+
+}  // namespace
+}  // namespace curette
