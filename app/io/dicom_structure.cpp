@@ -64,22 +64,48 @@ public:
             walk(pos, size_, false, Contents::DataSet, 0);
             return problem_;
         }
-        // No transfer syntax: GDCM guesses the encoding. Well formed in one of those it could guess (explicit or
-        // implicit little endian, explicit big endian) is well formed.
-        std::string first;
-        for (auto [explicitVr, bigEndian] : {std::pair{true, false}, std::pair{false, false}, std::pair{true, true}}) {
-            explicitVr_ = explicitVr, bigEndian_ = bigEndian, problem_.clear(), pixelDataTooLong_ = false;
-            walk(pos, size_, false, Contents::DataSet, 0);
-            if (problem_.empty()) return {};
-            if (first.empty()) first = problem_;
-        }
-        pixelDataTooLong_ = false;  // which encoding is right is not known: nothing of the file is trusted
-        return first;
+        // No transfer syntax: GDCM guesses the encoding from the first element, and only that reading is
+        // checked (a file well formed in another encoding than GDCM's guess made GDCM assert).
+        std::string guessProblem;
+        std::optional<std::pair<bool, bool>> encoding = guessedEncoding(pos, guessProblem);
+        if (!encoding) return guessProblem;
+        explicitVr_ = encoding->first, bigEndian_ = encoding->second;
+        walk(pos, size_, false, Contents::DataSet, 0);
+        if (!problem_.empty()) pixelDataTooLong_ = false;  // the guess may be wrong: nothing of the file is trusted
+        return problem_;
     }
 
     bool onlyTruncatedPixelData() const { return pixelDataTooLong_; }
 
 private:
+    // The encoding (explicit VR, big endian) GDCM 3.0 reads a data set in that has no transfer syntax
+    // (gdcm::FileMetaInformation::ReadCompat, from the first element's tag and the two bytes after it): group
+    // 0008 little endian (explicit when those bytes are a VR) or big endian (explicit only: implicit big endian
+    // is ACR-NEMA, which GDCM refuses); element 0010 (a private creator), implicit little endian; otherwise a
+    // VR there means explicit, big endian when the tag read little endian has a group or element above 00FF.
+    // Nothing, with the reason, when GDCM finds no encoding.
+    std::optional<std::pair<bool, bool>> guessedEncoding(std::uint64_t pos, std::string& problem) {
+        unsigned char b[6] = {};
+        if (pos + 6 > size_ || !seekTo(pos) || !in_.read(reinterpret_cast<char*>(b), 6)) {
+            problem = "a file that ends inside its first data element (byte " + std::to_string(pos) + ")";
+            return std::nullopt;
+        }
+        const unsigned group = b[0] | (b[1] << 8), element = b[2] | (b[3] << 8);
+        const char vrText[3] = {static_cast<char>(b[4]), static_cast<char>(b[5]), '\0'};
+        const bool vr = gdcm::VR::GetVRType(vrText) != gdcm::VR::VR_END;
+        if (group == 0x0008) return std::pair{vr, false};
+        if (group == 0x0800) {
+            if (vr) return std::pair{true, true};
+            problem = "a data set in implicit VR big endian (ACR-NEMA), which DICOM does not define";
+            return std::nullopt;
+        }
+        if (element == 0x0010) return std::pair{false, false};
+        if (vr) return std::pair{true, group > 0xff || element > 0xff};
+        problem = "no transfer syntax, and a first data element that is neither explicit nor group 0008 (byte " +
+                  std::to_string(pos) + ")";
+        return std::nullopt;
+    }
+
     struct Element {
         std::uint16_t group = 0, element = 0;
         char vr[2] = {' ', ' '};
