@@ -7,9 +7,6 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <limits>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 
 namespace curette {
 
@@ -206,10 +203,6 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
         laoProgram_.use();
         glDispatchCompute(grid.x, grid.y, 1);
     } else {
-        static bool diag = std::getenv("CURETTE_DIAG_V") != nullptr;
-        auto t0 = std::chrono::steady_clock::now();
-        auto lap = [&](const char* what) { if (!diag) return; glFinish(); auto t = std::chrono::steady_clock::now(); std::fprintf(stderr, "DIAGV %s %.1f ms\n", what, std::chrono::duration<double, std::milli>(t - t0).count()); t0 = t; };
-        lap("before");
         compactProgram_.set("volumeSize", volume_.geometry().dims);
         compactProgram_.set("maxGroupsX", 32768u);
         setVisitUniforms(compactProgram_);
@@ -218,7 +211,6 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
         compactProgram_.use();
         glDispatchCompute(grid.x, grid.y, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        lap("compaction");
         compactProgram_.set("prepareDispatch", 1);
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -227,14 +219,12 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatch_.name());
         glDispatchComputeIndirect(0);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-        lap("lao list");
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     std::uint32_t counts[2] = {0, 0};
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // the counters were written by shader atomics
     glGetNamedBufferSubData(list_.name(), 0, 8, counts);
     stats_.recomputed = counts[1];
-    if (std::getenv("CURETTE_DIAG_V")) std::fprintf(stderr, "DIAGV recomputed %u listed %u\n", counts[1], counts[0]);
 }
 
 void AmbientOcclusion::precompute(const TransferFunctionTexture& tf) {
@@ -274,9 +264,7 @@ void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip:
 
 void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {
     if (visitCount_ == 0) return;
-    auto m0 = std::chrono::steady_clock::now();
     if (laoFlagsPending_) markLaoBricks();
-    if (std::getenv("CURETTE_DIAG_V")) std::fprintf(stderr, "DIAGV mark %.1f ms (%u bricks)\n", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m0).count(), visitCount_);
     runLao(ambient_.name(), settings_.dispatch == LaoSettings::Dispatch::Compacted,
            static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
 }

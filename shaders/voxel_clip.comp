@@ -43,22 +43,21 @@ void main() {
     vec3 centre = vec3(v);
 
     vec3 centreWorld = (indexToWorld * vec4(centre, 1.0)).xyz;
-    // Far from every mesh's map box, every sample is visible and the centre is in no dilated shape: the
-    // full test would conclude exactly this, so skip it.
-    bool near = clipMeshCount > 0 && nearAnyClipMesh(centreWorld, sampleReachMm);
-    // The meshes a clip sample of this voxel can lie in. With the dilated maps (cao): those whose dilated
-    // shape holds the centre. A dilated shape holds every point within R of a point its depth maps call
-    // inside (step III; R = reach + 2 cell diagonals, render/ambient_occlusion.cpp), and every clip sample
-    // lies within a cell diagonal of the centre, so a mesh whose dilated shape misses the centre holds none
-    // of the samples: leaving it out changes no count. Without them (lao, step I): every mesh.
+    // The meshes a clip sample of this voxel can lie in.
+    //  - With the dilated maps (cao): those whose dilated shape holds the centre. A dilated shape holds every
+    //    point within R of a point its depth maps call inside (step III; R = reach + 2 cell diagonals,
+    //    render/ambient_occlusion.cpp), and every clip sample lies within a cell diagonal of the centre, so a
+    //    mesh whose dilated shape misses the centre holds none of the samples: leaving it out changes no
+    //    count. (The visited bricks lie at the meshes, so no far test first: the dilated lookup answers
+    //    "outside" for a far centre as quickly.)
+    //  - Without them (lao, step I, which visit every voxel): every mesh near the centre. Far from every
+    //    mesh's map box every sample is visible: the full test would conclude exactly this, so skip it.
     uint meshes = 0u;
-    if (near) {
-        if (testDilation) {
-            for (int i = 0; i < clipMeshCount; ++i)
-                if (insideMeshMaps(i, centreWorld, true)) meshes |= 1u << uint(i);
-        } else {
-            meshes = allClipMeshes();
-        }
+    if (testDilation) {
+        for (int i = 0; i < clipMeshCount; ++i)
+            if (insideMeshMaps(i, centreWorld, true)) meshes |= 1u << uint(i);
+    } else if (clipMeshCount > 0 && nearAnyClipMesh(centreWorld, sampleReachMm)) {
+        meshes = allClipMeshes();
     }
     int samples = 9 + antiAliasingSamples;
     int visible = samples - (meshes != 0u ? insideSampleCount(centre, meshes) : 0);

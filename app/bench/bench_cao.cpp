@@ -16,10 +16,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <random>
 
 namespace curette::bench {
@@ -60,6 +60,14 @@ glm::dvec3 pathPoint(const VolumeGeometry& g, int frame, std::uint32_t seed) {
     return centre + 0.18 * radius * glm::dvec3(std::sin(a * t + phase), std::sin(b * t), std::cos(t));
 }
 
+// One measured frame of one configuration.
+struct FrameSample {
+    double ms = 0;                          // wall time of the frame (render and finish)
+    std::map<std::string, double> stepMs;   // GPU time per pass name (render/frame_plan.h)
+    AmbientOcclusionStats stats;
+    std::uint64_t aoHash = 0, imageHash = 0;
+};
+
 struct ModeResult {
     double msPerFrame = 0;
     double msSpread = 0;                   // half the range of the frame times (min..max) around the median
@@ -69,7 +77,37 @@ struct ModeResult {
     double visitedVoxels = 0;     // the same as a count, mean over frames
     double laoBrickFraction = 0;  // of the visited bricks, those where LAO can change (render/lao_reach.h)
     std::vector<std::uint64_t> aoHashes, imageHashes;
+    std::vector<double> frameMs;
 };
+
+ModeResult summarize(const std::vector<FrameSample>& samples) {
+    ModeResult result;
+    if (samples.empty()) return result;
+    std::map<std::string, std::vector<double>> steps;
+    double fractions = 0, visited = 0, visitedVoxels = 0, laoBricks = 0;
+    for (const FrameSample& s : samples) {
+        result.frameMs.push_back(s.ms);
+        for (const auto& [name, ms] : s.stepMs) steps[name].push_back(ms);
+        if (s.stats.voxels) {
+            fractions += s.stats.recomputedFraction();
+            visited += static_cast<double>(s.stats.dispatched) / static_cast<double>(s.stats.voxels);
+            visitedVoxels += static_cast<double>(s.stats.dispatched);
+            laoBricks += s.stats.bricks ? static_cast<double>(s.stats.laoBricks) / static_cast<double>(s.stats.bricks) : 0.0;
+            result.aoHashes.push_back(s.aoHash);
+        }
+        result.imageHashes.push_back(s.imageHash);
+    }
+    double n = static_cast<double>(samples.size());
+    result.msPerFrame = median(result.frameMs);
+    result.msSpread = 0.5 * (*std::max_element(result.frameMs.begin(), result.frameMs.end()) -
+                             *std::min_element(result.frameMs.begin(), result.frameMs.end()));
+    for (auto& [name, list] : steps) result.stepMs[name] = median(list);
+    result.recomputedFraction = fractions / n;
+    result.visitedFraction = visited / n;
+    result.visitedVoxels = visitedVoxels / n;
+    result.laoBrickFraction = laoBricks / n;
+    return result;
+}
 
 }  // namespace
 
@@ -84,9 +122,20 @@ int benchCao(const CommandLine& cl) {
     const std::uint32_t seed = 20231101;
 
     auto context = gl::createHeadlessContext(gpuChoice(cl));
-    Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
-    configureRenderer(loaded, renderer);
-    const VolumeGeometry& g = renderer.geometry();
+    // One renderer per mesh count and AO mode (cao, lao; solid frames run on the cao one, they touch no AO
+    // volume): each renderer's frames follow its own previous frame, as in a session, so a CAO frame visits
+    // this and the last pose's bricks and redraws no map.
+    std::map<std::pair<ShadingMode, int>, std::unique_ptr<Renderer>> renderers;
+    for (int meshes : meshCounts)
+        for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Lao}) {
+            auto& r = renderers[{mode, meshes}];
+            r = std::make_unique<Renderer>(*context, loaded.volume, loaded.scene.transferFunction);
+            configureRenderer(loaded, *r);
+        }
+    auto rendererFor = [&](ShadingMode mode, int meshes) -> Renderer& {
+        return *renderers.at({mode == ShadingMode::Lao ? ShadingMode::Lao : ShadingMode::Cao, meshes});
+    };
+    const VolumeGeometry& g = renderers.begin()->second->geometry();
     FrameDescription base = initialFrame(loaded.scene, g);
     base.size = size;
     double sphereRadius = 0.14 * g.boundingRadiusMm();
@@ -98,8 +147,9 @@ int benchCao(const CommandLine& cl) {
                 context->info().renderer.c_str());
 
     // The meshes reach the renderer through the session step, as in every command.
-    InteractionState state;
-    auto setMeshes = [&](int count, int frame) {
+    std::map<Renderer*, InteractionState> states;
+    auto setMeshes = [&](Renderer& renderer, int count, int frame) {
+        InteractionState& state = states[&renderer];
         if (static_cast<int>(state.meshes.size()) != count) {
             state.meshes.clear();
             for (int i = 0; i < count; ++i) {
@@ -117,49 +167,50 @@ int benchCao(const CommandLine& cl) {
         syncClipMeshes(state, renderer.clipMeshes());
     };
 
-    // Runs `frames` frames of one mode with the sphere moving; the first (warm-up) frame is not counted.
-    auto runMode = [&](ShadingMode mode, int meshes) {
-        ModeResult result;
-        FrameDescription frame = base;
-        frame.shading = mode;
-        std::vector<double> wall;
-        std::map<std::string, std::vector<double>> steps;   // by pass name (render/frame_plan.h)
-        double fractions = 0, visited = 0, visitedVoxels = 0, laoBricks = 0;
-        for (int f = -1; f < frames; ++f) {
-            setMeshes(meshes, f + 1);
-            renderer.finish();
-            renderer.collectTimings();
-            auto start = Clock::now();
-            renderer.render(frame);
-            renderer.finish();
-            double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-            FrameTimings timings = renderer.collectTimings();
-            if (f < 0) continue;
-            wall.push_back(ms);
-            for (const FrameTimings::Entry& e : timings.passes) steps[passInfo(e.pass).name].push_back(e.ms);
-            if (renderer.ambientOcclusion()) {
-                const AmbientOcclusionStats& stats = renderer.ambientOcclusion()->lastStats();
-                fractions += stats.recomputedFraction();
-                visited += static_cast<double>(stats.dispatched) / static_cast<double>(stats.voxels);
-                visitedVoxels += static_cast<double>(stats.dispatched);
-                laoBricks += stats.bricks ? static_cast<double>(stats.laoBricks) / static_cast<double>(stats.bricks) : 0.0;
-                result.aoHashes.push_back(hashWords(renderer.ambientOcclusion()->readAmbient()));
-            }
-            Image image = renderer.readImage();
-            result.imageHashes.push_back(std::hash<std::string_view>{}(
-                std::string_view(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size() * sizeof(glm::vec4))));
+    // One frame of one configuration at path position `frame`.
+    auto renderOne = [&](int meshes, ShadingMode mode, int frame) {
+        Renderer& renderer = rendererFor(mode, meshes);
+        FrameSample sample;
+        FrameDescription description = base;
+        description.shading = mode;
+        setMeshes(renderer, meshes, frame);
+        renderer.finish();
+        renderer.collectTimings();
+        auto start = Clock::now();
+        renderer.render(description);
+        renderer.finish();
+        sample.ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        for (const FrameTimings::Entry& e : renderer.collectTimings().passes) sample.stepMs[passInfo(e.pass).name] += e.ms;
+        if (mode != ShadingMode::Solid && renderer.ambientOcclusion()) {
+            sample.stats = renderer.ambientOcclusion()->lastStats();
+            sample.aoHash = hashWords(renderer.ambientOcclusion()->readAmbient());
         }
-        result.msPerFrame = median(wall);
-        result.msSpread = 0.5 * (*std::max_element(wall.begin(), wall.end()) - *std::min_element(wall.begin(), wall.end()));
-        for (auto& [name, list] : steps) result.stepMs[name] = median(list);
-        result.recomputedFraction = fractions / frames;
-        result.visitedFraction = visited / frames;
-        result.visitedVoxels = visitedVoxels / frames;
-        result.laoBrickFraction = laoBricks / frames;
-        return result;
+        Image image = renderer.readImage();
+        sample.imageHash = std::hash<std::string_view>{}(
+            std::string_view(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size() * sizeof(glm::vec4)));
+        return sample;
     };
 
-    Table speed("Table 3: frame time while the sphere moves (ours, ms) and CAO speedup over full LAO (ours vs paper)",
+    // The configurations of one K, round-robin frame by frame, so that a changing load on a shared machine
+    // falls on all of them alike: per frame, CAO with every mesh count (adjacent: the second mesh's cost is a
+    // paired difference), then solid, then full LAO. The first frame after step I (which visits every voxel)
+    // is not counted.
+    auto runInterleaved = [&](const std::vector<int>& counts, bool withSolidAndLao) {
+        std::map<int, std::map<ShadingMode, std::vector<FrameSample>>> series;
+        for (int f = -1; f < frames; ++f) {
+            for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Solid, ShadingMode::Lao}) {
+                if (mode != ShadingMode::Cao && !withSolidAndLao) continue;
+                for (int meshes : counts) {
+                    FrameSample sample = renderOne(meshes, mode, f + 1);
+                    if (f >= 0) series[meshes][mode].push_back(std::move(sample));
+                }
+            }
+        }
+        return series;
+    };
+
+    Table speed("Table 3: frame time while the sphere moves (ours, ms, median over frames; +- half the range) and CAO speedup over "
+                "full LAO (ours vs paper)",
                 {"rays K", "meshes", "solid ms", "LAO ms", "LAO +- ms", "CAO ms", "CAO +- ms", "speedup", "paper speedup Engine", "paper Beetle",
                  "paper Skeleton", "CAO == LAO (V_AO, image)", "RMS vs 512 rays (visible voxels)",
                  "RMS vs 512 rays (recomputed voxels, category b)"});
@@ -170,8 +221,11 @@ int benchCao(const CommandLine& cl) {
     Table perStep("Fig. 10: GPU time per step (ms, median)",
                   {"rays K", "meshes", "mode", passInfo(Pass::VoxelClipping).name, passInfo(Pass::LaoRecompute).name,
                    passInfo(Pass::RayCast).name, "total frame"});
-    Table slowdown("Table 4: slowdown of a second, overlapping mesh (CAO)",
-                 {"rays K", "CAO 1 mesh ms", "CAO 2 meshes ms", "slowdown %", "paper Engine %", "paper Skeleton %"});
+    Table slowdown("Table 4: slowdown of a second, overlapping mesh (CAO; median over frames of the paired 2-mesh / 1-mesh "
+                   "frame, +- half the range; where it goes: median paired difference per step, and the ray caster alone)",
+                   {"rays K", "CAO 1 mesh ms", "CAO 2 meshes ms", "slowdown %", "slowdown +- %", std::string(passInfo(Pass::VoxelClipping).name) + " +ms",
+                    std::string(passInfo(Pass::LaoRecompute).name) + " +ms", std::string(passInfo(Pass::RayCast).name) + " +ms",
+                    "solid (VI alone) slowdown %", "paper Engine %", "paper Skeleton %"});
     Table dispatch("Step V dispatch: full grid with early exit vs compacted list (CAO, 1 mesh)",
                    {"rays K", "full grid: V ms", "compacted: V ms (incl. compaction)", "faster"});
 
@@ -180,23 +234,23 @@ int benchCao(const CommandLine& cl) {
     for (int rays : rayCounts) {
         LaoSettings lao = loaded.scene.lao;
         if (!parseLaoPattern(std::to_string(rays), lao.directions)) parseLaoPattern("fibonacci:" + std::to_string(rays), lao.directions);
-        renderer.setLaoSettings(lao);
+        for (auto& [key, renderer] : renderers) renderer->setLaoSettings(lao);
         const PaperRow* paper = nullptr;
         for (const PaperRow& row : kPaper)
             if (row.rays == rays) paper = &row;
-        std::map<int, ModeResult> caoByMeshes;
+        auto series = runInterleaved(meshCounts, true);
         for (int meshes : meshCounts) {
-            bool caoOnly = std::getenv("CURETTE_CAO_ONLY") != nullptr;
-            ModeResult solid = caoOnly ? ModeResult{} : runMode(ShadingMode::Solid, meshes);
-            ModeResult full = caoOnly ? ModeResult{} : runMode(ShadingMode::Lao, meshes);
-            ModeResult cao = runMode(ShadingMode::Cao, meshes);
+            ModeResult solid = summarize(series[meshes][ShadingMode::Solid]);
+            ModeResult full = summarize(series[meshes][ShadingMode::Lao]);
+            ModeResult cao = summarize(series[meshes][ShadingMode::Cao]);
             bool identical = full.aoHashes == cao.aoHashes && full.imageHashes == cao.imageHashes;
             allIdentical = allIdentical && identical;
+            Renderer& renderer = rendererFor(ShadingMode::Cao, meshes);
 
-            // Accuracy next to speed: V_AO of the last frame against the 512-ray CPU ground truth on the GPU's
-            // own clipped V_o (Table 5's measure, on a random sample of visible voxels).
-            // Two samples: visible voxels anywhere (most far from the cut, where CAO copies V_PAO), and the voxels
-            // step V recomputed (category b), where the cut matters.
+            // Accuracy next to speed: V_AO of the last CAO frame (equal to full LAO's) against the 512-ray
+            // CPU ground truth on the GPU's own clipped V_o (Table 5's measure, on a random sample of visible
+            // voxels). Two samples: visible voxels anywhere (most far from the cut, where CAO copies V_PAO), and
+            // the voxels of category b (near the cut).
             double rms = 0, rmsRecomputed = 0;
             if (groundTruthVoxels > 0) {
                 const AmbientOcclusion* ao = renderer.ambientOcclusion();
@@ -239,30 +293,46 @@ int benchCao(const CommandLine& cl) {
             for (auto [name, r] : {std::pair<const char*, ModeResult*>{"LAO", &full}, {"CAO", &cao}})
                 perStep.add({rays, meshes, name, r->stepMs[passInfo(Pass::VoxelClipping).name], r->stepMs[passInfo(Pass::LaoRecompute).name],
                              r->stepMs[passInfo(Pass::RayCast).name], r->msPerFrame});
-            caoByMeshes[meshes] = cao;
             raw.push_back({{"rays", rays}, {"meshes", meshes}, {"solid_ms", solid.msPerFrame}, {"lao_ms", full.msPerFrame},
                            {"cao_ms", cao.msPerFrame}, {"recomputed_fraction", cao.recomputedFraction},
                            {"visited_fraction", cao.visitedFraction}, {"visited_voxels", cao.visitedVoxels},
                            {"lao_brick_fraction", cao.laoBrickFraction}, {"lao_ms_spread", full.msSpread}, {"cao_ms_spread", cao.msSpread},
-                           {"identical", identical}, {"rms_vs_512", rms}, {"rms_vs_512_recomputed", rmsRecomputed}, {"lao_steps_ms", full.stepMs}, {"cao_steps_ms", cao.stepMs}});
+                           {"identical", identical}, {"rms_vs_512", rms}, {"rms_vs_512_recomputed", rmsRecomputed}, {"lao_steps_ms", full.stepMs},
+                           {"cao_steps_ms", cao.stepMs}, {"cao_frame_ms", cao.frameMs}, {"lao_frame_ms", full.frameMs}});
         }
-        if (caoByMeshes.count(1) && caoByMeshes.count(2)) {
-            double one = caoByMeshes[1].msPerFrame, two = caoByMeshes[2].msPerFrame;
-            slowdown.add({rays, one, two, 100.0 * (two - one) / one, paper ? nlohmann::json(paper->engineSlowdown) : nlohmann::json(),
-                        paper ? nlohmann::json(paper->skeletonSlowdown) : nlohmann::json()});
+        if (series.count(1) && series.count(2)) {
+            const auto& one = series[1][ShadingMode::Cao];
+            const auto& two = series[2][ShadingMode::Cao];
+            std::vector<double> ratios, solidRatios;
+            std::map<std::string, std::vector<double>> deltas;
+            for (std::size_t f = 0; f < one.size() && f < two.size(); ++f) {
+                ratios.push_back(two[f].ms / one[f].ms - 1.0);
+                for (Pass pass : {Pass::VoxelClipping, Pass::LaoRecompute, Pass::RayCast}) {
+                    std::string name = passInfo(pass).name;
+                    auto at = [&](const FrameSample& s) { auto it = s.stepMs.find(name); return it == s.stepMs.end() ? 0.0 : it->second; };
+                    deltas[name].push_back(at(two[f]) - at(one[f]));
+                }
+                solidRatios.push_back(series[2][ShadingMode::Solid][f].ms / series[1][ShadingMode::Solid][f].ms - 1.0);
+            }
+            double spread = 0.5 * (*std::max_element(ratios.begin(), ratios.end()) - *std::min_element(ratios.begin(), ratios.end()));
+            slowdown.add({rays, summarize(one).msPerFrame, summarize(two).msPerFrame, 100.0 * median(ratios), 100.0 * spread,
+                          median(deltas[passInfo(Pass::VoxelClipping).name]), median(deltas[passInfo(Pass::LaoRecompute).name]),
+                          median(deltas[passInfo(Pass::RayCast).name]), 100.0 * median(solidRatios),
+                          paper ? nlohmann::json(paper->engineSlowdown) : nlohmann::json(),
+                          paper ? nlohmann::json(paper->skeletonSlowdown) : nlohmann::json()});
         }
         // Step V variants at this K with one mesh.
-        if (cl.flag("compare-dispatch") || rays == 26) {
+        if (renderers.count({ShadingMode::Cao, 1}) && (cl.flag("compare-dispatch") || rays == 26)) {
             double vMs[2] = {0, 0};
             for (int variant = 0; variant < 2; ++variant) {
                 LaoSettings s = lao;
                 s.dispatch = variant == 0 ? LaoSettings::Dispatch::FullGrid : LaoSettings::Dispatch::Compacted;
-                renderer.setLaoSettings(s);
-                ModeResult r = runMode(ShadingMode::Cao, 1);
+                rendererFor(ShadingMode::Cao, 1).setLaoSettings(s);
+                ModeResult r = summarize(runInterleaved({1}, false)[1][ShadingMode::Cao]);
                 vMs[variant] = r.stepMs[passInfo(Pass::LaoRecompute).name];
             }
             dispatch.add({rays, vMs[0], vMs[1], vMs[0] < vMs[1] ? "full grid" : "compacted"});
-            renderer.setLaoSettings(lao);
+            rendererFor(ShadingMode::Cao, 1).setLaoSettings(lao);
         }
     }
     fraction.print();
