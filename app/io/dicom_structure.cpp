@@ -223,6 +223,11 @@ private:
             const bool itemEnd = e->group == 0xfffe && e->element == 0xe00d;
             const bool sequenceEnd = e->group == 0xfffe && e->element == 0xe0dd;
             if (itemEnd || sequenceEnd) {
+                // PS3.5 7.5: a delimiter's length is zero (GDCM reads a sequence delimiter among fragments as a
+                // fragment and allocates what its length says: 1.3 GB for 12 bytes, found by the fuzz run).
+                if (e->length != 0 || e->undefined)
+                    return fail(std::string(itemEnd ? "an item" : "a sequence") + " delimiter with a length of " +
+                                (e->undefined ? std::string("0xFFFFFFFF") : std::to_string(e->length)) + " (PS3.5 7.5: 0), " + tagText(*e));
                 if (delimited && (itemEnd ? contents == Contents::DataSet : contents != Contents::DataSet)) return e->valueAt;
                 return fail(std::string(itemEnd ? "an item" : "a sequence") + " delimiter where none belongs, " + tagText(*e));
             }

@@ -753,5 +753,22 @@ TEST(DicomSynthetic, AJpegLsFrameLargerThanTheImageIsRefusedBeforeGdcmDecodesIt)
     EXPECT_NE(message.find("JPEG-LS frames of 16 x 16"), std::string::npos) << message;
 }
 
+// A delimiter's length is zero (PS3.5 7.5). GDCM reads a sequence delimiter among encapsulated fragments as
+// one more fragment and allocates and zero-fills the length it declares: a 3.8 kB file whose delimiter said
+// 1358954496 bytes took 1.3 GB and 8-50 s to scan (found by the 30-minute fuzz run as a slow unit).
+TEST(DicomSynthetic, ADelimiterWithALengthIsRefusedBeforeGdcmAllocatesIt) {
+    std::ifstream in(std::filesystem::path(CURETTE_SOURCE_DIR) / "tests/fuzz/corpus/dicom/ct5n_jpegls.dcm", std::ios::binary);
+    std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::uint8_t sequenceEnd[8] = {0xfe, 0xff, 0xdd, 0xe0, 0, 0, 0, 0};
+    auto end = std::find_end(bytes.begin(), bytes.end(), std::begin(sequenceEnd), std::end(sequenceEnd));
+    ASSERT_NE(end, bytes.end()) << "the seed's fragments end with a sequence delimiter";
+    test::set<std::uint32_t>(bytes, static_cast<std::size_t>(end - bytes.begin()) + 4, 1358954496u, false);
+    std::filesystem::path bad = test::scratchDirectory() / "jpegls-long-delimiter.dcm";
+    test::writeBytes(bad, bytes);
+    std::string message = errorOf([&] { io::readVolume(bad); });
+    EXPECT_NE(message.find("a sequence delimiter with a length of 1358954496 (PS3.5 7.5: 0), (FFFE,E0DD)"), std::string::npos)
+        << message;
+}
+
 }  // namespace
 }  // namespace curette
