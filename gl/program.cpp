@@ -247,6 +247,7 @@ void Program::set(const char* u, glm::vec3 v) { glProgramUniform3fv(program_.nam
 void Program::set(const char* u, glm::vec4 v) { glProgramUniform4fv(program_.name(), location(u), 1, glm::value_ptr(v)); }
 void Program::set(const char* u, glm::ivec2 v) { glProgramUniform2iv(program_.name(), location(u), 1, glm::value_ptr(v)); }
 void Program::set(const char* u, glm::ivec3 v) { glProgramUniform3iv(program_.name(), location(u), 1, glm::value_ptr(v)); }
+void Program::set(const char* u, glm::uvec2 v) { glProgramUniform2uiv(program_.name(), location(u), 1, glm::value_ptr(v)); }
 void Program::set(const char* u, glm::uvec3 v) { glProgramUniform3uiv(program_.name(), location(u), 1, glm::value_ptr(v)); }
 void Program::set(const char* u, const glm::mat3& v) {
     glProgramUniformMatrix3fv(program_.name(), location(u), 1, GL_FALSE, glm::value_ptr(v));

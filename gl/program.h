@@ -47,6 +47,7 @@ public:
     void set(const char* uniform, glm::vec4 v);
     void set(const char* uniform, glm::ivec2 v);
     void set(const char* uniform, glm::ivec3 v);
+    void set(const char* uniform, glm::uvec2 v);
     void set(const char* uniform, glm::uvec3 v);
     void set(const char* uniform, const glm::mat3& v);
     void set(const char* uniform, const glm::mat4& v);

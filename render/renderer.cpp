@@ -2,6 +2,7 @@
 
 #include "base/error.h"
 #include "gl/bindings.h"
+#include "render/brick_distance.h"
 #include "render/lighting.h"
 #include "render/shader_pieces.h"
 
@@ -64,13 +65,16 @@ void Renderer::updateOccupancy() {
     // A brick may be skipped only if no texel value its samples can see has any opacity.
     glm::ivec3 grid = volume_.brickGrid();
     const std::vector<glm::vec2>& ranges = volume_.brickRanges();
-    std::vector<std::uint8_t> flags(ranges.size());
-    for (std::size_t i = 0; i < ranges.size(); ++i) flags[i] = tf_->maxOpacity(ranges[i].x, ranges[i].y) > 0.0f ? 255 : 0;
+    std::vector<bool> occupied(ranges.size());
+    for (std::size_t i = 0; i < ranges.size(); ++i) occupied[i] = tf_->maxOpacity(ranges[i].x, ranges[i].y) > 0.0f;
     // ... and no shown label lies in it (a label raises the opacity of transparent tissue).
     if (labels_) {
         std::vector<std::uint8_t> labelled = labels_->occupiedBricks(grid);
-        for (std::size_t i = 0; i < flags.size(); ++i) flags[i] = std::max(flags[i], labelled[i]);
+        for (std::size_t i = 0; i < occupied.size(); ++i) occupied[i] = occupied[i] || labelled[i] != 0;
     }
+    // Stored as the distance to the nearest occupied brick (render/brick_distance.h), so a ray jumps over
+    // every empty brick around it at once.
+    std::vector<std::uint8_t> flags = chebyshevBrickDistance(occupied, grid, 255);
     if (!occupancy_) {
         occupancy_ = gl::createTexture(GL_TEXTURE_3D);
         glTextureStorage3D(occupancy_.name(), 1, GL_R8, grid.x, grid.y, grid.z);
@@ -239,18 +243,19 @@ void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
     p.set("skipEmptySpace", frame.raycast.skipEmptySpace ? 1 : 0);
     p.set("volumeSize", volume_.geometry().dims);
     p.set("brickSize", GpuVolume::brickSize);
+    p.set("maxSkipBricks", emptySpaceJumpLimit_);
     glBindTextureUnit(binding::occupancy, occupancy_.name());
     glBindImageTexture(binding::imageOutput, output_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (countSamples_) {
         if (!sampleCounter_) {
             sampleCounter_ = gl::createBuffer();
-            glNamedBufferStorage(sampleCounter_.name(), 8, nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+            glNamedBufferStorage(sampleCounter_.name(), 16, nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
         }
-        const std::uint32_t zero[2] = {0, 0};
-        glNamedBufferSubData(sampleCounter_.name(), 0, 8, zero);
+        const std::uint32_t zero[4] = {0, 0, 0, 0};   // samples taken, loop steps, steps per half of the dispatch
+        glNamedBufferSubData(sampleCounter_.name(), 0, 16, zero);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboSampleCounter, sampleCounter_.name());
     }
-    p.dispatchCovering(glm::uvec3(frame.size.x, frame.size.y, 1));
+    TileOrderPiece{frame.size, tileRowsPerBand_}.dispatch(p);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
@@ -301,6 +306,22 @@ std::uint64_t Renderer::samplesLastFrame() const {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // written by shader atomics
     glGetNamedBufferSubData(sampleCounter_.name(), 0, 4, &count);
     return count;
+}
+
+std::uint64_t Renderer::rayStepsLastFrame() const {
+    if (!sampleCounter_) return 0;
+    std::uint32_t count = 0;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(sampleCounter_.name(), 4, 4, &count);
+    return count;
+}
+
+glm::dvec2 Renderer::rayStepsByDispatchHalf() const {
+    if (!sampleCounter_) return glm::dvec2(0.0);
+    std::uint32_t halves[2] = {0, 0};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(sampleCounter_.name(), 8, 8, halves);
+    return {halves[0], halves[1]};
 }
 
 Image Renderer::readImage() const {

@@ -14,6 +14,7 @@
 #include "render/gpu_volume.h"
 #include "render/image.h"
 #include "render/ismos_pass.h"
+#include "render/shader_pieces.h"
 #include "render/slab_pass.h"
 #include "render/transfer_function_texture.h"
 #include "render/tube_set.h"
@@ -79,6 +80,16 @@ public:
     // Count the volume samples the ray caster takes (for `bench`; slows the frame slightly when on).
     void setCountSamples(bool on) { countSamples_ = on; }
     std::uint64_t samplesLastFrame() const;
+    // ... and the steps of the rays' loops (a sample taken, or a jump over empty bricks).
+    std::uint64_t rayStepsLastFrame() const;
+    // The most bricks (Chebyshev radius) one empty-space jump may cross: 255 (the distance map's cap) by
+    // default; 1 jumps one empty brick at a time (as before the distance map; for `bench` and tests).
+    void setEmptySpaceJumpLimit(int bricks) { emptySpaceJumpLimit_ = bricks; }
+    // ... and of the groups in the first and the second half of the ray caster's dispatch, which is how two
+    // llvmpipe worker threads share it (shaders/tile_order.glsl): their ratio is the frame's thread balance.
+    glm::dvec2 rayStepsByDispatchHalf() const;
+    // The ray caster's tile order (render/shader_pieces.h TileOrderPiece): rows per band, 1 = scanline order.
+    void setTileRowsPerBand(int rows) { tileRowsPerBand_ = rows; }
 
     // Time per pass of the frames rendered since the last call.
     FrameTimings collectTimings();
@@ -121,6 +132,8 @@ private:
     glm::ivec2 outputSize_{0};
     gl::Buffer sampleCounter_;
     bool countSamples_ = false;
+    int emptySpaceJumpLimit_ = 255;
+    int tileRowsPerBand_ = TileOrderPiece::defaultRowsPerBand();
     gl::ComputeVariants raycastPrograms_{"raycast.comp"};
     gl::TimerSet timers_;
     SlabPass slab_;

@@ -4,7 +4,9 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include <algorithm>
 #include <string>
+#include <thread>
 
 namespace curette {
 
@@ -14,6 +16,20 @@ void CameraRayPiece::apply(gl::Program& p) const {
     p.set("inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
     p.set("eyeWorld", glm::vec3(frame.camera.position()));
     p.set("outputSize", frame.size);
+}
+
+int TileOrderPiece::defaultRowsPerBand() { return static_cast<int>(std::max(2u, std::thread::hardware_concurrency())); }
+
+void TileOrderPiece::dispatch(gl::Program& p) const {
+    glm::uvec3 group = p.workGroupSize();
+    glm::uvec2 tiles = (glm::uvec2(glm::max(size, glm::ivec2(1))) + glm::uvec2(group) - 1u) / glm::uvec2(group);
+    unsigned perBand = static_cast<unsigned>(std::clamp(rowsPerBand, 1, static_cast<int>(tiles.y)));
+    unsigned b = (tiles.y + perBand - 1) / perBand;
+    p.set("tileBands", b);
+    p.set("rowsPerBand", perBand);
+    p.set("tileGrid", tiles);
+    p.use();
+    glDispatchCompute(tiles.x, b * perBand, 1);
 }
 
 void VolumePiece::apply(gl::Program& p) const {

@@ -12,6 +12,7 @@
 //   shade_sample.glsl            SampleShadingPiece (below)
 //   phong.glsl                   setLightingUniforms (render/lighting.h)
 //   clip_test.glsl               clip::ClipMeshSet::apply (clip/clip_mesh_set.h)
+//   tile_order.glsl              TileOrderPiece (below; it also dispatches)
 //   ismos_layers.glsl            IsmosPass::applyLayers (render/ismos_pass.h); ismos_occlusion.comp: IsmosPass
 
 #include "gl/program.h"
@@ -25,6 +26,17 @@ namespace curette {
 struct CameraRayPiece {
     const FrameDescription& frame;
     void apply(gl::Program& program) const;
+};
+
+// tile_order.glsl: the order in which the workgroups of a per-pixel pass take the image's rows of tiles;
+// dispatches the pass over an image of `size` pixels. rowsPerBand = 1: scanline order.
+struct TileOrderPiece {
+    glm::ivec2 size;
+    int rowsPerBand = defaultRowsPerBand();
+    // One row per llvmpipe worker thread (it starts one per CPU core, LP_NUM_THREADS aside), at least 2: each
+    // thread then gets one row of every band.
+    static int defaultRowsPerBand();
+    void dispatch(gl::Program& program) const;
 };
 
 // volume.glsl: the data volume, its world-to-texture map and the gradient's map to world units.

@@ -1,7 +1,9 @@
 #version 450
 // Step VI: perspective ray casting of the volume, one invocation per pixel. Front-to-back compositing with
 // early termination; entry/exit from the volume box; empty bricks skipped without moving the sample
-// lattice, so skipping never changes the image. Samples lie at t = (k + jitter) * stepMm along each ray,
+// lattice, so skipping never changes the image: the occupancy texture holds each empty brick's Chebyshev
+// distance d to the nearest brick with a visible value (render/brick_distance.h), so the ray jumps out of
+// the cube of (2d - 1)^3 empty bricks around it at once. Samples lie at t = (k + jitter) * stepMm along each ray,
 // t measured in millimetres from the eye, so the segment length of every sample is stepMm exactly, except
 // with CUT_FACES: where the ray leaves a clip mesh, one extra segment from the crossing to the next lattice
 // sample, with its partial length (the lattice itself does not move).
@@ -10,6 +12,7 @@
 #include "shade_sample.glsl"
 #include "random.glsl"
 #include "clip_test.glsl"
+#include "tile_order.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D outputImage;
@@ -21,8 +24,10 @@ uniform uint jitterSeed;             // 0: no jitter
 uniform bool skipEmptySpace;
 uniform ivec3 volumeSize;
 uniform int brickSize;
+uniform int maxSkipBricks;           // the most bricks one jump crosses (Renderer::setEmptySpaceJumpLimit)
 #ifdef COUNT_SAMPLES
-layout(std430, binding = 0) buffer SampleCounter { uint samplesTaken; };  // `curette bench` only
+// `curette bench` only: samples, loop steps, and the steps of the groups in each half of the dispatch.
+layout(std430, binding = 0) buffer SampleCounter { uint samplesTaken; uint raySteps; uint halfSteps[2]; };
 #endif
 #ifdef ISMOS_LAYERS
 #include "ismos_layers.glsl"
@@ -48,14 +53,14 @@ bool intersectBox(vec3 origin, vec3 direction, vec3 lo, vec3 hi, out float tNear
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (outsideImage(pixel)) return;
+    ivec2 pixel;
+    if (!tilePixel(gl_WorkGroupSize.xy, pixel) || outsideImage(pixel)) return;
     vec3 direction = pixelRayDirection(pixel);
     vec3 originTex = toTexture(eyeWorld);
     vec3 directionTex = mat3(worldToTexture) * direction;
 
     vec4 accumulated = vec4(0.0);  // premultiplied colour, opacity
-    uint samples = 0u;
+    uint samples = 0u, steps = 0u;
 #ifdef ISMOS_LAYERS
     IsmosLayers layers = ismosBegin();
     float depthPerMm = dot(direction, ismosForward) / ismosDepthRangeMm;
@@ -86,13 +91,19 @@ void main() {
             float t = (float(k) + jitter) * stepMm;
             float segment = stepMm;
             vec3 tex = originTex + t * directionTex;
+#ifdef COUNT_SAMPLES
+            ++steps;
+#endif
             if (skipEmptySpace) {
                 ivec3 brick = clamp(ivec3(floor(tex * vec3(volumeSize) / float(brickSize))), ivec3(0),
                                     textureSize(occupancy, 0) - 1);
-                if (texelFetch(occupancy, brick, 0).r == 0.0) {
-                    // Jump to the last lattice sample inside this brick; the loop's ++k moves past it.
-                    vec3 lo = vec3(brick * brickSize) / vec3(volumeSize);
-                    vec3 hi = vec3((brick + 1) * brickSize) / vec3(volumeSize);
+                int distance = int(texelFetch(occupancy, brick, 0).r * 255.0 + 0.5);
+                if (distance > 0) {
+                    // Every brick within Chebyshev distance d - 1 of this one is empty: jump to the last lattice
+                    // sample inside that cube; the loop's ++k moves past it.
+                    int reach = min(distance, maxSkipBricks) - 1;
+                    vec3 lo = vec3((brick - reach) * brickSize) / vec3(volumeSize);
+                    vec3 hi = vec3((brick + 1 + reach) * brickSize) / vec3(volumeSize);
                     float bNear, bFar;
                     intersectBox(originTex, directionTex, lo, hi, bNear, bFar);
                     k = max(k, int(floor(bFar / stepMm - jitter)));
@@ -174,6 +185,8 @@ void main() {
     }
 #ifdef COUNT_SAMPLES
     atomicAdd(samplesTaken, samples);
+    atomicAdd(raySteps, steps);
+    atomicAdd(halfSteps[inFirstHalfOfDispatch() ? 0 : 1], steps);
 #endif
     imageStore(outputImage, pixel, accumulated);
 #ifdef ISMOS_LAYERS

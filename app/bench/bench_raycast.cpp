@@ -7,6 +7,7 @@
 #include "base/error.h"
 #include "render/reference/raycast_reference.h"
 #include "render/renderer.h"
+#include "render/shader_pieces.h"
 
 #include <chrono>
 #include <cstdio>
@@ -34,13 +35,26 @@ int benchRaycast(const CommandLine& cl) {
                 size.y, frames, context->info().renderer.c_str());
 
     Table table("Ray casting (step " + std::to_string(renderer.resolveStepMm(base.raycast)) + " mm)",
-                       {"shading", "skip empty", "ms/frame (median)", "ms/frame (min)", "GPU ms (median)",
-                        "Msamples/frame", "Msamples/s", "Mtexel fetches/s", "max error vs CPU", "rms error vs CPU"});
+                       {"shading", "empty space", "tile order", "ms/frame (median)", "ms/frame (min)", "GPU ms (median)",
+                        "Msamples/frame", "Mray steps/frame", "2-thread balance", "Msamples/s", "Mtexel fetches/s",
+                        "max error vs CPU", "rms error vs CPU"});
+    // Empty space: jumps by the distance map (the default), one empty brick per step (as before the distance
+    // map), or not skipped at all; all three take the same samples and give the same image. Tile order: bands
+    // (the default) or scanline, how llvmpipe's worker threads share the frame (shaders/tile_order.glsl).
+    // 2-thread balance: the ray steps of the busier half of the dispatch over the mean of both halves (two
+    // threads each take one half; 1 = balanced; the frame takes about this factor longer than balanced).
+    struct Configuration { const char* emptySpace; bool skip; int jumpLimit; const char* order; int rowsPerBand; };
+    const Configuration kConfigurations[] = {{"distance map", true, 255, "bands", TileOrderPiece::defaultRowsPerBand()},
+                                             {"distance map", true, 255, "scanline", 1},
+                                             {"one brick", true, 1, "bands", TileOrderPiece::defaultRowsPerBand()},
+                                             {"off", false, 1, "bands", TileOrderPiece::defaultRowsPerBand()}};
     for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong}) {
-        for (bool skip : {true, false}) {
+        for (const Configuration& configuration : kConfigurations) {
             FrameDescription frame = base;
             frame.shading = mode;
-            frame.raycast.skipEmptySpace = skip;
+            frame.raycast.skipEmptySpace = configuration.skip;
+            renderer.setEmptySpaceJumpLimit(configuration.jumpLimit);
+            renderer.setTileRowsPerBand(configuration.rowsPerBand);
             auto frameAt = [&](int i) {
                 FrameDescription f = frame;
                 f.camera.azimuthDeg = base.camera.azimuthDeg + 360.0 * i / frames;
@@ -60,14 +74,19 @@ int benchRaycast(const CommandLine& cl) {
             }
             // Samples per frame, counted in a separate pass over the same path (the counter costs time).
             renderer.setCountSamples(true);
-            double samples = 0;
+            double samples = 0, steps = 0, balance = 0;
             for (int i = 0; i < frames; ++i) {
                 renderer.render(frameAt(i));
                 samples += static_cast<double>(renderer.samplesLastFrame());
+                steps += static_cast<double>(renderer.rayStepsLastFrame());
+                glm::dvec2 halves = renderer.rayStepsByDispatchHalf();
+                balance += halves.x + halves.y > 0 ? std::max(halves.x, halves.y) / (0.5 * (halves.x + halves.y)) : 1.0;
             }
             renderer.setCountSamples(false);
             renderer.collectTimings();
             samples /= frames;
+            steps /= frames;
+            balance /= frames;
             double ms = median(wall);
             double fetchesPerSample = mode == ShadingMode::Phong ? 7.0 : 1.0;
 
@@ -93,8 +112,9 @@ int benchRaycast(const CommandLine& cl) {
                 }
             }
             double rms = sampled ? std::sqrt(sumSquares / (4.0 * sampled)) : 0.0;
-            table.add({shadingModeName(mode), skip, ms, *std::min_element(wall.begin(), wall.end()), median(gpu),
-                       samples * 1e-6, samples / ms * 1e-3, samples * fetchesPerSample / ms * 1e-3,
+            table.add({shadingModeName(mode), configuration.emptySpace, configuration.order, ms,
+                       *std::min_element(wall.begin(), wall.end()), median(gpu), samples * 1e-6, steps * 1e-6, balance,
+                       samples / ms * 1e-3, samples * fetchesPerSample / ms * 1e-3,
                        referencePixels ? nlohmann::json(maxError) : nlohmann::json(),
                        referencePixels ? nlohmann::json(rms) : nlohmann::json()});
         }

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -191,6 +193,95 @@ TEST(Raycast, EmptySpaceSkippingChangesNothing) {
         EXPECT_EQ(0, std::memcmp(full.pixels.data(), skipped.pixels.data(), full.pixels.size() * sizeof(glm::vec4)));
         EXPECT_LT(samplesWithSkipping, samplesWithout) << "skipping must skip something here";
     }
+}
+
+// The distance map lets one jump cross many empty bricks: the same samples, the same image bit for bit, and
+// fewer steps of the rays' loops than jumping one brick at a time.
+TEST(Raycast, JumpingOverManyEmptyBricksAtOnceChangesNothingButTheSteps) {
+    glContext();
+    glm::ivec3 dims(64, 56, 48);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims, {0.9, 1.1, 1.3}), ScalarType::UInt8, blobs);
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong}) {
+        FrameDescription frame = frameLookingAt(glm::dvec3(1, -2, 0), 130, 65, 35, {80, 72}, mode);
+        frame.raycast.jitterSeed = 7;
+        frame.raycast.skipEmptySpace = true;
+        Renderer renderer(glContext(), volume, blobTransferFunction());
+        renderer.setCountSamples(true);
+        auto run = [&](int limit) {
+            renderer.setEmptySpaceJumpLimit(limit);
+            renderer.render(frame);
+            return std::tuple{renderer.readImage(), renderer.samplesLastFrame(), renderer.rayStepsLastFrame()};
+        };
+        auto [oneBrick, samplesOne, stepsOne] = run(1);
+        auto [distanceMap, samplesMap, stepsMap] = run(255);
+        EXPECT_EQ(0, std::memcmp(oneBrick.pixels.data(), distanceMap.pixels.data(), oneBrick.pixels.size() * sizeof(glm::vec4)));
+        EXPECT_EQ(samplesOne, samplesMap);
+        EXPECT_LT(stepsMap, stepsOne) << "the blobs leave empty regions several bricks wide";
+        EXPECT_GT(stepsMap, samplesMap) << "every sample is a step, and some steps are jumps";
+    }
+}
+
+// The tile order (shaders/tile_order.glsl) changes only which workgroup shades which pixels: every pixel is
+// shaded once, to the same value, for any band height, at sizes the tiles and bands do not divide. A close-up
+// fills the image with tissue, and the renderer with bands first shows it with another jitter, so a pixel it
+// failed to shade would keep that frame's value.
+TEST(Raycast, TileOrderShadesEveryPixelOnceAndChangesNoPixel) {
+    glContext();
+    glm::ivec3 dims(40, 36, 32);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims, {0.9, 1.1, 1.3}), ScalarType::UInt8, blobs);
+    for (glm::ivec2 size : {glm::ivec2(80, 72), glm::ivec2(37, 129)}) {
+        FrameDescription frame = frameLookingAt(glm::dvec3(1, -2, 0), 32, 65, 35, size, ShadingMode::Phong);
+        frame.raycast.jitterSeed = 5;
+        FrameDescription other = frame;
+        other.raycast.jitterSeed = 6;
+        Renderer scanline(glContext(), volume, blobTransferFunction());
+        scanline.setTileRowsPerBand(1);
+        scanline.render(frame);
+        Image expected = scanline.readImage();
+        for (int rows : {2, 3, 4, 16}) {
+            Renderer banded(glContext(), volume, blobTransferFunction());
+            banded.setTileRowsPerBand(rows);
+            banded.render(other);
+            banded.render(frame);
+            Image image = banded.readImage();
+            EXPECT_EQ(0, std::memcmp(expected.pixels.data(), image.pixels.data(), expected.pixels.size() * sizeof(glm::vec4)))
+                << size.x << "x" << size.y << ", " << rows << " rows per band";
+        }
+        // Independent of the order: from inside uniform tissue every ray meets tissue at once, so every pixel
+        // must be coloured (a pixel no group shaded stays transparent black).
+        VolumeData uniform = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [](glm::dvec3) { return 220.0; });
+        FrameDescription inside = frameLookingAt(glm::dvec3(0, 0, 0), 2, 30, 20, size, ShadingMode::Solid);
+        Renderer banded(glContext(), uniform, blobTransferFunction());
+        banded.render(inside);
+        Image image = banded.readImage();
+        int uncoloured = 0;
+        for (int y = 0; y < size.y; ++y)
+            for (int x = 0; x < size.x; ++x) uncoloured += image.at(x, y).a < 0.5f;
+        EXPECT_EQ(uncoloured, 0) << size.x << "x" << size.y;
+    }
+}
+
+// Two worker threads each take one half of the dispatch: in bands of two rows, one takes the first and the other
+// the second row of every band, so their work is nearly equal, where scanline order gives one the top and the
+// other the bottom.
+TEST(Raycast, BandedTileOrderBalancesTheHalvesOfTheDispatch) {
+    glContext();
+    glm::ivec3 dims(48, 40, 36);
+    // Tissue only in the lower part of the volume: rays through the upper part of the image cost little.
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
+                                         [](glm::dvec3 p) { return p.z < 0.0 ? blobs(p) : 0.0; });
+    FrameDescription frame = frameLookingAt(glm::dvec3(0, 0, 0), 120, 0, 0, {192, 192}, ShadingMode::Solid);
+    auto imbalance = [&](int rowsPerBand) {
+        Renderer renderer(glContext(), volume, blobTransferFunction());
+        renderer.setCountSamples(true);
+        renderer.setTileRowsPerBand(rowsPerBand);
+        renderer.render(frame);
+        glm::dvec2 halves = renderer.rayStepsByDispatchHalf();
+        return std::max(halves.x, halves.y) / (0.5 * (halves.x + halves.y));
+    };
+    double scanline = imbalance(1), banded = imbalance(2);
+    EXPECT_GT(scanline, 1.3) << "the scene must load the halves unequally for this test to mean anything";
+    EXPECT_LT(banded, 1.05) << "scanline order: " << scanline;
 }
 
 // An opaque sphere of radius R covers exactly the pixels whose ray passes within R of its centre.

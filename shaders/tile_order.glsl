@@ -1,0 +1,30 @@
+// Which image tile a workgroup of a per-pixel pass works on. Binder: TileOrderPiece (render/shader_pieces.h),
+// which also dispatches.
+//
+// llvmpipe (Mesa's compute thread pool, lp_cs_tpool.c) hands each worker thread one contiguous run of a
+// dispatch's workgroups: groups / threads of them in gl_WorkGroupID order (x fastest). In scanline order the
+// threads so get the upper and the lower part of the image, and where rays through one part cost more (the
+// face below the skull, the air around it) one thread idles while the other finishes. Here the rows of tiles
+// are dealt out from `tileBands` horizontal bands in turn: the j-th row of the dispatch is row
+// (j mod B) * m + j / B of the image (m rows per band), so every contiguous run of groups covers every band
+// alike, while each row is still walked left to right (neighbouring rays, neighbouring texels): with m rows
+// per band, each of up to m threads gets rows from every band (two threads: the first and the second half of
+// every band). The dispatch has B * m rows (up to m - 1 more than the image); groups past the last row do
+// nothing. m = 1: scanline order.
+
+uniform uint tileBands;
+uniform uint rowsPerBand;     // m; B = ceil(tile rows / m)
+uniform uvec2 tileGrid;       // tiles across and down
+
+// The pixel this invocation shades; false when its group lies past the last row of tiles.
+bool tilePixel(uvec2 tileSize, out ivec2 pixel) {
+    uint j = gl_WorkGroupID.y;
+    uint row = (j % tileBands) * rowsPerBand + j / tileBands;
+    pixel = ivec2(uvec2(gl_WorkGroupID.x, row) * tileSize + gl_LocalInvocationID.xy);
+    return row < tileGrid.y;
+}
+
+// Whether this group lies in the first half of the dispatch (as two worker threads split it; for `bench`).
+bool inFirstHalfOfDispatch() {
+    return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x < gl_NumWorkGroups.x * gl_NumWorkGroups.y / 2u;
+}
