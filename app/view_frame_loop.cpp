@@ -32,7 +32,7 @@ FrameDescription decidedFrame(FrameDescription frame, FrameKind kind, glm::ivec2
 }
 
 ViewFrameLoop::ViewFrameLoop(FrameLoopSettings settings)
-    : settings_(settings), previewScale_(settings.maxPreviewScale), lastMotion_(-std::numeric_limits<double>::infinity()) {}
+    : settings_(settings), previewScale_(settings.minPreviewScale), lastMotion_(-std::numeric_limits<double>::infinity()) {}
 
 glm::ivec2 ViewFrameLoop::previewSize(glm::ivec2 exactSize) const {
     return glm::max(glm::ivec2(glm::round(glm::dvec2(exactSize) * previewScale_)), glm::ivec2(1));
@@ -62,7 +62,9 @@ FrameDecision ViewFrameLoop::decide(const FrameLoopInputs& in) {
 }
 
 void ViewFrameLoop::rendered(const FrameDecision& decision, double ms) {
-    if (decision.render != FrameKind::Preview || !(ms > 0)) return;
+    // Only previews in motion steer (a still preview, during step I, is drawn once: steering it would redraw it at
+    // every new size, taking the frames from step I's slices).
+    if (decision.render != FrameKind::Preview || !decision.inMotion || !(ms > 0)) return;
     // The cost of a frame grows with its pixels, the square of the scale: half the step to the scale that would
     // have met the target (a geometric mean), so one slow frame does not throw the resolution about.
     double ideal = previewScale_ * std::sqrt(settings_.previewTargetMs / ms);

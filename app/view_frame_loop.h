@@ -10,7 +10,8 @@
 //   - adaptive quality: while something moved within the last `settleSeconds`, previews; once nothing has
 //     moved for that long the motion counts as stopped and the exact frame follows (the exact frame thus
 //     comes settleSeconds plus one exact render after the last motion, plus at most the preview in flight).
-//     The preview's resolution follows its measured time towards `previewTargetMs` (between the scale bounds),
+//     The preview's resolution follows its measured time towards `previewTargetMs` (between the scale bounds,
+//     starting at the lower),
 //     so a slow scene (or a loaded machine) drops resolution rather than frames; its ray step is
 //     `previewStepScale` times the exact frame's (VTK's interactive sample distance), halving its samples.
 //   - exact quality: the exact frame whenever it is not on screen (a hardware GPU's default).
@@ -38,7 +39,8 @@ struct FrameLoopSettings {
     ViewQuality quality = ViewQuality::Adaptive;
     double settleSeconds = 0.2;        // nothing moved for this long: the motion has stopped
     double previewTargetMs = 70;       // the preview frame time its resolution is steered to
-    double minPreviewScale = 0.2;      // preview resolution bounds, as a fraction of the exact frame's
+    double minPreviewScale = 0.125;    // preview resolution bounds, as a fraction of the exact frame's; the loop
+                                       // starts at the lower one, so the first image (during step I) comes soon
     double maxPreviewScale = 0.5;
     double previewStepScale = 2.0;     // the preview's ray step over the exact frame's
     double precomputeBudgetMs = 60;    // step I per frame while it runs

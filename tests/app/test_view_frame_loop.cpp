@@ -50,7 +50,8 @@ struct LoopRun {
 TEST(ViewFrameLoop, PreviewsWhileMovingAndRendersTheExactFrameOnceTheMotionHasSettled) {
     FrameLoopSettings s;
     s.settleSeconds = 0.25;
-    s.previewTargetMs = 50;   // the frames below cost 50 ms: the preview scale stays put
+    s.previewTargetMs = 50;   // the frames below cost 50 ms at scale 0.5: the preview scale stays there
+    s.minPreviewScale = s.maxPreviewScale = 0.5;
     LoopRun run(s);
     FrameDecision first = run.frame(false);
     EXPECT_EQ(first.render, FrameKind::Exact) << "a still scene starts exact";
@@ -126,7 +127,9 @@ TEST(ViewFrameLoop, ThePreviewResolutionFollowsItsCostWithinItsBounds) {
     s.minPreviewScale = 0.2;
     s.maxPreviewScale = 0.5;
     LoopRun run(s);
-    EXPECT_DOUBLE_EQ(run.loop.previewScale(), 0.5);
+    EXPECT_DOUBLE_EQ(run.loop.previewScale(), 0.2) << "the loop starts at the lower bound";
+    for (int i = 0; i < 30; ++i) run.frame(true, false, 1);
+    EXPECT_DOUBLE_EQ(run.loop.previewScale(), 0.5) << "cheap previews: the upper bound";
     // Previews cost 200 ms at scale 0.5 (4x the target): the scale that meets it is 0.25; the loop goes half the
     // way there (geometrically) each frame.
     double before = run.loop.previewScale();
@@ -138,7 +141,13 @@ TEST(ViewFrameLoop, ThePreviewResolutionFollowsItsCostWithinItsBounds) {
     EXPECT_DOUBLE_EQ(run.loop.previewScale(), 0.2) << "the lower bound";
     for (int i = 0; i < 30; ++i) run.frame(true, false, 1);
     EXPECT_DOUBLE_EQ(run.loop.previewScale(), 0.5) << "the upper bound";
-    // Exact frames do not steer it.
+    // Exact frames and still previews (during step I) do not steer it.
+    run.now += 1;
+    run.screen.moved();   // what is on screen is no longer the frame (say, the TF changed and step I reruns)
+    FrameDecision still = run.frame(false, true, 5000);
+    ASSERT_EQ(still.render, FrameKind::Preview);
+    ASSERT_FALSE(still.inMotion);
+    EXPECT_DOUBLE_EQ(run.loop.previewScale(), 0.5);
     run.now += 1;
     FrameDecision exact = run.frame(false, false, 5000);
     ASSERT_EQ(exact.render, FrameKind::Exact);
