@@ -14,21 +14,23 @@ namespace {
 
 using test::glContext;
 
-// A 30 x 27 x 29 grid (partial bricks on every upper face) of 1 mm voxels, LAO K = 14, M = 7, a sphere mesh.
+// A 45 x 39 x 42 grid (partial bricks on every upper face) of 1 mm voxels, LAO K = 14, M = 4, a sphere of 5 mm
+// moving 23 mm: the bricks its dilated box reaches (a box of about 25 mm) at the first and the last pose differ,
+// so an update that forgot where the mesh was would leave voxels behind.
 struct PreviewScene {
     VolumeData volume;
     TransferFunction tf = test::rampTransferFunction(30, 180, 0.3);
     std::unique_ptr<Renderer> renderer;
     FrameDescription frame;
-    std::shared_ptr<const clip::TriangleMesh> sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(7.0, 3));
+    std::shared_ptr<const clip::TriangleMesh> sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 3));
     PreviewScene() {
         glContext();
-        glm::ivec3 dims(30, 27, 29);
+        glm::ivec3 dims(45, 39, 42);
         volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, test::blobField);
         renderer = std::make_unique<Renderer>(glContext(), volume, tf);
         LaoSettings lao;
         parseLaoPattern("14", lao.directions);
-        lao.samples = 7;
+        lao.samples = 4;
         lao.stepMm = 1.0;
         lao.antiAliasingSamples = 16;
         renderer->setLaoSettings(lao);
@@ -42,7 +44,7 @@ struct PreviewScene {
     // Pose n of a path across the blobs.
     static clip::RigidPose pose(int n) {
         clip::RigidPose p;
-        p.position = glm::dvec3(-6.0 + 2.5 * n, 3.0 - 1.5 * n, 2.0);
+        p.position = glm::dvec3(-10.0 + 5.0 * n, 6.0 - 3.0 * n, 2.0);
         return p;
     }
     void moveTo(int n) { renderer->clipMeshes().setPose(0, pose(n)); }
@@ -61,7 +63,7 @@ TEST(Preview, StepIInSlicesEqualsStepIInOneDispatch) {
     ASSERT_TRUE(runs(whole.renderer->lastPlan(), Pass::LaoPrecompute));
     std::vector<std::uint16_t> expected = whole.renderer->ambientOcclusion()->readPrecomputed();
 
-    // Slices of 7 bricks of the 8 x 7 x 8 = 448: neither a brick row nor a z-slab, the last one short.
+    // Slices of 7 bricks of the 12 x 10 x 11 = 1320: neither a brick row nor a z-slab, the last one short.
     EXPECT_TRUE(sliced.renderer->precomputePending(sliced.frame));
     int slices = 0;
     double progress = 0;
@@ -72,7 +74,7 @@ TEST(Preview, StepIInSlicesEqualsStepIInOneDispatch) {
         progress = now;
         ASSERT_LT(++slices, 1000);
     }
-    EXPECT_EQ(slices, 2 * 64) << "64 slices of voxel clipping, then 64 of LAO";
+    EXPECT_EQ(slices, 2 * 189) << "189 slices of voxel clipping, then 189 of LAO";
     EXPECT_DOUBLE_EQ(progress, 1.0);
     EXPECT_EQ(sliced.renderer->ambientOcclusion()->readPrecomputed(), expected) << "V_PAO in slices differs from one dispatch";
     // The exact frame after it runs no step I and equals the one-dispatch renderer's.
@@ -85,7 +87,7 @@ TEST(Preview, StepIInSlicesEqualsStepIInOneDispatch) {
 TEST(Preview, AnExactFrameDuringStepIInSlicesFinishesItAndEqualsOneDispatch) {
     PreviewScene whole, sliced;
     whole.renderer->render(whole.frame);
-    for (int i = 0; i < 70; ++i) sliced.renderer->advancePrecompute(0.0, 5);   // phase 1 done, phase 2 begun
+    for (int i = 0; i < 300; ++i) sliced.renderer->advancePrecompute(0.0, 5);   // phase 1 done (264 slices), phase 2 begun
     ASSERT_TRUE(sliced.renderer->precomputePending(sliced.frame));
     sliced.renderer->render(sliced.frame);
     EXPECT_FALSE(sliced.renderer->precomputePending(sliced.frame));
