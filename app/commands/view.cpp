@@ -145,6 +145,7 @@ int view(const Arguments& args) {
     ImGui_ImplOpenGL3_Init("#version 450");
 
     double renderScale = 1.0;  // the exact frame's resolution (the preview's is the frame loop's)
+    bool shownExact = false;   // the image on screen is the exact frame (stereo: both eyes exact at full size)
     bool orbiting = false, dragging = false;
     glm::dvec2 lastCursor{0.0};
     int screenshots = 0;
@@ -219,8 +220,7 @@ int view(const Arguments& args) {
         ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-6, C) | %dx%d | stereo %s (F3)", lastFrameMs, lastTimings.ambientOcclusionMs(),
                     shadingModeName(frame.shading), renderer.outputSize().x, renderer.outputSize().y, stereoModeName(stereo));
         // What is on screen: the exact frame (CAO == LAO, full resolution) or a preview; step I's progress.
-        bool exactShown = stereo != StereoMode::Off || renderer.lastFrameExact();
-        ImGui::TextColored(exactShown ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", exactShown ? "EXACT" : "PREVIEW");
+        ImGui::TextColored(shownExact ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", shownExact ? "EXACT" : "PREVIEW");
         ImGui::SameLine();
         if (ImGui::Checkbox("exact every frame", &exactEveryFrame)) loop.setQuality(exactEveryFrame ? ViewQuality::Exact : ViewQuality::Adaptive);
         if (renderer.precomputePending(frame)) {
@@ -297,6 +297,7 @@ int view(const Arguments& args) {
             bool rendered = false;
             if (stereo != StereoMode::Off) {
                 rendered = stereoView.update(renderer, frame, stereo, kDefaultEyeSeparationMm, glm::vec4(loaded.scene.background));
+                if (rendered) shownExact = frame.size == exactSize;   // the pair is exact frames, at the decided size
             } else {
                 if (decision.precomputeBudgetMs > 0) renderer.advancePrecompute(decision.precomputeBudgetMs);
                 auto imageStart = std::chrono::steady_clock::now();
@@ -305,6 +306,7 @@ int view(const Arguments& args) {
                 rendered = decision.render != FrameKind::None || decision.precomputeBudgetMs > 0;
                 renderer.finish();
                 loop.rendered(decision, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - imageStart).count());
+                shownExact = renderer.lastFrameExact();
             }
             if (rendered) {
                 renderer.finish();
