@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <thread>
 
 namespace curette::bench {
@@ -66,6 +67,14 @@ nlohmann::json toJson(const LoopFrame& f) {
              }()}};
 }
 
+// The 1-minute load average (/proc/loadavg), to say how shared the machine was; -1 where unknown.
+double loadAverage() {
+    std::ifstream in("/proc/loadavg");
+    double load = -1;
+    in >> load;
+    return load;
+}
+
 }  // namespace
 
 int benchView(const CommandLine& cl) {
@@ -93,6 +102,7 @@ int benchView(const CommandLine& cl) {
         CommandLine::parseDouble("preview-target", cl.valueOr("preview-target", std::to_string(settings.previewTargetMs)), 1, 10000);
     glm::vec4 background(loaded.scene.background);
 
+    double loadBefore = loadAverage();
     auto setupStart = Clock::now();
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
@@ -242,9 +252,12 @@ int benchView(const CommandLine& cl) {
         freshHash = imageHash(toRgba8(fresh.readImage(), background));
     }
 
+    double loadAfter = loadAverage();
     Table table("bench view: the viewer's frame loop on " + file.filename().string() + ", " + std::to_string(size.x) + "x" +
                     std::to_string(size.y) + ", quality " + viewQualityName(settings.quality) + " (wall times on a shared machine)",
                 {"measure", "value", "unit", "what it measures"});
+    table.add({"load average", std::max(loadBefore, loadAfter), "", "1-minute load average at the start or end, whichever is higher (of " +
+                                                                           std::to_string(std::thread::hardware_concurrency()) + " cores)"});
     table.add({"renderer set-up", setupMs, "ms", "volume upload and scene configuration (before the loop; the window is not open yet)"});
     table.add({"first image", firstImageMs, "ms", "loop start to the first presented image (a preview while step I runs)"});
     table.add({"step I", step1Ms, "ms", "loop start to V_PAO complete (step I in slices)"});
@@ -281,6 +294,8 @@ int benchView(const CommandLine& cl) {
         {"settings",
          {{"settle_s", settings.settleSeconds}, {"precompute_budget_ms", settings.precomputeBudgetMs}, {"preview_target_ms", settings.previewTargetMs},
           {"preview_scale_min", settings.minPreviewScale}, {"preview_scale_max", settings.maxPreviewScale}}},
+        {"load_average", {{"start", loadBefore}, {"end", loadAfter}}},
+        {"cores", std::thread::hardware_concurrency()},
         {"setup_ms", setupMs},
         {"first_image_ms", firstImageMs},
         {"step1",
