@@ -229,14 +229,58 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
 
 void AmbientOcclusion::precompute(const TransferFunctionTexture& tf) {
     // Step I is step IV without meshes (every voxel keeps its TF opacity, all category b) followed by the
-    // LAO of every voxel, written to V_PAO.
+    // LAO of every voxel, written to V_PAO: one slice of each phase over the whole grid.
     Progress progress("LAO precompute (step I)", 2);
-    uploadVisit(BrickSet::all(volume_.geometry().dims), true);
-    runVoxelClipping(tf, nullptr, false);
+    beginPrecompute();
+    advancePrecompute(tf, totalBricks());
     progress.update(1);
-    runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
+    advancePrecompute(tf, totalBricks());
     progress.finish();
-    lastMeshBricks_.reset();
+}
+
+std::uint32_t AmbientOcclusion::totalBricks() const { return static_cast<std::uint32_t>(allBricks_.size()); }
+
+void AmbientOcclusion::beginPrecompute() {
+    if (allBricks_.empty()) {
+        allBricks_ = BrickSet::all(volume_.geometry().dims).visitedIndices();
+        for (std::uint32_t& entry : allBricks_) entry |= kVisitLaoCanChange;   // every voxel is category b
+    }
+    precomputeStarted_ = true;
+    slicedBricks_ = 0;
+    lastMeshBricks_.reset();   // V_AO is not written from this V_PAO yet: the next update visits every brick
+}
+
+int AmbientOcclusion::precomputePhase() const {
+    if (!precomputeStarted_) return 0;
+    return static_cast<int>(slicedBricks_ / std::max<std::uint32_t>(totalBricks(), 1));
+}
+
+double AmbientOcclusion::precomputeProgress() const {
+    if (!precomputeStarted_ || totalBricks() == 0) return 0.0;
+    double total = totalBricks();
+    double clipped = std::min<double>(slicedBricks_, total), lao = std::max<double>(0.0, double(slicedBricks_) - total);
+    return (1.0 - kLaoShareOfPrecompute) * clipped / total + kLaoShareOfPrecompute * lao / total;
+}
+
+void AmbientOcclusion::uploadVisitRange(std::uint32_t first, std::uint32_t count) {
+    glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * std::size_t(count)), allBricks_.data() + first);
+    visitCount_ = count;
+    laoFlagsPending_ = false;
+}
+
+std::uint32_t AmbientOcclusion::advancePrecompute(const TransferFunctionTexture& tf, std::uint32_t bricks) {
+    if (!precomputeStarted_) beginPrecompute();
+    std::uint32_t total = totalBricks(), ran = 0;
+    // A slice never straddles the phases: the LAO of any voxel may read the V_o of any brick within reach.
+    int phase = precomputePhase();
+    if (phase >= 2 || bricks == 0) return 0;
+    std::uint32_t first = slicedBricks_ - std::uint32_t(phase) * total;
+    ran = std::min(bricks, total - first);
+    uploadVisitRange(first, ran);
+    if (phase == 0) runVoxelClipping(tf, nullptr, false);
+    else runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
+    slicedBricks_ += ran;
+    return ran;
 }
 
 void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode) {

@@ -46,6 +46,10 @@ struct AmbientOcclusionStats {
     double recomputedFraction() const { return voxels ? double(recomputed) / double(voxels) : 0.0; }
 };
 
+// The share of step I's time the LAO phase takes (the rest is its voxel clipping), for its progress bar: on the
+// carved head (K = 26, M = 20) phase 1 costs about 2 % of step I on llvmpipe.
+inline constexpr double kLaoShareOfPrecompute = 0.98;
+
 class AmbientOcclusion {
 public:
     AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings);
@@ -63,6 +67,23 @@ public:
     // record says what V_PAO and V_AO were computed from).
     // Step I for the volume under `tf`. Run again when the TF or the settings change.
     void precompute(const TransferFunctionTexture& tf);
+    // Step I in slices, so a viewer keeps presenting while it runs (docs/architecture.md, "Preview and exact
+    // frames"): beginPrecompute() forgets V_PAO and starts over; each advancePrecompute(tf, bricks) runs the next
+    // `bricks` bricks (4^3 voxels, in brick-number order: z-slabs) of phase 1 (step IV without meshes into V_o and
+    // V_m, every brick) and then of phase 2 (the LAO of every voxel into V_PAO, which reads the V_o of every
+    // brick within reach, so it starts only when phase 1 is complete), and returns the bricks it ran. Every voxel
+    // is computed by the same invocation code as in one dispatch, so the result is the same bit for bit
+    // (Precompute.SlicedEqualsOneDispatch). precompute() is begin + one slice of everything.
+    void beginPrecompute();
+    std::uint32_t advancePrecompute(const TransferFunctionTexture& tf, std::uint32_t bricks);
+    bool precomputeStarted() const { return precomputeStarted_; }
+    bool precomputeDone() const { return precomputeStarted_ && slicedBricks_ == 2 * totalBricks(); }
+    // Work done of step I in [0, 1]; phase 2 (the rays) counts as `kLaoShareOfPrecompute` of it.
+    double precomputeProgress() const;
+    std::uint32_t totalBricks() const;
+    // Which phase the next slice belongs to: 0 voxel clipping, 1 LAO, 2 done.
+    int precomputePhase() const;
+    GLuint precomputedTexture() const { return precomputed_.name(); }
     // Step IV under the meshes' current poses. mode: Cao (masked, over the visited bricks) or Lao (every
     // voxel). Must follow step I.
     void clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode);
@@ -104,6 +125,11 @@ private:
     // Outside these bricks (of the last update) V_o holds the unclipped opacity and V_AO equals V_PAO, so the
     // next CAO update only visits them and its own meshes' bricks. Unset after step I (V_AO not yet written).
     std::optional<BrickSet> lastMeshBricks_;
+    // Sliced step I: bricks done over both phases (0 .. 2 * totalBricks()); the whole grid's brick numbers.
+    bool precomputeStarted_ = false;
+    std::uint32_t slicedBricks_ = 0;
+    std::vector<std::uint32_t> allBricks_;
+    void uploadVisitRange(std::uint32_t first, std::uint32_t count);
 };
 
 }  // namespace curette

@@ -32,10 +32,11 @@ static_assert(std::size(kPasses) == static_cast<std::size_t>(Pass::Count));
 const PassInfo& passInfo(Pass pass) { return kPasses[static_cast<std::size_t>(pass)]; }
 std::span<const PassInfo> allPasses() { return kPasses; }
 
-bool Freshness::precomputedCurrent(const InputVersions& now) const {
-    return precomputed_ && precomputed_->volume == now.volume && precomputed_->transferFunction == now.transferFunction &&
-           precomputed_->laoSettings == now.laoSettings;
+bool Freshness::samePrecomputeInputs(const InputVersions& a, const InputVersions& b) {
+    return a.volume == b.volume && a.transferFunction == b.transferFunction && a.laoSettings == b.laoSettings;
 }
+
+bool Freshness::precomputedCurrent(const InputVersions& now) const { return precomputed_ && samePrecomputeInputs(*precomputed_, now); }
 
 bool Freshness::ambientCurrent(const InputVersions& now, ShadingMode mode) const {
     return precomputedCurrent(now) && ambient_ && *ambient_ == now && ambientMode_ == mode;

@@ -55,6 +55,8 @@ class Freshness {
 public:
     // V_PAO: volume, TF and LAO settings.
     bool precomputedCurrent(const InputVersions& now) const;
+    // Whether two sets of versions give the same V_PAO (volume, TF, LAO settings: the clip meshes do not count).
+    static bool samePrecomputeInputs(const InputVersions& a, const InputVersions& b);
     // V_AO (and V_o, V_m): V_PAO's inputs, the clip meshes and the mode (cao and lao write the same V_AO but
     // visit different voxels, so a mode change reruns IV and V).
     bool ambientCurrent(const InputVersions& now, ShadingMode mode) const;

@@ -8,6 +8,9 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include <algorithm>
+#include <chrono>
+
 namespace curette {
 
 Renderer::Renderer(gl::Context& context, const VolumeData& volume, const TransferFunction& tf)
@@ -32,6 +35,9 @@ void Renderer::setLaoSettings(const LaoSettings& settings) {
     // The clip maps leave room for the LAO reach in every mode, so every mode clips identically.
     clip_.setDilationRadiusMm(AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()));
     ao_.reset();  // buffers depend on the settings (directions, list); reallocated at the next AO frame
+    ambientWritten_ = false;
+    slicingFor_.reset();
+    precomputeBricksPerMs_[0] = precomputeBricksPerMs_[1] = 0;
     ++versions_.laoSettings;
     freshness_.forgetAmbientOcclusion();
 }
@@ -157,14 +163,26 @@ PlanInputs Renderer::planInputs(const FrameDescription& frame) const {
 FramePlan Renderer::plan(const FrameDescription& frame) const { return planFrame(planInputs(frame)); }
 
 bool Renderer::showing(const FrameDescription& frame) const {
-    return shownFrame_ && *shownFrame_ == frame && shownVersions_ == currentVersions() && shownAppearanceVersion_ == appearanceVersion_;
+    return shownFrame_ && shownExact_ && *shownFrame_ == frame && shownVersions_ == currentVersions() &&
+           shownAppearanceVersion_ == appearanceVersion_;
 }
 
-void Renderer::render(const FrameDescription& frame) {
+void Renderer::validateSize(const FrameDescription& frame) const {
     if (frame.size.x < 1 || frame.size.y < 1 || frame.size.x > context_.info().maxTextureSize ||
         frame.size.y > context_.info().maxTextureSize)
         throw InputError("<frame>", "size", "between 1x1 and the GL maximum texture size",
                          std::to_string(frame.size.x) + "x" + std::to_string(frame.size.y));
+}
+
+void Renderer::markShown(const FrameDescription& frame, bool exact) {
+    shownFrame_ = frame;
+    shownVersions_ = currentVersions();
+    shownAppearanceVersion_ = appearanceVersion_;
+    shownExact_ = exact;
+}
+
+void Renderer::render(const FrameDescription& frame) {
+    validateSize(frame);
     ensureOutput(frame.size);
     lastPlan_ = plan(frame);
     // A rigid motion changes only the clipping cameras: upload them when the maps are not redrawn anyway.
@@ -174,9 +192,102 @@ void Renderer::render(const FrameDescription& frame) {
         run(p.pass, frame);
         timers_.end();
     }
-    shownFrame_ = frame;
-    shownVersions_ = currentVersions();
-    shownAppearanceVersion_ = appearanceVersion_;
+    markShown(frame, true);
+}
+
+Renderer::PreviewAmbient Renderer::previewAmbient() const {
+    if (!ao_ || !freshness_.precomputedCurrent(currentVersions())) return PreviewAmbient::None;
+    return ambientWritten_ ? PreviewAmbient::LastExact : PreviewAmbient::Precomputed;
+}
+
+GLuint Renderer::shadedAmbientTexture() const {
+    if (!ao_) return 0;
+    if (previewing_ && *previewing_ == PreviewAmbient::Precomputed) return ao_->precomputedTexture();
+    return ao_->ambientTexture();
+}
+
+void Renderer::renderPreview(const FrameDescription& frame) {
+    validateSize(frame);
+    ensureOutput(frame.size);
+    PreviewAmbient source = previewAmbient();
+    // The image passes shade `shaded`: the frame itself, or phong while V_PAO is not there. The clip maps are
+    // drawn for the frame's own mode (cao wants the dilated ones), exactly as the exact frame would draw them.
+    FrameDescription shaded = frame;
+    PlanInputs inputs = planInputs(frame);
+    if (traits(frame.shading).ambientOcclusion) {
+        inputs.precomputedCurrent = inputs.ambientCurrent = true;   // steps I, IV, V are left out
+        if (source == PreviewAmbient::None) shaded.shading = inputs.shading = ShadingMode::Phong;
+    }
+    lastPlan_ = planFrame(inputs);
+    if (!lastPlan_.runs(Pass::ClipMaps)) clip_.uploadCameras();
+    previewing_ = source;
+    try {
+        for (const PlannedPass& p : lastPlan_.passes) {
+            timers_.begin(passInfo(p.pass).name);
+            run(p.pass, p.pass == Pass::ClipMaps ? frame : shaded);
+            timers_.end();
+        }
+    } catch (...) {
+        previewing_.reset();
+        throw;
+    }
+    previewing_.reset();
+    markShown(frame, false);
+    shownPreviewAmbient_ = source;
+}
+
+bool Renderer::showingPreview(const FrameDescription& frame) const {
+    return shownFrame_ && !shownExact_ && *shownFrame_ == frame && shownVersions_ == currentVersions() &&
+           shownAppearanceVersion_ == appearanceVersion_ && shownPreviewAmbient_ == previewAmbient();
+}
+
+bool Renderer::precomputePending(const FrameDescription& frame) const {
+    return traits(frame.shading).ambientOcclusion && !(ao_ && freshness_.precomputedCurrent(currentVersions()));
+}
+
+double Renderer::precomputeProgress() const {
+    if (ao_ && freshness_.precomputedCurrent(currentVersions())) return 1.0;
+    if (!ao_ || !slicingFor_ || !Freshness::samePrecomputeInputs(*slicingFor_, currentVersions())) return 0.0;
+    return ao_->precomputeProgress();
+}
+
+double Renderer::advancePrecompute(double budgetMs, std::uint32_t sliceBricks) {
+    InputVersions now = currentVersions();
+    if (ao_ && freshness_.precomputedCurrent(now)) return 1.0;
+    if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_);
+    if (!slicingFor_ || !Freshness::samePrecomputeInputs(*slicingFor_, now) || !ao_->precomputeStarted()) {
+        ao_->beginPrecompute();
+        ambientWritten_ = false;
+        slicingFor_ = now;
+    }
+    // Slices sized from the last slice's rate to fill the budget; the first of each phase is a small probe
+    // (1/512 of the grid), so a budget is overrun at most by a probe.
+    using Clock = std::chrono::steady_clock;
+    auto start = Clock::now();
+    auto elapsedMs = [&] { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); };
+    timers_.begin(passInfo(Pass::LaoPrecompute).name);
+    bool first = true;
+    while (!ao_->precomputeDone() && (first || elapsedMs() < budgetMs)) {
+        int phase = ao_->precomputePhase();
+        double rate = precomputeBricksPerMs_[phase];
+        double left = std::max(budgetMs - elapsedMs(), 1.0);
+        std::uint32_t bricks = sliceBricks > 0 ? sliceBricks
+                               : rate > 0     ? static_cast<std::uint32_t>(std::clamp(rate * left, 1.0, double(ao_->totalBricks())))
+                                              : std::max<std::uint32_t>(ao_->totalBricks() / 512, 1);
+        auto sliceStart = Clock::now();
+        std::uint32_t ran = ao_->advancePrecompute(*tf_, bricks);
+        glFinish();
+        double ms = std::chrono::duration<double, std::milli>(Clock::now() - sliceStart).count();
+        if (ms > 0.5) precomputeBricksPerMs_[phase] = ran / ms;
+        first = false;
+    }
+    timers_.end();
+    if (ao_->precomputeDone()) {
+        freshness_.markPrecomputed(now);
+        slicingFor_.reset();
+        return 1.0;
+    }
+    return ao_->precomputeProgress();
 }
 
 void Renderer::run(Pass pass, const FrameDescription& frame) {
@@ -187,12 +298,20 @@ void Renderer::run(Pass pass, const FrameDescription& frame) {
             return;
         case Pass::LaoPrecompute:
             if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_);
-            ao_->precompute(*tf_);
+            // A step I in slices for these inputs is finished where it is; anything else starts over.
+            if (slicingFor_ && Freshness::samePrecomputeInputs(*slicingFor_, currentVersions()) && ao_->precomputeStarted()) {
+                while (!ao_->precomputeDone()) ao_->advancePrecompute(*tf_, ao_->totalBricks());
+            } else {
+                ao_->precompute(*tf_);
+            }
+            slicingFor_.reset();
+            ambientWritten_ = false;
             freshness_.markPrecomputed(currentVersions());
             return;
         case Pass::VoxelClipping: ao_->clipVoxels(*tf_, clip_, frame.shading); return;
         case Pass::LaoRecompute:
             ao_->recomputeLao(*tf_);
+            ambientWritten_ = true;
             freshness_.markAmbient(currentVersions(), frame.shading);
             return;
         case Pass::TubeGBuffer: tubes_->drawGBuffer(frame, clip_, gbuffer_); return;
@@ -233,7 +352,7 @@ void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
     VolumePiece{volume_}.apply(p);
     tf_->apply(p);
     clip_.apply(p);
-    SampleShadingPiece{shading, laoSettings_.ambientScale, ao_ ? ao_->ambientTexture() : 0, frame.raycast.cutFace}.apply(p);
+    SampleShadingPiece{shading, laoSettings_.ambientScale, shadedAmbientTexture(), frame.raycast.cutFace}.apply(p);
     setLightingUniforms(p, frame, tf_->material());
     if (ismosLayers) ismos_->applyLayers(p, frame, ismosSpaceOf(frame), resolveStepMm(frame.raycast));
     if (tubes) glBindTextureUnit(binding::tubeDepth, gbuffer_.depth());
@@ -261,7 +380,7 @@ void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
 
 void Renderer::runSlabPass(const FrameDescription& frame, bool withTubes) {
     // Without tubes only dos comes here (all rays advance slice by slice together); with tubes every mode.
-    GLuint ambient = usesAmbientOcclusion(frame.shading) && ao_ ? ao_->ambientTexture() : 0;
+    GLuint ambient = usesAmbientOcclusion(frame.shading) ? shadedAmbientTexture() : 0;
     slab_.run(SlabInputs{frame, volume_, *tf_, clip_, SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ambient, frame.raycast.cutFace}, output_.name(),
                          withTubes ? &gbuffer_ : nullptr, withTubes ? tubeShading_.geometryOpacity : 0.0, tubeShading_.thicknessMm});
     slabUsed_ = true;

@@ -69,8 +69,35 @@ public:
     // Whether the image in outputTexture() is already `frame` under the current scene (nothing to render).
     bool showing(const FrameDescription& frame) const;
 
-    // Runs the frame's plan on the GPU; the result stays in outputTexture() until read.
+    // Runs the frame's plan on the GPU; the result stays in outputTexture() until read. The exact frame: what
+    // `curette render` gives for this state, bit for bit, whatever previews came before.
     void render(const FrameDescription& frame);
+
+    // Preview and exact frames (docs/architecture.md, "Preview and exact frames"): what a viewer shows while
+    // something moves or while step I runs, at whatever size it asks.
+    // Where a preview's ambient factor comes from (lao/cao frames; other modes preview as they render).
+    enum class PreviewAmbient {
+        None,          // V_PAO is not there yet (step I in progress): the frame is shaded phong instead
+        Precomputed,   // V_PAO, the unclipped LAO (no exact frame since step I)
+        LastExact,     // V_AO of the last exact frame (its poses, not this frame's, near the cut)
+    };
+    // The frame's plan without steps I, IV and V: the clip maps (the frame's own, as the exact frame would draw
+    // them) and the image passes, shading with `previewAmbient()`. It writes the output image and nothing any
+    // exact frame reads, so the next render() is unchanged by it (Preview.NeverChangesTheExactFrame).
+    void renderPreview(const FrameDescription& frame);
+    PreviewAmbient previewAmbient() const;
+    // Whether the image shown is a preview of `frame` under the current scene (showing() is for exact ones).
+    bool showingPreview(const FrameDescription& frame) const;
+    bool lastFrameExact() const { return shownExact_; }
+    // Step I in slices: whether `frame` needs V_PAO and it is not for the current volume, TF and LAO settings;
+    // then advancePrecompute(budget) runs slices of it (AmbientOcclusion::advancePrecompute) for about budgetMs
+    // of GPU time (at least one slice; it waits for the GPU to time them, and sizes the next slice from the
+    // last one's rate) and returns how far step I is, in [0, 1]. At 1 V_PAO is current and the next exact frame
+    // runs no step I; an exact frame before that finishes the remaining slices itself.
+    bool precomputePending(const FrameDescription& frame) const;
+    // sliceBricks > 0 fixes the slice size instead (tests: slices that are neither rows nor slabs of bricks).
+    double advancePrecompute(double budgetMs, std::uint32_t sliceBricks = 0);
+    double precomputeProgress() const;
     // Waits until the GPU has finished every pass submitted so far (for wall-clock timing).
     void finish() const;
     GLuint outputTexture() const { return output_.name(); }
@@ -105,6 +132,10 @@ private:
     bool tubesInView(const FrameDescription& frame) const;
     void run(Pass pass, const FrameDescription& frame);
     void runRayCast(const FrameDescription& frame, bool ismosLayers = false);
+    // The ambient texture the image passes shade lao/cao with: V_AO, or in a preview previewAmbient()'s.
+    GLuint shadedAmbientTexture() const;
+    void validateSize(const FrameDescription& frame) const;
+    void markShown(const FrameDescription& frame, bool exact);
     void runSlabPass(const FrameDescription& frame, bool withTubes);
     void runComposite(const FrameDescription& frame);
     void updateOccupancy();
@@ -127,6 +158,12 @@ private:
     std::optional<FrameDescription> shownFrame_;
     InputVersions shownVersions_;
     std::uint64_t shownAppearanceVersion_ = 0;
+    bool shownExact_ = false;
+    PreviewAmbient shownPreviewAmbient_ = PreviewAmbient::None;
+    std::optional<PreviewAmbient> previewing_;   // set while renderPreview runs its passes
+    bool ambientWritten_ = false;                // V_AO written (step V) since the current V_PAO's step I
+    std::optional<InputVersions> slicingFor_;    // the inputs the step I in slices is computing V_PAO for
+    double precomputeBricksPerMs_[2] = {0, 0};   // the last slice's rate per phase (0: not measured yet)
     gl::Texture occupancy_;
     gl::Texture output_;
     glm::ivec2 outputSize_{0};

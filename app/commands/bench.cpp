@@ -8,6 +8,7 @@
 #include "app/bench/bench_raycast.h"
 #include "app/bench/bench_report.h"
 #include "app/bench/bench_stereo.h"
+#include "app/bench/bench_view.h"
 #include "app/command_line.h"
 #include "app/commands/commands.h"
 #include "base/error.h"
@@ -16,7 +17,7 @@ namespace curette::commands {
 
 int bench(const Arguments& args) {
     if (args.empty())
-        throw InputError("<command line>", "bench", "what to measure: raycast, cao, dos, ismos, cut-face, input, report or stereo (curette bench raycast --scene S)",
+        throw InputError("<command line>", "bench", "what to measure: raycast, cao, dos, ismos, cut-face, input, report, stereo or view (curette bench raycast --scene S)",
                          "nothing");
     std::string what = args[0];
     Arguments rest(args.begin() + 1, args.end());
@@ -90,7 +91,18 @@ int bench(const Arguments& args) {
                                             {"json", true, "JSON output file (default bench-stereo.json)"}}));
         return bench::benchStereo(cl);
     }
-    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos, ismos, cut-face, input, report, stereo", "\"" + what + "\"");
+    if (what == "view") {
+        CommandLine cl(rest, withGpuOption({{"session", true, "session file (JSON Lines) played back in real time"},
+                                            {"size", true, "window size WxH (default 1024x768)"},
+                                            {"quality", true, "exact|adaptive (default: adaptive on a software renderer, exact on a GPU)"},
+                                            {"settle", true, "seconds without motion after which the motion counts as stopped (default 0.2)"},
+                                            {"precompute-budget", true, "ms of step I per frame while it runs (default 60)"},
+                                            {"preview-target", true, "ms a motion preview is steered to (default 70)"},
+                                            {"check", false, "also render the last state in a fresh renderer and compare image hashes"},
+                                            {"json", true, "JSON output file (default bench-view.json)"}}));
+        return bench::benchView(cl);
+    }
+    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos, ismos, cut-face, input, report, stereo, view", "\"" + what + "\"");
 }
 
 }  // namespace curette::commands

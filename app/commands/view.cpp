@@ -1,9 +1,11 @@
 // curette view --scene S: the interactive viewer. Devices (hidapi: gamepads, SpaceMice) and the keyboard and
 // mouse drive the clip meshes through the mapping (input/mapping.h); left drag orbits the camera and the wheel
 // zooms; Shift + left drag or I/J/K/L turns the selected light (O: the next one), as recorded input actions. F9 (or a mapped button) starts and stops recording a session; P or F12 saves a screenshot. The overlay
-// shows which device holds which mesh, the shading, and the time of every pass of the frame plan. The frame is
-// re-rendered only when the renderer is not already showing it (Renderer::showing), at reduced resolution
-// while the camera moves (llvmpipe renders on the CPU). The plan panel shows the removal report (removed mL,
+// shows which device holds which mesh, the shading, and the time of every pass of the frame plan. What to render
+// each frame is the frame loop's decision (app/view_frame_loop.h, shared with `curette bench view`): with
+// --quality adaptive (the default on a software renderer) previews at reduced resolution while something moves
+// and the exact frame once the motion has settled; step I runs in slices with a preview meanwhile, so the window
+// never freezes for it; the overlay says PREVIEW or EXACT and shows step I's progress. The plan panel shows the removal report (removed mL,
 // the structures and bundles the carve touches or must spare, margins; protected ones in red when touched),
 // updated 0.2 s after the meshes stop; F5 writes the report and the plan's exports (app/carve_report.h).
 #include "app/carve_report.h"
@@ -13,6 +15,7 @@
 #include "app/live_input.h"
 #include "app/loaded_scene.h"
 #include "app/session_step.h"
+#include "app/view_frame_loop.h"
 #include "base/error.h"
 #include "base/log.h"
 #include "input/hid/fake_backend.h"
@@ -83,13 +86,23 @@ int view(const Arguments& args) {
                           {"size", true, "window size WxH (default 1024x768)"},
                           {"mapping", true, "device mapping JSON (default: the shipped assets/input/default_mapping.json)"},
                           {"record", true, "record a session to this file from the start (F9 toggles recording too)"},
-                          {"no-devices", false, "keyboard and mouse only (do not open HID devices)"}});
+                          {"no-devices", false, "keyboard and mouse only (do not open HID devices)"},
+                          {"quality", true, "exact|adaptive: previews while moving, exact when still (default: adaptive on a software renderer, exact on a GPU)"}});
     glm::ivec2 windowSize = CommandLine::parseSize("size", cl.valueOr("size", "1024x768"));
     std::string scenePath = cl.required("scene");
     input::MappingConfig mapping = cl.value("mapping") ? input::loadMapping(*cl.value("mapping")) : input::defaultMapping();
     LoadedScene loaded = loadSceneWithVolume(scenePath);
 
+    std::optional<ViewQuality> quality;
+    if (auto q = cl.value("quality")) {
+        quality = parseViewQuality(*q);
+        if (!quality) throw InputError("<command line>", "--quality", "exact or adaptive", "\"" + *q + "\"");
+    }
     auto window = gl::createWindowContext("curette - " + scenePath, windowSize);
+    FrameLoopSettings loopSettings;
+    loopSettings.quality = quality.value_or(defaultViewQuality(window->info().softwareRenderer));
+    ViewFrameLoop loop(loopSettings);
+    bool exactEveryFrame = loopSettings.quality == ViewQuality::Exact;
     Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     Presenter presenter;
@@ -131,7 +144,8 @@ int view(const Arguments& args) {
     ImGui_ImplGlfw_InitForOpenGL(window->window(), true);
     ImGui_ImplOpenGL3_Init("#version 450");
 
-    double renderScale = 1.0, movingScale = 0.5;  // resolution when idle, while the camera moves
+    double renderScale = 1.0;  // the exact frame's resolution (the preview's is the frame loop's)
+    bool shownExact = false;   // the image on screen is the exact frame (stereo: both eyes exact at full size)
     bool orbiting = false, dragging = false;
     glm::dvec2 lastCursor{0.0};
     int screenshots = 0;
@@ -184,7 +198,7 @@ int view(const Arguments& args) {
 
         // Devices and keys -> actions -> the scene (the session step every command runs).
         InputFrame input = live.step(now, keys, dt, static_cast<int>(state.meshes.size()));
-        bool lightMoving = step.apply(input.actions, framebuffer.y).lights;
+        StepChanges changes = step.apply(input.actions, framebuffer.y);
         for (std::string& m : live.takeMessages()) {
             messages.push_back(std::move(m));
             if (messages.size() > 6) messages.pop_front();
@@ -205,6 +219,15 @@ int view(const Arguments& args) {
         // Shading changes only through input (1-6, C, mapped buttons), so a session replays it from its reports.
         ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-6, C) | %dx%d | stereo %s (F3)", lastFrameMs, lastTimings.ambientOcclusionMs(),
                     shadingModeName(frame.shading), renderer.outputSize().x, renderer.outputSize().y, stereoModeName(stereo));
+        // What is on screen: the exact frame (CAO == LAO, full resolution) or a preview; step I's progress.
+        ImGui::TextColored(shownExact ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", shownExact ? "EXACT" : "PREVIEW");
+        ImGui::SameLine();
+        if (ImGui::Checkbox("exact every frame", &exactEveryFrame)) loop.setQuality(exactEveryFrame ? ViewQuality::Exact : ViewQuality::Adaptive);
+        if (renderer.precomputePending(frame)) {
+            ImGui::ProgressBar(static_cast<float>(renderer.precomputeProgress()), ImVec2(320, 0), "");
+            ImGui::SameLine();
+            ImGui::Text("step I (LAO precompute) %.0f %%: shaded without AO until done", 100 * renderer.precomputeProgress());
+        }
         for (const FrameTimings::Entry& e : lastTimings.passes) ImGui::Text("  %-22s %8.1f ms", passInfo(e.pass).name, e.ms);
         auto meshLabel = [&](int index) {
             return index >= 0 && index < static_cast<int>(state.meshes.size()) ? "mesh " + std::to_string(index) + " \"" + state.meshes[static_cast<std::size_t>(index)].name + "\""
@@ -252,8 +275,21 @@ int view(const Arguments& args) {
 
         if (framebuffer.x > 0 && framebuffer.y > 0) {
             step.syncTo(renderer.clipMeshes());
-            double scaleNow = cameraMoving || lightMoving ? std::min(movingScale, renderScale) : renderScale;
-            frame.size = glm::max(glm::ivec2(glm::dvec2(framebuffer) * scaleNow), glm::ivec2(1));
+            glm::ivec2 exactSize = glm::max(glm::ivec2(glm::dvec2(framebuffer) * renderScale), glm::ivec2(1));
+            frame.size = exactSize;
+            FrameLoopInputs loopInputs;
+            loopInputs.now = now;
+            loopInputs.moved = changes.any() || cameraMoving;
+            loopInputs.precomputePending = renderer.precomputePending(frame);
+            loopInputs.exactSize = exactSize;
+            double stepMm = renderer.resolveStepMm(frame.raycast);
+            loopInputs.shown = [&](FrameKind kind, glm::ivec2 size) {
+                FrameDescription f = decidedFrame(frame, kind, size, loop.settings().previewStepScale, stepMm);
+                return kind == FrameKind::Exact ? renderer.showing(f) : renderer.showingPreview(f);
+            };
+            FrameDecision decision = loop.decide(loopInputs);
+            if (decision.render != FrameKind::None) frame.size = decision.size;
+            FrameDescription decided = decidedFrame(frame, decision.render, frame.size, decision.rayStepScale, stepMm);
             bool stereoKeyDown = !io.WantCaptureKeyboard && glfwGetKey(w, GLFW_KEY_F3) == GLFW_PRESS;
             if (stereoKeyDown && !stereoKeyWasDown) stereo = nextStereoMode(stereo);
             stereoKeyWasDown = stereoKeyDown;
@@ -261,9 +297,16 @@ int view(const Arguments& args) {
             bool rendered = false;
             if (stereo != StereoMode::Off) {
                 rendered = stereoView.update(renderer, frame, stereo, kDefaultEyeSeparationMm, glm::vec4(loaded.scene.background));
-            } else if (!renderer.showing(frame)) {
-                renderer.render(frame);
-                rendered = true;
+                if (rendered) shownExact = frame.size == exactSize;   // the pair is exact frames, at the decided size
+            } else {
+                if (decision.precomputeBudgetMs > 0) renderer.advancePrecompute(decision.precomputeBudgetMs);
+                auto imageStart = std::chrono::steady_clock::now();
+                if (decision.render == FrameKind::Preview) renderer.renderPreview(decided);
+                if (decision.render == FrameKind::Exact) renderer.render(decided);
+                rendered = decision.render != FrameKind::None || decision.precomputeBudgetMs > 0;
+                renderer.finish();
+                loop.rendered(decision, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - imageStart).count());
+                shownExact = renderer.lastFrameExact();
             }
             if (rendered) {
                 renderer.finish();

@@ -1,0 +1,161 @@
+// Preview and exact frames (docs/architecture.md): step I in slices equals step I in one dispatch bit for bit;
+// a preview (steps I, IV, V left out) writes nothing an exact frame reads, so the exact frame after any number
+// of previews equals a fresh renderer's; a preview during step I is the phong frame.
+#include "clip/primitives.h"
+#include "render/renderer.h"
+#include "tests/render/gl_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace curette {
+namespace {
+
+using test::glContext;
+
+// A 45 x 39 x 42 grid (partial bricks on every upper face) of 1 mm voxels, LAO K = 14, M = 4, a sphere of 5 mm
+// moving 23 mm: the bricks its dilated box reaches (a box of about 25 mm) at the first and the last pose differ,
+// so an update that forgot where the mesh was would leave voxels behind.
+struct PreviewScene {
+    VolumeData volume;
+    TransferFunction tf = test::rampTransferFunction(30, 180, 0.3);
+    std::unique_ptr<Renderer> renderer;
+    FrameDescription frame;
+    std::shared_ptr<const clip::TriangleMesh> sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 3));
+    PreviewScene() {
+        glContext();
+        glm::ivec3 dims(45, 39, 42);
+        volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, test::blobField);
+        renderer = std::make_unique<Renderer>(glContext(), volume, tf);
+        LaoSettings lao;
+        parseLaoPattern("14", lao.directions);
+        lao.samples = 4;
+        lao.stepMm = 1.0;
+        lao.antiAliasingSamples = 16;
+        renderer->setLaoSettings(lao);
+        renderer->clipMeshes().add(sphere, glm::dvec3(1.0), pose(0), "sphere");
+        frame.camera.fit(glm::dvec3(0), 0.9 * glm::length(glm::dvec3(dims)) / 2);
+        frame.camera.azimuthDeg = 30;
+        frame.camera.elevationDeg = 20;
+        frame.size = {48, 40};
+        frame.shading = ShadingMode::Cao;
+    }
+    // Pose n of a path across the blobs.
+    static clip::RigidPose pose(int n) {
+        clip::RigidPose p;
+        p.position = glm::dvec3(-10.0 + 5.0 * n, 6.0 - 3.0 * n, 2.0);
+        return p;
+    }
+    void moveTo(int n) { renderer->clipMeshes().setPose(0, pose(n)); }
+    std::vector<std::uint16_t> ambient() const { return renderer->ambientOcclusion()->readAmbient(); }
+};
+
+bool sameImage(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height && std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
+}
+
+bool runs(const FramePlan& plan, Pass pass) { return plan.runs(pass); }
+
+TEST(Preview, StepIInSlicesEqualsStepIInOneDispatch) {
+    PreviewScene whole, sliced;
+    whole.renderer->render(whole.frame);   // step I in one dispatch per phase, then IV, V, VI
+    ASSERT_TRUE(runs(whole.renderer->lastPlan(), Pass::LaoPrecompute));
+    std::vector<std::uint16_t> expected = whole.renderer->ambientOcclusion()->readPrecomputed();
+
+    // Slices of 7 bricks of the 12 x 10 x 11 = 1320: neither a brick row nor a z-slab, the last one short.
+    EXPECT_TRUE(sliced.renderer->precomputePending(sliced.frame));
+    int slices = 0;
+    double progress = 0;
+    while (sliced.renderer->precomputePending(sliced.frame)) {
+        double now = sliced.renderer->advancePrecompute(0.0, 7);
+        EXPECT_GT(now, progress) << "slice " << slices << " advances step I";
+        EXPECT_DOUBLE_EQ(now, sliced.renderer->precomputeProgress());
+        progress = now;
+        ASSERT_LT(++slices, 1000);
+    }
+    EXPECT_EQ(slices, 2 * 189) << "189 slices of voxel clipping, then 189 of LAO";
+    EXPECT_DOUBLE_EQ(progress, 1.0);
+    EXPECT_EQ(sliced.renderer->ambientOcclusion()->readPrecomputed(), expected) << "V_PAO in slices differs from one dispatch";
+    // The exact frame after it runs no step I and equals the one-dispatch renderer's.
+    sliced.renderer->render(sliced.frame);
+    EXPECT_FALSE(runs(sliced.renderer->lastPlan(), Pass::LaoPrecompute));
+    EXPECT_EQ(sliced.ambient(), whole.ambient());
+    EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage()));
+}
+
+TEST(Preview, AnExactFrameDuringStepIInSlicesFinishesItAndEqualsOneDispatch) {
+    PreviewScene whole, sliced;
+    whole.renderer->render(whole.frame);
+    for (int i = 0; i < 300; ++i) sliced.renderer->advancePrecompute(0.0, 5);   // phase 1 done (264 slices), phase 2 begun
+    ASSERT_TRUE(sliced.renderer->precomputePending(sliced.frame));
+    sliced.renderer->render(sliced.frame);
+    EXPECT_FALSE(sliced.renderer->precomputePending(sliced.frame));
+    EXPECT_EQ(sliced.renderer->ambientOcclusion()->readPrecomputed(), whole.renderer->ambientOcclusion()->readPrecomputed());
+    EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage()));
+}
+
+TEST(Preview, APreviewDuringStepIIsThePhongFrame) {
+    PreviewScene scene, phong;
+    scene.renderer->advancePrecompute(0.0, 3);
+    ASSERT_TRUE(scene.renderer->precomputePending(scene.frame));
+    EXPECT_EQ(scene.renderer->previewAmbient(), Renderer::PreviewAmbient::None);
+    scene.renderer->renderPreview(scene.frame);
+    EXPECT_FALSE(scene.renderer->lastFrameExact());
+    EXPECT_FALSE(scene.renderer->showing(scene.frame)) << "a preview is not the exact frame";
+    EXPECT_TRUE(scene.renderer->showingPreview(scene.frame));
+    for (const PlannedPass& p : scene.renderer->lastPlan().passes)
+        EXPECT_FALSE(passInfo(p.pass).ambientOcclusion) << passInfo(p.pass).name << " in a preview";
+    FrameDescription phongFrame = phong.frame;
+    phongFrame.shading = ShadingMode::Phong;
+    phong.renderer->render(phongFrame);
+    EXPECT_TRUE(sameImage(scene.renderer->readImage(), phong.renderer->readImage())) << "the preview is not the phong frame";
+    EXPECT_GT(scene.renderer->precomputeProgress(), 0.0);
+    EXPECT_LT(scene.renderer->precomputeProgress(), 1.0) << "a preview runs no step I";
+}
+
+// The exactness contract across previews: an exact frame, previews at other poses and sizes (shading with the
+// last exact V_AO, and with V_PAO before any exact frame), and the exact frame of the last pose equals a fresh
+// renderer's for that pose (what `curette render` gives), V_AO and image bit for bit.
+TEST(Preview, NeverChangesTheExactFrame) {
+    for (bool exactFirst : {true, false}) {
+        SCOPED_TRACE(exactFirst ? "previews after an exact frame" : "previews straight after step I");
+        PreviewScene viewer, fresh;
+        if (exactFirst) {
+            viewer.renderer->render(viewer.frame);
+            EXPECT_EQ(viewer.renderer->previewAmbient(), Renderer::PreviewAmbient::LastExact);
+        } else {
+            while (viewer.renderer->precomputePending(viewer.frame)) viewer.renderer->advancePrecompute(1e9);
+            EXPECT_EQ(viewer.renderer->previewAmbient(), Renderer::PreviewAmbient::Precomputed);
+        }
+        Image lastPreview;
+        for (int n = 1; n <= 4; ++n) {
+            viewer.moveTo(n);
+            FrameDescription small = viewer.frame;
+            small.size = {24 + n, 20};
+            viewer.renderer->renderPreview(small);
+            EXPECT_FALSE(runs(viewer.renderer->lastPlan(), Pass::VoxelClipping)) << "pose " << n;
+            EXPECT_FALSE(runs(viewer.renderer->lastPlan(), Pass::LaoRecompute)) << "pose " << n;
+            EXPECT_TRUE(runs(viewer.renderer->lastPlan(), Pass::RayCast)) << "pose " << n;
+            EXPECT_TRUE(viewer.renderer->showingPreview(small));
+            EXPECT_FALSE(viewer.renderer->showing(small));
+            lastPreview = viewer.renderer->readImage();
+        }
+        // The motion stops at pose 4; a full-size preview there too, then the exact frame.
+        viewer.renderer->renderPreview(viewer.frame);
+        Image preview = viewer.renderer->readImage();
+        viewer.renderer->render(viewer.frame);
+        EXPECT_TRUE(viewer.renderer->lastFrameExact());
+        EXPECT_TRUE(viewer.renderer->showing(viewer.frame));
+        EXPECT_TRUE(runs(viewer.renderer->lastPlan(), Pass::LaoRecompute)) << "the exact frame runs step V";
+        fresh.moveTo(4);
+        fresh.renderer->render(fresh.frame);
+        EXPECT_EQ(viewer.ambient(), fresh.ambient()) << "V_AO after previews differs from a fresh renderer's";
+        EXPECT_TRUE(sameImage(viewer.renderer->readImage(), fresh.renderer->readImage())) << "the exact image differs";
+        EXPECT_FALSE(sameImage(preview, fresh.renderer->readImage())) << "the preview must differ for the test to mean something";
+        EXPECT_EQ(viewer.renderer->previewAmbient(), Renderer::PreviewAmbient::LastExact);
+    }
+}
+
+}  // namespace
+}  // namespace curette
