@@ -181,6 +181,11 @@ int benchTracts(const CommandLine& cl) {
         for (std::size_t m = 0; m < modes.size(); ++m) cells.push_back(f.ms[m]), cells.push_back(f.gbufferMs[m]);
         cells.insert(cells.end(), {error, normalError, equal, imageDiff, differingShare});
         table.add(cells);
+        // Each row as soon as it is measured (a 100k run takes a while; the table follows at the end).
+        std::printf("    %s: build %.0f ms, %.1f MiB, %zu vertices", geometry.c_str(), totalMs, double(bytes) / (1 << 20), vertices);
+        for (std::size_t m = 0; m < modes.size(); ++m) std::printf(", %s %.0f ms/frame (G-buffer %.0f)", shadingModeName(modes[m]), f.ms[m], f.gbufferMs[m]);
+        std::printf("\n");
+        std::fflush(stdout);
         nlohmann::json row = {{"streamlines", streamlines}, {"geometry", geometry}, {"gpu_bytes", bytes}, {"vertices", vertices},
                               {"primitives", primitives}, {"cpu_sweep_ms", sweepMs}, {"cpu_expand_ms", expandMs},
                               {"upload_or_gpu_build_ms", uploadMs}, {"build_total_ms", totalMs},
