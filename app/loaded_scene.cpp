@@ -36,26 +36,62 @@ void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
         renderer.clearTubes();
         return;
     }
+    TubeShading shading = sceneTubeShading(scene);
+    if (scene.tubesBuiltOnGpu && !scene.tubesAsLines) renderer.setTubeRings(sweepSceneTubes(loaded), shading);
+    else renderer.setTubes(buildSceneTubeVertices(loaded), shading);
+}
+
+TubeShading sceneTubeShading(const Scene& scene) {
+    TubeShading shading = scene.tubeShading;
+    double radius = 0;
+    for (const SceneTubes& t : scene.tubes) radius = std::max(radius, t.settings.radiusMm);
+    shading.thicknessMm = 2.0 * radius;  // the depth a tube fills behind its surface in the slab pass
+    return shading;
+}
+
+namespace {
+
+void logSkipped(const SceneTubes& tubes, const TubeBuildStats& stats) {
+    if (stats.skippedSinglePoint)
+        log::info(tubes.path.string() + ": " + std::to_string(stats.skippedSinglePoint) + " one-point streamlines skipped");
+}
+
+}  // namespace
+
+TubeRings sweepSceneTubes(const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    TubeRings all;
+    for (std::size_t i = 0; i < scene.tubes.size(); ++i) {
+        TubeBuildStats stats;
+        TubeRings rings = sweepTubeRings(loaded.tracts[i], scene.tubes[i].settings, &stats);
+        logSkipped(scene.tubes[i], stats);
+        if (i == 0) all = std::move(rings);
+        else all.append(rings);
+    }
+    return all;
+}
+
+TubeVertices buildSceneTubeVertices(const LoadedScene& loaded) {
     // All entries into one vertex set (tubes, or lines for the illuminated-lines mode).
+    const Scene& scene = loaded.scene;
     TubeVertices all;
     all.lines = scene.tubesAsLines;
     for (std::size_t i = 0; i < scene.tubes.size(); ++i) {
         TubeBuildStats stats;
         TubeVertices v = scene.tubesAsLines ? buildIlluminatedLines(loaded.tracts[i], scene.tubes[i].settings, &stats)
                                             : buildTubes(loaded.tracts[i], scene.tubes[i].settings, &stats);
-        if (stats.skippedSinglePoint)
-            log::info(scene.tubes[i].path.string() + ": " + std::to_string(stats.skippedSinglePoint) + " one-point streamlines skipped");
+        logSkipped(scene.tubes[i], stats);
+        if (i == 0) {
+            all = std::move(v);   // no copy of the (large) first set
+            continue;
+        }
         std::uint32_t base = static_cast<std::uint32_t>(all.positions.size());
         all.positions.insert(all.positions.end(), v.positions.begin(), v.positions.end());
         all.directions.insert(all.directions.end(), v.directions.begin(), v.directions.end());
         all.colors.insert(all.colors.end(), v.colors.begin(), v.colors.end());
         for (std::uint32_t index : v.indices) all.indices.push_back(base + index);
     }
-    TubeShading shading = scene.tubeShading;
-    double radius = 0;
-    for (const SceneTubes& t : scene.tubes) radius = std::max(radius, t.settings.radiusMm);
-    shading.thicknessMm = 2.0 * radius;  // the depth a tube fills behind its surface in the slab pass
-    renderer.setTubes(all, shading);
+    return all;
 }
 
 ShadingMode parseShadingOption(const std::string& option, const std::string& text) {

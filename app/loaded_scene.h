@@ -23,6 +23,13 @@ LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
 // render the same thing.
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer);
 
+// The pieces configureRenderer hands the renderer for the scene's tubes (bench tracts times them one by one):
+// the shading (its thickness twice the largest radius), every entry's swept rings (for "build": "gpu"), and
+// every entry's vertices built on the CPU (tubes, or illuminated lines in "mode": "lines").
+TubeShading sceneTubeShading(const Scene& scene);
+TubeRings sweepSceneTubes(const LoadedScene& loaded);
+TubeVertices buildSceneTubeVertices(const LoadedScene& loaded);
+
 // Applies the --size/--shading/--azimuth/--elevation overrides shared by render-like commands.
 struct FrameOverrides {
     std::optional<glm::ivec2> size;

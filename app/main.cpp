@@ -34,6 +34,10 @@ const char* kUsage =
     "                                   and the plan's exports: labelmap (.nii.gz, .seg.nrrd), cavity\n"
     "                                   surface (STL, glTF), plan scene, cut and spared tracts (.tck)\n"
     "  bench raycast|cao|dos|ismos --scene S  speed with the error against the CPU reference next to it\n"
+    "  bench tracts [--scene S] [--counts 1000,10000,100000]\n"
+    "                                   lines and tubes at whole-brain scale: build, upload, GPU memory, frame time\n"
+    "  tracts synth --from DIR --count N --out F.tck\n"
+    "                                   jittered copies of tract bundles (deterministic: --seed, --jitter MM)\n"
     "  bench input                      report parsing throughput and report-to-pose latency\n"
     "  bench report --scene S           the removal report's time per stage, and its GPU inputs vs the CPU oracle\n"
     "  bench stereo --scene S           per shading mode, how alike the two eyes shade one surface point\n"
@@ -61,6 +65,7 @@ int main(int argc, char** argv) {
         if (command == "record") return curette::commands::record(args);
         if (command == "replay") return curette::commands::replay(args);
         if (command == "report") return curette::commands::report(args);
+        if (command == "tracts") return curette::commands::tracts(args);
         std::fprintf(stderr, "curette: unknown command \"%s\"\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const curette::InputError& e) {

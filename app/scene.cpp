@@ -248,6 +248,7 @@ ReportSpec parseReport(const JsonReader& r) {
 void parseTubeRendering(const JsonReader& r, Scene& scene) {
     TubeShading& t = scene.tubeShading;
     if (auto v = r.find("mode")) scene.tubesAsLines = v->oneOf({"tubes", "lines"}) == "lines";
+    if (auto v = r.find("build")) scene.tubesBuiltOnGpu = v->oneOf({"cpu", "gpu"}) == "gpu";
     if (auto v = r.find("geometry_opacity")) t.geometryOpacity = v->number(0, 1);
     if (auto v = r.find("vicinity_distance_mm")) t.vicinityDistanceMm = v->number(0, 1000);
     if (auto v = r.find("vicinity_samples")) t.vicinitySamples = v->integer(1, 256);

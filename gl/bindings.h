@@ -49,6 +49,13 @@ inline constexpr unsigned ssboProbePoints = 6;
 inline constexpr unsigned ssboProbeResults = 7;
 inline constexpr unsigned ssboRemovalCounts = 9;
 inline constexpr unsigned ssboIsmosLightSamples = 10;
+inline constexpr unsigned ssboTubeRings = 11;
+inline constexpr unsigned ssboTubeStreamlines = 12;
+inline constexpr unsigned ssboTubeCircle = 13;
+inline constexpr unsigned ssboTubePositions = 14;
+inline constexpr unsigned ssboTubeDirections = 15;
+inline constexpr unsigned ssboTubeColors = 16;
+inline constexpr unsigned ssboTubeIndices = 17;
 
 inline constexpr unsigned uboClipMeshes = 0;
 

@@ -1,5 +1,7 @@
 #include "render/renderer.h"
 
+#include "render/gpu_tube_builder.h"
+
 #include "base/error.h"
 #include "gl/bindings.h"
 #include "render/brick_distance.h"
@@ -99,7 +101,15 @@ void Renderer::ensureOutput(glm::ivec2 size) {
 }
 
 void Renderer::setTubes(const TubeVertices& vertices, const TubeShading& shading) {
+    tubes_.reset();   // the old streams go first: at whole-brain scale two sets need not fit at once
     tubes_ = std::make_unique<TubeSet>(vertices);
+    tubeShading_ = shading;
+    ++appearanceVersion_;
+}
+
+void Renderer::setTubeRings(const TubeRings& rings, const TubeShading& shading) {
+    tubes_.reset();
+    tubes_ = std::make_unique<TubeSet>(buildTubeBuffersOnGpu(rings));
     tubeShading_ = shading;
     ++appearanceVersion_;
 }

@@ -17,6 +17,7 @@
 #include "render/shader_pieces.h"
 #include "render/slab_pass.h"
 #include "render/transfer_function_texture.h"
+#include "render/tube_geometry.h"
 #include "render/tube_set.h"
 
 #include <memory>
@@ -53,6 +54,10 @@ public:
     // Tubes (or illuminated lines) in world millimetres; a scene with tubes in view renders through the
     // G-buffer, the slab pass and the compositor in every shading mode.
     void setTubes(const TubeVertices& vertices, const TubeShading& shading);
+    // Tubes expanded from their swept rings on the GPU (render/gpu_tube_builder.h): setTubes(expandTubeRings(
+    // rings)) within float rounding, with no vertex stream on the CPU.
+    void setTubeRings(const TubeRings& rings, const TubeShading& shading);
+    const TubeSet* tubes() const { return tubes_.get(); }
     void setTubeShading(const TubeShading& shading);
     void clearTubes();
     bool hasTubes() const { return tubes_ != nullptr; }

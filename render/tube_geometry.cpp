@@ -158,18 +158,11 @@ void validate(const TubeSettings& s) {
 
 }  // namespace
 
-TubeVertices buildTubes(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats) {
+TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats) {
     validate(settings);
     Colorer color(tracts, settings);
-    TubeVertices v;
+    TubeRings out;
     TubeBuildStats local;
-    auto add = [&](glm::dvec3 p, glm::dvec3 n, glm::vec4 c) {
-        v.positions.emplace_back(glm::vec3(p));
-        v.directions.emplace_back(glm::vec3(n));
-        v.colors.push_back(c);
-        return static_cast<std::uint32_t>(v.positions.size() - 1);
-    };
-    const int sides = settings.sides;
     for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
         ++local.streamlines;
         SweptCurve curve = sweepCurve(tracts, s, settings, &local.duplicatePointsRemoved);
@@ -178,48 +171,100 @@ TubeVertices buildTubes(const Tractogram& tracts, const TubeSettings& settings, 
             ++local.skippedSinglePoint;  // one point has no direction: nothing to sweep
             continue;
         }
-        std::uint32_t firstRing = static_cast<std::uint32_t>(v.positions.size());
-        for (std::size_t i = 0; i < n; ++i) {
-            glm::dvec3 t = curve.tangents[i], nrm = curve.normals[i], b = glm::cross(t, nrm);
-            glm::vec4 c = color(s, t, double(i) / double(n - 1));
-            for (int k = 0; k < sides; ++k) {
+        TubeStreamline line;
+        line.firstRing = static_cast<std::uint32_t>(out.rings.size());
+        line.ringCount = static_cast<std::uint32_t>(n);
+        line.firstVertex = static_cast<std::uint32_t>(out.vertexCount);
+        line.firstIndex = static_cast<std::uint32_t>(out.indexCount);
+        line.radiusMm = settings.radiusMm;
+        line.sides = static_cast<std::uint32_t>(settings.sides);
+        line.caps = settings.caps;
+        // A cap takes the colour at its end (fraction 0 or 1), which is its end ring's.
+        for (std::size_t i = 0; i < n; ++i)
+            out.rings.push_back({curve.points[i], curve.tangents[i], curve.normals[i], color(s, curve.tangents[i], double(i) / double(n - 1))});
+        local.rings += n;
+        out.vertexCount += line.vertexCount();
+        out.indexCount += line.indexCount();
+        if (out.vertexCount > 0xFFFFFFFFull || out.indexCount > 0xFFFFFFFFull)
+            throw InputError(tracts.source, "tubes", "at most 2^32 tube vertices and indices (fewer sides, a longer step_mm, fewer streamlines)",
+                             std::to_string(out.vertexCount) + " vertices");
+        out.streamlines.push_back(line);
+    }
+    if (stats) *stats = local;
+    return out;
+}
+
+void TubeRings::append(const TubeRings& other) {
+    std::uint32_t ringBase = static_cast<std::uint32_t>(rings.size());
+    rings.insert(rings.end(), other.rings.begin(), other.rings.end());
+    for (TubeStreamline line : other.streamlines) {
+        line.firstRing += ringBase;
+        line.firstVertex += static_cast<std::uint32_t>(vertexCount);
+        line.firstIndex += static_cast<std::uint32_t>(indexCount);
+        streamlines.push_back(line);
+    }
+    vertexCount += other.vertexCount;
+    indexCount += other.indexCount;
+}
+
+TubeVertices expandTubeRings(const TubeRings& rings) {
+    TubeVertices v;
+    v.positions.resize(rings.vertexCount);
+    v.directions.resize(rings.vertexCount);
+    v.colors.resize(rings.vertexCount);
+    v.indices.resize(rings.indexCount);
+    for (const TubeStreamline& line : rings.streamlines) {
+        const std::uint32_t sides = line.sides, n = line.ringCount;
+        const double radius = line.radiusMm;
+        std::uint32_t vertex = line.firstVertex, index = line.firstIndex;
+        auto add = [&](glm::dvec3 p, glm::dvec3 direction, glm::vec4 c) {
+            v.positions[vertex] = glm::vec3(p);
+            v.directions[vertex] = glm::vec3(direction);
+            v.colors[vertex] = c;
+            return vertex++;
+        };
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const TubeRing& ring = rings.rings[line.firstRing + i];
+            glm::dvec3 b = glm::cross(ring.tangent, ring.normal);
+            for (std::uint32_t k = 0; k < sides; ++k) {
                 double a = 2 * std::numbers::pi * k / sides;
-                glm::dvec3 radial = std::cos(a) * nrm + std::sin(a) * b;
-                add(curve.points[i] + settings.radiusMm * radial, radial, c);
+                glm::dvec3 radial = std::cos(a) * ring.normal + std::sin(a) * b;
+                add(ring.point + radius * radial, radial, ring.color);
             }
-            ++local.rings;
         }
-        for (std::size_t i = 0; i + 1 < n; ++i)
-            for (int k = 0; k < sides; ++k) {
-                std::uint32_t a = firstRing + static_cast<std::uint32_t>(i * sides + k);
-                std::uint32_t b = firstRing + static_cast<std::uint32_t>(i * sides + (k + 1) % sides);
-                std::uint32_t c = a + static_cast<std::uint32_t>(sides), d = b + static_cast<std::uint32_t>(sides);
+        for (std::uint32_t i = 0; i + 1 < n; ++i)
+            for (std::uint32_t k = 0; k < sides; ++k) {
+                std::uint32_t a = line.firstVertex + i * sides + k, b = line.firstVertex + i * sides + (k + 1) % sides;
+                std::uint32_t c = a + sides, d = b + sides;
                 // (normal, binormal, tangent) is right-handed, so going round the ring then along the tube,
                 // (a, b, d) and (a, d, c) are counter-clockwise seen from outside.
-                v.indices.insert(v.indices.end(), {a, b, d, a, d, c});
+                for (std::uint32_t corner : {a, b, d, a, d, c}) v.indices[index++] = corner;
             }
-        if (settings.caps) {
+        if (line.caps) {
             for (int end = 0; end < 2; ++end) {
-                std::size_t i = end ? n - 1 : 0;
-                glm::dvec3 axis = end ? curve.tangents[i] : -curve.tangents[i];
-                glm::vec4 c = color(s, curve.tangents[i], end ? 1.0 : 0.0);
-                std::uint32_t centre = add(curve.points[i], axis, c);
-                glm::dvec3 t = curve.tangents[i], nrm = curve.normals[i], b = glm::cross(t, nrm);
-                std::uint32_t rim = static_cast<std::uint32_t>(v.positions.size());
-                for (int k = 0; k < sides; ++k) {
+                const TubeRing& ring = rings.rings[line.firstRing + (end ? n - 1 : 0)];
+                glm::dvec3 axis = end ? ring.tangent : -ring.tangent;
+                std::uint32_t centre = add(ring.point, axis, ring.color);
+                glm::dvec3 b = glm::cross(ring.tangent, ring.normal);
+                std::uint32_t rim = vertex;
+                for (std::uint32_t k = 0; k < sides; ++k) {
                     double a = 2 * std::numbers::pi * k / sides;
-                    add(curve.points[i] + settings.radiusMm * (std::cos(a) * nrm + std::sin(a) * b), axis, c);
+                    add(ring.point + radius * (std::cos(a) * ring.normal + std::sin(a) * b), axis, ring.color);
                 }
-                for (int k = 0; k < sides; ++k) {
-                    std::uint32_t p = rim + static_cast<std::uint32_t>(k), q = rim + static_cast<std::uint32_t>((k + 1) % sides);
-                    if (end) v.indices.insert(v.indices.end(), {centre, p, q});
-                    else v.indices.insert(v.indices.end(), {centre, q, p});
+                for (std::uint32_t k = 0; k < sides; ++k) {
+                    std::uint32_t p = rim + k, q = rim + (k + 1) % sides;
+                    v.indices[index++] = centre;
+                    v.indices[index++] = end ? p : q;
+                    v.indices[index++] = end ? q : p;
                 }
             }
         }
     }
-    if (stats) *stats = local;
     return v;
+}
+
+TubeVertices buildTubes(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats) {
+    return expandTubeRings(sweepTubeRings(tracts, settings, stats));
 }
 
 TubeVertices buildIlluminatedLines(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats) {

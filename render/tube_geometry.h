@@ -30,8 +30,37 @@ struct TubeBuildStats {
     std::size_t streamlines = 0, skippedSinglePoint = 0, duplicatePointsRemoved = 0, rings = 0;
 };
 
-// Triangles with outward normals (TubeVertices::lines == false).
+// Triangles with outward normals (TubeVertices::lines == false): expandTubeRings(sweepTubeRings(...)).
 TubeVertices buildTubes(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats = nullptr);
+
+// The rings a tube is swept through, before any vertex exists: the sweep (cleaning, smoothing, frames,
+// colours) is done once on the CPU, and the rings are expanded into vertices and indices either here
+// (expandTubeRings, the oracle) or on the GPU (render/gpu_tube_builder.h), which write the same layout:
+// per streamline its rings' vertices (ring i, side k at firstVertex + i * sides + k), then with caps the
+// start cap (centre, then `sides` rim vertices) and the end cap; indices: per ring pair 6 per side, then
+// 3 per side for each cap.
+struct TubeRing {
+    glm::dvec3 point, tangent, normal;   // centre, unit tangent, unit rotation-minimising normal
+    glm::vec4 color;                     // of the ring's vertices (and of a cap at an end ring)
+};
+struct TubeStreamline {
+    std::uint32_t firstRing = 0, ringCount = 0;      // ringCount >= 2
+    std::uint32_t firstVertex = 0, firstIndex = 0;
+    double radiusMm = 0.5;
+    std::uint32_t sides = 8;
+    bool caps = true;
+    std::uint32_t vertexCount() const { return ringCount * sides + (caps ? 2 * (sides + 1) : 0); }
+    std::uint32_t indexCount() const { return (ringCount - 1) * sides * 6 + (caps ? 2 * 3 * sides : 0); }
+};
+struct TubeRings {
+    std::vector<TubeRing> rings;
+    std::vector<TubeStreamline> streamlines;
+    std::size_t vertexCount = 0, indexCount = 0;   // of the expanded tubes
+    // Appends `other`, its vertices and indices numbered after these.
+    void append(const TubeRings& other);
+};
+TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats = nullptr);
+TubeVertices expandTubeRings(const TubeRings& rings);
 // Line segments with tangents for illuminated-line shading (TubeVertices::lines == true).
 TubeVertices buildIlluminatedLines(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats = nullptr);
 

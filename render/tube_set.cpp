@@ -4,6 +4,7 @@
 #include "gl/bindings.h"
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace curette {
@@ -48,37 +49,70 @@ std::vector<float> GBuffer::readDepth() const {
     return values;
 }
 
-TubeSet::TubeSet(const TubeVertices& v) : lines_(v.lines) {
+namespace {
+
+TubeBuffers upload(const TubeVertices& v) {
     if (v.positions.size() != v.directions.size() || v.positions.size() != v.colors.size())
         throw InputError("<tubes>", "vertices", "as many directions and colours as positions");
     for (std::uint32_t i : v.indices)
         if (i >= v.positions.size()) throw InputError("<tubes>", "indices", "indices below the vertex count", std::to_string(i));
-    auto upload = [&](gl::Buffer& b, const void* data, std::size_t bytes) {
+    auto make = [&](gl::Buffer& b, const void* data, std::size_t bytes) {
         b = gl::createBuffer();
         glNamedBufferStorage(b.name(), static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr, 0);
-        bytes_ += bytes;
     };
-    upload(positions_, v.positions.data(), v.positions.size() * sizeof(glm::vec3));
-    upload(directions_, v.directions.data(), v.directions.size() * sizeof(glm::vec3));
-    upload(colors_, v.colors.data(), v.colors.size() * sizeof(glm::vec4));
-    upload(indices_, v.indices.data(), v.indices.size() * sizeof(std::uint32_t));
-    indexCount_ = static_cast<GLsizei>(v.indices.size());
+    TubeBuffers b;
+    make(b.positions, v.positions.data(), v.positions.size() * sizeof(glm::vec3));
+    make(b.directions, v.directions.data(), v.directions.size() * sizeof(glm::vec3));
+    make(b.colors, v.colors.data(), v.colors.size() * sizeof(glm::vec4));
+    make(b.indices, v.indices.data(), v.indices.size() * sizeof(std::uint32_t));
+    b.vertexCount = v.positions.size();
+    b.indexCount = v.indices.size();
+    b.lines = v.lines;
     if (!v.positions.empty()) {
-        boundsMin_ = boundsMax_ = glm::dvec3(v.positions.front());
-        for (const glm::vec3& p : v.positions) boundsMin_ = glm::min(boundsMin_, glm::dvec3(p)), boundsMax_ = glm::max(boundsMax_, glm::dvec3(p));
+        b.boundsMin = b.boundsMax = glm::dvec3(v.positions.front());
+        for (const glm::vec3& p : v.positions) b.boundsMin = glm::min(b.boundsMin, glm::dvec3(p)), b.boundsMax = glm::max(b.boundsMax, glm::dvec3(p));
     }
+    return b;
+}
+
+}  // namespace
+
+TubeSet::TubeSet(const TubeVertices& v) : TubeSet(upload(v)) {}
+
+TubeSet::TubeSet(TubeBuffers buffers) : buffers_(std::move(buffers)), lines_(buffers_.lines) {
+    if (buffers_.indexCount > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max()))
+        throw InputError("<tubes>", "indices", "at most 2^31 - 1 indices in one draw", std::to_string(buffers_.indexCount));
     vertexArray_ = gl::createVertexArray();
     GLuint va = vertexArray_.name();
-    glVertexArrayVertexBuffer(va, 0, positions_.name(), 0, sizeof(glm::vec3));
-    glVertexArrayVertexBuffer(va, 1, directions_.name(), 0, sizeof(glm::vec3));
-    glVertexArrayVertexBuffer(va, 2, colors_.name(), 0, sizeof(glm::vec4));
+    glVertexArrayVertexBuffer(va, 0, buffers_.positions.name(), 0, sizeof(glm::vec3));
+    glVertexArrayVertexBuffer(va, 1, buffers_.directions.name(), 0, sizeof(glm::vec3));
+    glVertexArrayVertexBuffer(va, 2, buffers_.colors.name(), 0, sizeof(glm::vec4));
     for (GLuint a = 0; a < 3; ++a) {
         glEnableVertexArrayAttrib(va, a);
         glVertexArrayAttribFormat(va, a, a == 2 ? 4 : 3, GL_FLOAT, GL_FALSE, 0);
         glVertexArrayAttribBinding(va, a, a);
     }
-    glVertexArrayElementBuffer(va, indices_.name());
+    glVertexArrayElementBuffer(va, buffers_.indices.name());
     program_ = gl::Program::graphics("tube_gbuffer.vert", "tube_gbuffer.frag");
+}
+
+TubeVertices TubeSet::readBack(std::size_t firstVertex, std::size_t vertexCount, std::size_t firstIndex, std::size_t indexCount) const {
+    if (firstVertex + vertexCount > buffers_.vertexCount || firstIndex + indexCount > buffers_.indexCount)
+        throw InputError("<tubes>", "read back", "a range within the tube set's vertices and indices");
+    TubeVertices v;
+    v.lines = lines_;
+    v.positions.resize(vertexCount);
+    v.directions.resize(vertexCount);
+    v.colors.resize(vertexCount);
+    v.indices.resize(indexCount);
+    auto read = [](const gl::Buffer& b, std::size_t offset, void* data, std::size_t bytes) {
+        if (bytes) glGetNamedBufferSubData(b.name(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+    };
+    read(buffers_.positions, firstVertex * sizeof(glm::vec3), v.positions.data(), vertexCount * sizeof(glm::vec3));
+    read(buffers_.directions, firstVertex * sizeof(glm::vec3), v.directions.data(), vertexCount * sizeof(glm::vec3));
+    read(buffers_.colors, firstVertex * sizeof(glm::vec4), v.colors.data(), vertexCount * sizeof(glm::vec4));
+    read(buffers_.indices, firstIndex * sizeof(std::uint32_t), v.indices.data(), indexCount * sizeof(std::uint32_t));
+    return v;
 }
 
 void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target) {
@@ -101,7 +135,7 @@ void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet
     clip.apply(program_);
     program_.use();
     glBindVertexArray(vertexArray_.name());
-    glDrawElements(lines_ ? GL_LINES : GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+    glDrawElements(lines_ ? GL_LINES : GL_TRIANGLES, static_cast<GLsizei>(buffers_.indexCount), GL_UNSIGNED_INT, nullptr);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);

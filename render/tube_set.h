@@ -1,7 +1,8 @@
 #pragma once
 // Tubes (or illuminated lines) on the GPU and the G-buffer they are drawn into (seed 000 section 3.1.1):
 // colour, world normal (tubes) or tangent (lines) with the surface kind, and the view depth along the camera
-// axis. The geometry itself is built on the CPU (render/tube_geometry.h) in world millimetres.
+// axis. The geometry is built in world millimetres on the CPU (render/tube_geometry.h) or, for tubes, expanded
+// from its swept rings on the GPU (render/gpu_tube_builder.h).
 
 #include "clip/clip_mesh_set.h"
 #include "gl/program.h"
@@ -31,26 +32,40 @@ private:
     gl::Framebuffer framebuffer_;
 };
 
+// The vertex streams of a TubeSet on the GPU, however they were filled.
+struct TubeBuffers {
+    gl::Buffer positions, directions, colors, indices;   // vec3, vec3, vec4, uint32 (TubeVertices' layout)
+    std::size_t vertexCount = 0, indexCount = 0;
+    bool lines = false;
+    glm::dvec3 boundsMin{0.0}, boundsMax{0.0};           // a world box holding every vertex
+    std::size_t bytes() const { return vertexCount * (2 * sizeof(glm::vec3) + sizeof(glm::vec4)) + indexCount * sizeof(std::uint32_t); }
+};
+
 class TubeSet {
 public:
+    // Uploads CPU-built vertices (the box is the vertices' own).
     explicit TubeSet(const TubeVertices& vertices);
+    explicit TubeSet(TubeBuffers buffers);
+    std::size_t vertexCount() const { return buffers_.vertexCount; }
+    // The vertex streams read back from the GPU (tests and bench tracts compare the two builders): all, or
+    // `vertexCount` vertices from `firstVertex` and `indexCount` indices from `firstIndex` (a whole-brain set
+    // is compared piece by piece).
+    TubeVertices readBack() const { return readBack(0, buffers_.vertexCount, 0, buffers_.indexCount); }
+    TubeVertices readBack(std::size_t firstVertex, std::size_t vertexCount, std::size_t firstIndex, std::size_t indexCount) const;
     bool lines() const { return lines_; }
-    std::size_t triangleCount() const { return lines_ ? 0 : indexCount_ / 3; }
-    std::size_t segmentCount() const { return lines_ ? indexCount_ / 2 : 0; }
-    std::size_t gpuBytes() const { return bytes_; }
+    std::size_t triangleCount() const { return lines_ ? 0 : buffers_.indexCount / 3; }
+    std::size_t segmentCount() const { return lines_ ? buffers_.indexCount / 2 : 0; }
+    std::size_t gpuBytes() const { return buffers_.bytes(); }
     // The world box around every vertex (the frame plan leaves tubes out of a frame they cannot be seen in).
-    glm::dvec3 boundsMin() const { return boundsMin_; }
-    glm::dvec3 boundsMax() const { return boundsMax_; }
+    glm::dvec3 boundsMin() const { return buffers_.boundsMin; }
+    glm::dvec3 boundsMax() const { return buffers_.boundsMax; }
     void drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target);
 
 private:
-    gl::Buffer positions_, directions_, colors_, indices_;
+    TubeBuffers buffers_;
     gl::VertexArray vertexArray_;
     gl::Program program_;
-    GLsizei indexCount_ = 0;
     bool lines_ = false;
-    std::size_t bytes_ = 0;
-    glm::dvec3 boundsMin_{0.0}, boundsMax_{0.0};
 };
 
 // Deterministic Poisson-disk samples in the unit disk (dart throwing with a fixed seed).

@@ -45,6 +45,13 @@
 #define SSBO_PROBE_RESULTS 7        // uint[]: per point bit 0 inside, bit 1 dilated, bit 2 near
 #define SSBO_ISMOS_LIGHT_SAMPLES 10  // vec4[]: ISMOS light samples in texture space, N per light
 #define SSBO_REMOVAL_COUNTS 9       // uint[]: per voxel of a box, clip samples inside a mesh (removal_count.comp)
+#define SSBO_TUBE_RINGS 11          // TubeRing[]: one batch of swept rings (tube_build.comp)
+#define SSBO_TUBE_STREAMLINES 12    // TubeStreamline[]: first ring, vertex and index, radius, sides, caps
+#define SSBO_TUBE_CIRCLE 13         // vec2[]: cos, sin of 2 pi k / sides, sides * (sides - 1) / 2 + k
+#define SSBO_TUBE_POSITIONS 14      // float[]: the batch's range of the tube position stream (x y z)
+#define SSBO_TUBE_DIRECTIONS 15     // float[]: ... of the normal stream (x y z)
+#define SSBO_TUBE_COLORS 16         // vec4[]: ... of the colour stream
+#define SSBO_TUBE_INDICES 17        // uint[]: ... of the triangle index stream
 
 #define UBO_CLIP_MESHES 0           // ClipMeshGpu[MAX_CLIP_MESHES]: per-mesh clipping camera
 

@@ -9,6 +9,7 @@
 #include "app/bench/bench_report.h"
 #include "app/bench/bench_stereo.h"
 #include "app/bench/bench_view.h"
+#include "app/bench/bench_tracts.h"
 #include "app/command_line.h"
 #include "app/commands/commands.h"
 #include "base/error.h"
@@ -17,7 +18,7 @@ namespace curette::commands {
 
 int bench(const Arguments& args) {
     if (args.empty())
-        throw InputError("<command line>", "bench", "what to measure: raycast, cao, dos, ismos, cut-face, input, report, stereo or view (curette bench raycast --scene S)",
+        throw InputError("<command line>", "bench", "what to measure: raycast, cao, dos, ismos, cut-face, input, report, stereo, view or tracts (curette bench raycast --scene S)",
                          "nothing");
     std::string what = args[0];
     Arguments rest(args.begin() + 1, args.end());
@@ -102,7 +103,17 @@ int bench(const Arguments& args) {
                                             {"json", true, "JSON output file (default bench-view.json)"}}));
         return bench::benchView(cl);
     }
-    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos, ismos, cut-face, input, report, stereo, view", "\"" + what + "\"");
+    if (what == "tracts") {
+        CommandLine cl(rest, withGpuOption({{"scene", true, "scene file with tubes (default assets/scenes/tracts-100k.json)"},
+                                            {"counts", true, "streamline counts, the first N of each tube entry (default 1000,10000,100000)"},
+                                            {"size", true, "image size (default 512x512)"},
+                                            {"frames", true, "frames timed per configuration and mode (default 3)"},
+                                            {"modes", true, "shading modes timed (default phong,dos)"},
+                                            {"images", true, "folder to write each configuration's first frame to (PNG)"},
+                                            {"json", true, "JSON output file (default bench-tracts.json)"}}));
+        return bench::benchTracts(cl);
+    }
+    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos, ismos, cut-face, input, report, stereo, view, tracts", "\"" + what + "\"");
 }
 
 }  // namespace curette::commands

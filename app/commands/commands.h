@@ -16,5 +16,6 @@ int bench(const Arguments& args);    // curette bench raycast|cao|dos|input --sc
 int record(const Arguments& args);   // curette record --scene S --out F.jsonl --synthetic FAMILIES
 int replay(const Arguments& args);   // curette replay F.jsonl [--check] [--from-reports] [--report]
 int report(const Arguments& args);   // curette report --scene S [--session F --frame N] --out DIR
+int tracts(const Arguments& args);   // curette tracts synth --from DIR --count N --seed S --out F.tck
 
 }  // namespace curette::commands

@@ -40,6 +40,14 @@ TEST(Scene, ShippedScenesParse) {
     EXPECT_EQ(carved.lao.directions.count, 26);
 }
 
+TEST(Scene, TubesAreBuiltOnTheCpuUnlessTheSceneAsksForTheGpu) {
+    EXPECT_FALSE(parse("{" + kVolume + "}").tubesBuiltOnGpu);
+    EXPECT_TRUE(parse("{" + kVolume + R"(, "tube_rendering": {"build": "gpu"}})").tubesBuiltOnGpu);
+    EXPECT_FALSE(parse("{" + kVolume + R"(, "tube_rendering": {"build": "cpu"}})").tubesBuiltOnGpu);
+    EXPECT_THROW(parse("{" + kVolume + R"(, "tube_rendering": {"build": "fpga"}})"), InputError);
+    EXPECT_TRUE(loadScene(kScenes / "tracts-100k.json").tubesBuiltOnGpu);
+}
+
 TEST(Scene, EveryKeyIsReadAndRelativePathsFollowTheSceneFile) {
     Scene s = parse("{" + kVolume + R"(, "camera": {"target": [1,2,3], "distance_mm": 300, "azimuth_deg": 10, "elevation_deg": -20, "fov_deg": 40},
         "shading": "lao", "lights": [{"direction": [0,0,1], "color": [1,0.5,0.5], "intensity": 2, "space": "world"}],

@@ -422,6 +422,13 @@ TEST(Raycast, BindingsMatchGlsl) {
     EXPECT_EQ(glsl.at("BINDING_TUBE_NORMAL"), binding::tubeNormal);
     EXPECT_EQ(glsl.at("BINDING_PARTIAL_OCCLUSION"), binding::partialOcclusion);
     EXPECT_EQ(glsl.at("IMAGE_PARTIAL_OCCLUSION"), binding::imagePartialOcclusion);
+    EXPECT_EQ(glsl.at("SSBO_TUBE_RINGS"), binding::ssboTubeRings);
+    EXPECT_EQ(glsl.at("SSBO_TUBE_STREAMLINES"), binding::ssboTubeStreamlines);
+    EXPECT_EQ(glsl.at("SSBO_TUBE_CIRCLE"), binding::ssboTubeCircle);
+    EXPECT_EQ(glsl.at("SSBO_TUBE_POSITIONS"), binding::ssboTubePositions);
+    EXPECT_EQ(glsl.at("SSBO_TUBE_DIRECTIONS"), binding::ssboTubeDirections);
+    EXPECT_EQ(glsl.at("SSBO_TUBE_COLORS"), binding::ssboTubeColors);
+    EXPECT_EQ(glsl.at("SSBO_TUBE_INDICES"), binding::ssboTubeIndices);
     EXPECT_EQ(glsl.at("SSBO_POISSON_DISK"), binding::ssboPoissonDisk);
     EXPECT_EQ(glsl.at("SSBO_SAMPLE_COUNTER"), binding::ssboSampleCounter);
     EXPECT_EQ(glsl.at("SSBO_LAO_DIRECTIONS"), binding::ssboLaoDirections);
