@@ -36,26 +36,32 @@ void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
         renderer.clearTubes();
         return;
     }
-    // All entries into one vertex set (tubes, or lines for the illuminated-lines mode).
+    renderer.setTubes(sceneTubeVertices(scene.tubes, scene.tubesAsLines, loaded.tracts), sceneTubeShading(scene.tubes, scene.tubeShading));
+}
+
+TubeVertices sceneTubeVertices(const std::vector<SceneTubes>& tubes, bool lines, const std::vector<Tractogram>& tracts) {
     TubeVertices all;
-    all.lines = scene.tubesAsLines;
-    for (std::size_t i = 0; i < scene.tubes.size(); ++i) {
+    all.lines = lines;
+    for (std::size_t i = 0; i < tubes.size(); ++i) {
         TubeBuildStats stats;
-        TubeVertices v = scene.tubesAsLines ? buildIlluminatedLines(loaded.tracts[i], scene.tubes[i].settings, &stats)
-                                            : buildTubes(loaded.tracts[i], scene.tubes[i].settings, &stats);
+        TubeVertices v = lines ? buildIlluminatedLines(tracts[i], tubes[i].settings, &stats) : buildTubes(tracts[i], tubes[i].settings, &stats);
         if (stats.skippedSinglePoint)
-            log::info(scene.tubes[i].path.string() + ": " + std::to_string(stats.skippedSinglePoint) + " one-point streamlines skipped");
+            log::info(tubes[i].path.string() + ": " + std::to_string(stats.skippedSinglePoint) + " one-point streamlines skipped");
         std::uint32_t base = static_cast<std::uint32_t>(all.positions.size());
         all.positions.insert(all.positions.end(), v.positions.begin(), v.positions.end());
         all.directions.insert(all.directions.end(), v.directions.begin(), v.directions.end());
         all.colors.insert(all.colors.end(), v.colors.begin(), v.colors.end());
         for (std::uint32_t index : v.indices) all.indices.push_back(base + index);
     }
-    TubeShading shading = scene.tubeShading;
+    return all;
+}
+
+TubeShading sceneTubeShading(const std::vector<SceneTubes>& tubes, const TubeShading& shading) {
+    TubeShading out = shading;
     double radius = 0;
-    for (const SceneTubes& t : scene.tubes) radius = std::max(radius, t.settings.radiusMm);
-    shading.thicknessMm = 2.0 * radius;  // the depth a tube fills behind its surface in the slab pass
-    renderer.setTubes(all, shading);
+    for (const SceneTubes& t : tubes) radius = std::max(radius, t.settings.radiusMm);
+    out.thicknessMm = 2.0 * radius;  // the depth a tube fills behind its surface in the slab pass
+    return out;
 }
 
 ShadingMode parseShadingOption(const std::string& option, const std::string& text) {

@@ -23,6 +23,12 @@ LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
 // render the same thing.
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer);
 
+// Every bundle of a scene's tubes in one vertex set (tubes, or lines for the illuminated-lines mode), and
+// their shading (the depth a tube fills in the slab pass is the diameter of the largest): what
+// configureRenderer and the session step (after a tube edit) hand the renderer.
+TubeVertices sceneTubeVertices(const std::vector<SceneTubes>& tubes, bool lines, const std::vector<Tractogram>& tracts);
+TubeShading sceneTubeShading(const std::vector<SceneTubes>& tubes, const TubeShading& shading);
+
 // Applies the --size/--shading/--azimuth/--elevation overrides shared by render-like commands.
 struct FrameOverrides {
     std::optional<glm::ivec2> size;

@@ -88,8 +88,7 @@ int replay(const Arguments& args) {
     }
 
     Session session = readSession(file, cl.flag("lenient"));
-    std::filesystem::path scenePath = session.header.scene;
-    if (scenePath.is_relative()) scenePath = file.parent_path() / scenePath;
+    std::filesystem::path scenePath = sessionScenePath(session);
     LoadedScene loaded = loadSceneWithVolume(scenePath);
     bool render = !cl.flag("no-render");
     bool reporting = cl.flag("report");
@@ -140,7 +139,7 @@ int replay(const Arguments& args) {
             input::KeyboardMouseState keys{f.keys, f.drag, f.lightDrag};
             step.frame().camera = f.camera;
             step.frame().size = f.size;
-            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size())), f.size.y);
+            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size())), f.size.y, f.edits, where);
             // The re-derived poses, lights (version 2) and shading must be the recorded ones, bit for bit.
             bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights);
             if (!same && poseMismatches++ == 0)
@@ -150,7 +149,7 @@ int replay(const Arguments& args) {
             step.follow(f, scenePath.parent_path(), where);
         }
         if (!render || n % static_cast<std::size_t>(every) != 0) continue;
-        step.syncTo(renderer->clipMeshes());
+        step.syncTo(*renderer, loaded.tracts);
         FrameDescription frame = step.frame();
         frame.size = size.value_or(f.size);
         frame.shading = f.shading;

@@ -251,7 +251,7 @@ int view(const Arguments& args) {
         ImGui::Render();
 
         if (framebuffer.x > 0 && framebuffer.y > 0) {
-            step.syncTo(renderer.clipMeshes());
+            step.syncTo(renderer, loaded.tracts);
             double scaleNow = cameraMoving || lightMoving ? std::min(movingScale, renderScale) : renderScale;
             frame.size = glm::max(glm::ivec2(glm::dvec2(framebuffer) * scaleNow), glm::ivec2(1));
             bool stereoKeyDown = !io.WantCaptureKeyboard && glfwGetKey(w, GLFW_KEY_F3) == GLFW_PRESS;
