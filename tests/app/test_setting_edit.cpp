@@ -32,14 +32,15 @@ TEST(SettingEdit, AnEditedSceneEqualsTheSceneWithThoseKeys) {
     const std::string dos = R"({"cone_angle_deg": 35, "grid": 5})";
     const std::string ismos = R"({"light_samples": 8, "occlusion": "full", "layers": 2})";
     const std::string light1 = R"({"direction": [0, 1, 0.5], "color": [1, 0.5, 0.25], "intensity": 2, "space": "world", "disk_radius": 0.1})";
-    const std::string lights0 = R"([{"direction": [1, 0, 0]}, {"direction": [0, 0, 1], "disk_radius": 0.4}])";
+    const std::string lights0 = R"([{"direction": [1, 0, 0], "disk_radius": 0.3}, {"direction": [0, 0, 1], "disk_radius": 0.4}])";
     Scene plain = sceneWith(R"("lights": )" + lights0);
-    Scene keyed = sceneWith(R"("lights": [{"direction": [1, 0, 0]}, )" + light1 + R"(], "transfer_function": )" + tf +
+    Scene keyed = sceneWith(R"("lights": [{"direction": [1, 0, 0], "disk_radius": 0.3}, )" + light1 + R"(], "transfer_function": )" + tf +
                             R"(, "ambient_occlusion": )" + ao + R"(, "raycast": )" + rc + R"(, "dos": )" + dos + R"(, "ismos": )" + ismos +
                             R"(, "shading": "dos")");
     InteractionState edited = InteractionState::fromScene(plain);
     auto json = [](const std::string& t) { return nlohmann::json::parse(t); };
-    // ismos before the light: the ISMOS edit keeps the lights' own keys, the light edit sets its own.
+    // ismos before the light: the ISMOS edit keeps the lights' own keys (light 0's disk), the light edit sets
+    // its own.
     edited.applyEdits({{Setting::TransferFunction, -1, json(tf)}, {Setting::AmbientOcclusion, -1, json(ao)}, {Setting::Raycast, -1, json(rc)},
                        {Setting::Dos, -1, json(dos)}, {Setting::Ismos, -1, json(ismos)}, {Setting::Light, 1, json(light1)},
                        {Setting::Shading, -1, "dos"}},
