@@ -1,8 +1,8 @@
 #pragma once
 // Sessions: JSON Lines, written atomically. Line 1 is the header (format, version, scene, devices, mapping,
 // and the state at the start: shading, meshes, input pipeline, so a recording may start mid-run); every further line is one frame: time, dt, image size, camera, shading, every clip
-// mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, and the raw HID
-// reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
+// mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, the panels' setting
+// edits (version 3, app/setting_edit.h), and the raw HID reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
 // back to the same doubles.
 
 #include "app/setting_edit.h"
