@@ -35,10 +35,40 @@ Light turnedLight(const Light& light, glm::dvec2 yawPitchRad, const OrbitCamera&
     return out;
 }
 
+namespace {
+
+// The state's copy of the scene's editable settings (InteractionState, app/setting_edit.h).
+void adoptSceneSettings(const Scene& scene, InteractionState& s) {
+    s.transferFunction = scene.transferFunction;
+    s.lao = scene.lao;
+    s.raycast = scene.raycast;
+    s.dos = scene.dos;
+    s.ismos = scene.ismos;
+    s.tubes = scene.tubes;
+    s.tubeRendering = {scene.tubesAsLines, scene.tubeShading, scene.tubesBuiltOnGpu};
+    s.sceneDirectory = scene.file.parent_path().empty() ? std::filesystem::path(".") : scene.file.parent_path();
+    s.fromSceneSettings = true;
+}
+
+// The scene-file name of the key an edit sets ("lights[1]"); empty for mesh settings.
+std::string editedKeyName(const SettingEdit& edit) {
+    const SettingInfo& info = settingInfo(edit.setting);
+    switch (info.target) {
+        case SettingTarget::None: return info.key;
+        case SettingTarget::Light:
+        case SettingTarget::Tubes: return std::string(info.key) + "[" + std::to_string(edit.target) + "]";
+        case SettingTarget::Mesh: return {};
+    }
+    return {};
+}
+
+}  // namespace
+
 InteractionState InteractionState::fromScene(const Scene& scene) {
     InteractionState s;
     s.shading = scene.shading;
     s.lights = scene.lights;
+    adoptSceneSettings(scene, s);
     for (const SceneClipMesh& m : scene.clipMeshes) {
         MeshState mesh;
         mesh.id = s.nextMeshId++;
@@ -59,6 +89,10 @@ InteractionState InteractionState::fromSessionStart(const SessionHeader& header,
     // The scene's lights (their colours), turned as they were when recording started (version 2; a version 1
     // session has none: the scene's, as they were then).
     s.lights = scene.lights;
+    adoptSceneSettings(scene, s);
+    // The settings edited before recording started (version 3), before the lights' directions.
+    s.applyEdits(header.edits, source + " line 1: edits");
+    s.appliedEdits.clear();
     if (header.lights) {
         if (header.lights->size() != scene.lights.size())
             throw InputError(source, "line 1: lights", "as many lights as the scene " + scene.file.string() + " has (" + std::to_string(scene.lights.size()) + ")",
@@ -90,6 +124,7 @@ InteractionState InteractionState::fromSessionStart(const SessionHeader& header,
         m.pose = start.pose;
         m.initialPose = start.initialPose;
         m.scale = start.scale;
+        if (start.clipsTubes) m.clipsTubes = *start.clipsTubes;   // version 3
         s.meshes.push_back(std::move(m));
     }
     return s;
@@ -97,7 +132,7 @@ InteractionState InteractionState::fromSessionStart(const SessionHeader& header,
 
 std::vector<SessionMeshStart> InteractionState::sessionMeshes() const {
     std::vector<SessionMeshStart> out;
-    for (const MeshState& m : meshes) out.push_back({m.id, m.name, m.description, m.pose, m.initialPose, m.scale});
+    for (const MeshState& m : meshes) out.push_back({m.id, m.name, m.description, m.pose, m.initialPose, m.scale, m.clipsTubes});
     return out;
 }
 
@@ -123,6 +158,126 @@ int InteractionState::indexOf(int meshId) const {
     for (std::size_t i = 0; i < meshes.size(); ++i)
         if (meshes[i].id == meshId) return static_cast<int>(i);
     return -1;
+}
+
+void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const std::string& source) {
+    for (std::size_t k = 0; k < edits.size(); ++k) {
+        SettingEdit edit = edits[k];
+        const SettingInfo& info = settingInfo(edit.setting);
+        const std::string where = "edits[" + std::to_string(k) + "]";
+        auto fail = [&](const std::string& expected) -> void {
+            throw InputError(source, where + "." + (info.targetKey ? info.targetKey : "setting"), expected, std::to_string(edit.target));
+        };
+        auto meshById = [&]() -> MeshState& {
+            int i = indexOf(edit.target);
+            if (i < 0) fail("the id of a clip mesh present at that frame");
+            return meshes[static_cast<std::size_t>(i)];
+        };
+        SceneTubes tubeDefaults;
+        if (edit.setting == Setting::Tubes) {
+            if (edit.target < 0 || edit.target >= static_cast<int>(tubes.size()))
+                fail("a bundle index below " + std::to_string(tubes.size()) + " (the scene's \"tubes\")");
+            tubeDefaults = tubes[static_cast<std::size_t>(edit.target)];
+            tubeDefaults.name = fileNameStems(tubeDefaults.path).back();
+        }
+        SettingValue value = readSettingValue(edit, source, where + ".value", sceneDirectory, tubeDefaults);
+        switch (edit.setting) {
+            case Setting::Shading: shading = std::get<ShadingMode>(value); break;
+            case Setting::TransferFunction:
+                transferFunction = std::get<TransferFunction>(value);
+                ++transferFunctionVersion;
+                break;
+            case Setting::AmbientOcclusion: lao = std::get<LaoSettings>(value); break;
+            case Setting::Raycast: raycast = std::get<RaycastSettings>(value); break;
+            case Setting::Dos: dos = std::get<DosSettings>(value); break;
+            case Setting::Ismos: {
+                std::vector<IsmosLightShape> shapes = ismos.lightShapes;   // the lights' own keys stay
+                ismos = std::get<IsmosSettings>(value);
+                ismos.lightShapes = shapes;
+                break;
+            }
+            case Setting::Light: {
+                if (edit.target < 0 || edit.target >= static_cast<int>(lights.size()))
+                    fail("a light index below " + std::to_string(lights.size()));
+                const LightValue& v = std::get<LightValue>(value);
+                lights[static_cast<std::size_t>(edit.target)] = v.light;
+                ismos.lightShapes.resize(lights.size());
+                ismos.lightShapes[static_cast<std::size_t>(edit.target)] = v.shape;
+                break;
+            }
+            case Setting::TubeRendering: {
+                const TubeRendering& v = std::get<TubeRendering>(value);
+                if (v.lines != tubeRendering.lines || v.builtOnGpu != tubeRendering.builtOnGpu)
+                    ++tubesVersion;   // lines and tubes, and where tubes are built, are other geometry
+                tubeRendering = v;
+                ++tubeShadingVersion;
+                break;
+            }
+            case Setting::Tubes:
+                tubes[static_cast<std::size_t>(edit.target)] = std::get<SceneTubes>(value);
+                ++tubesVersion;
+                break;
+            case Setting::MeshAdd: {
+                if (static_cast<int>(meshes.size()) >= clip::kMaxClipMeshes) fail("at most " + std::to_string(clip::kMaxClipMeshes) + " clip meshes");
+                SceneClipMesh added = std::get<SceneClipMesh>(value);
+                if (edit.target < 0) edit.target = nextMeshId;   // live: the next id; recorded: the id it had
+                if (indexOf(edit.target) >= 0) fail("the id of a mesh not present yet");
+                nextMeshId = std::max(nextMeshId, edit.target + 1);
+                MeshState m;
+                m.id = edit.target;
+                m.name = edit.value.contains("name") ? added.name : "added " + std::to_string(m.id);
+                m.description = edit.value.at("mesh").dump();
+                m.geometry = added.geometry;
+                m.pose = m.initialPose = added.pose;
+                m.scale = added.scale;
+                m.clipsTubes = added.clipsTubes;
+                meshes.push_back(m);
+                addedMeshIds.push_back(m.id);
+                break;
+            }
+            case Setting::MeshRemove: {
+                MeshState& m = meshById();
+                removedMeshIds.push_back(m.id);
+                meshes.erase(meshes.begin() + indexOf(m.id));
+                break;
+            }
+            case Setting::MeshShape: {
+                MeshState& m = meshById();
+                m.geometry = std::get<MeshGeometry>(value).mesh;
+                m.description = edit.value.dump();
+                break;
+            }
+            case Setting::MeshScale: meshById().scale = std::get<glm::dvec3>(value); break;
+            case Setting::MeshClipsTubes: meshById().clipsTubes = std::get<bool>(value); break;
+            case Setting::Count: break;
+        }
+        if (std::string key = editedKeyName(edit); !key.empty()) editedKeys[key] = edit.value;
+        appliedEdits.push_back(edit);
+    }
+}
+
+std::vector<SettingEdit> InteractionState::settingEdits() const {
+    std::vector<SettingEdit> out;
+    for (const auto& [key, value] : editedKeys) {
+        SettingEdit e;
+        std::size_t bracket = key.find('[');
+        e.setting = *settingFromKey(key.substr(0, bracket));
+        if (bracket != std::string::npos) e.target = std::stoi(key.substr(bracket + 1));
+        e.value = value;
+        out.push_back(e);
+    }
+    return out;
+}
+
+nlohmann::json InteractionState::keyJson(const Scene& scene, const std::string& key) const {
+    if (auto it = editedKeys.find(key); it != editedKeys.end()) return it->second;
+    std::size_t bracket = key.find('[');
+    std::string name = key.substr(0, bracket);
+    if (!scene.json.is_object() || !scene.json.contains(name)) return nullptr;
+    const nlohmann::json& value = scene.json.at(name);
+    if (bracket == std::string::npos) return value;
+    std::size_t index = static_cast<std::size_t>(std::stoi(key.substr(bracket + 1)));
+    return value.is_array() && index < value.size() ? value[index] : nlohmann::json();
 }
 
 void InteractionState::apply(const std::vector<input::Action>& actions, const OrbitCamera& camera, int viewportHeight) {

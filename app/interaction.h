@@ -6,6 +6,7 @@
 
 #include "app/scene.h"
 #include "app/session.h"
+#include "app/setting_edit.h"
 #include "clip/limits.h"
 #include "clip/rigid_pose.h"
 #include "clip/triangle_mesh.h"
@@ -13,6 +14,8 @@
 #include "render/camera.h"
 #include "render/frame.h"
 
+#include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,9 +41,26 @@ struct InteractionState {
     std::vector<Light> lights;
     int selectedLight = 0;
     int nextMeshId = 0;
+    // The scene's settings the panels edit (app/setting_edit.h), from the scene and then its edits; the session
+    // step hands them to the frame (raycast, dos, ismos, lights) and the renderer (SessionStep::syncTo).
+    TransferFunction transferFunction;
+    LaoSettings lao;
+    RaycastSettings raycast;
+    DosSettings dos;
+    IsmosSettings ismos;                 // lightShapes: one per light
+    std::vector<SceneTubes> tubes;
+    TubeRendering tubeRendering;
+    std::uint64_t transferFunctionVersion = 0, tubesVersion = 0, tubeShadingVersion = 0;   // counted per edit
+    // The value of every key an edit has set, latest first wins, by the key's name in the scene file
+    // ("transfer_function", "lights[1]", "tubes[0]", ...; mesh settings live in the meshes): what the scene
+    // writer (app/plan_scene.h) writes, what the panels start from and what a session header carries.
+    std::map<std::string, nlohmann::json> editedKeys;
+    std::filesystem::path sceneDirectory = ".";   // glTF paths of edited meshes are relative to it
+    bool fromSceneSettings = false;   // the settings above are a scene's (else SessionStep adopts its frame's)
     // One-shot requests the frame loop handles (and clears).
     bool toggleRecording = false, screenshot = false;
     std::vector<int> addedMeshIds, removedMeshIds;   // this frame's, for the session's mesh events
+    std::vector<SettingEdit> appliedEdits;           // this frame's, as applied (an added mesh with its id)
 
     static InteractionState fromScene(const Scene& scene);
     // The state a session starts from (its header), with geometry from the scene or the meshes' descriptions.
@@ -53,6 +73,16 @@ struct InteractionState {
     int indexOf(int meshId) const;  // -1 when absent
     // Applies `actions` for a frame seen through `camera` at `viewportHeight` pixels (for drags).
     void apply(const std::vector<input::Action>& actions, const OrbitCamera& camera, int viewportHeight);
+    // Applies setting edits (after the frame's actions): each value read by the scene reader's function for
+    // its key (app/setting_edit.h), then set where the scene's value was. `source` names them in errors
+    // (a session line, or "<panel>"). Appends each, as applied, to appliedEdits.
+    void applyEdits(const std::vector<SettingEdit>& edits, const std::string& source);
+    // The edits that turn the scene's settings into this state's (for a session header: a recording that
+    // starts after edits), one per edited key; meshes are not among them (the header lists the meshes).
+    std::vector<SettingEdit> settingEdits() const;
+    // The scene file's current JSON of a key ("ambient_occlusion", "lights[0]", ...): the last edit's value,
+    // else the scene's own (null when the scene does not have the key).
+    nlohmann::json keyJson(const Scene& scene, const std::string& key) const;
     // The mesh AddMesh creates: a 15 mm sphere at the camera's target.
     static const char* addedMeshDescription();
 };

@@ -63,6 +63,7 @@ SessionHeader headerNow(const std::string& scene, const InteractionState& state,
     h.nextMeshId = state.nextMeshId;
     h.lights = state.sessionLights();
     h.selectedLight = state.selectedLight;
+    h.edits = state.settingEdits();
     h.inputState = input.pipeline().state();
     h.keyboardMmPerSecond = input.keyboardMmPerSecond();
     h.keyboardDegPerSecond = input.keyboardDegPerSecond();
@@ -99,6 +100,7 @@ void LiveRecording::addFrame(double now, double dt, glm::ivec2 size, const Orbit
         bool addedThisFrame = std::count(state.addedMeshIds.begin(), state.addedMeshIds.end(), id) > 0;
         if (!addedThisFrame) f.meshesRemoved.push_back(id);
     }
+    f.edits = state.appliedEdits;
     for (const input::RawReport& r : input.reports) f.reports.push_back({r.deviceId, std::max(0.0, r.timeSeconds - start_), r.bytes});
     recorder_.add(f);
 }

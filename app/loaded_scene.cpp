@@ -32,21 +32,7 @@ void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
     LabelRendering labels = labelRendering(loaded.labels);
     if (!labels.ids.empty()) renderer.setLabels(std::make_unique<LabelOverlay>(loaded.volume.dims, labels.ids, labels.styles));
     syncClipMeshes(InteractionState::fromScene(scene), renderer.clipMeshes());
-    if (scene.tubes.empty()) {
-        renderer.clearTubes();
-        return;
-    }
-    TubeShading shading = sceneTubeShading(scene);
-    if (scene.tubesBuiltOnGpu && !scene.tubesAsLines) renderer.setTubeRings(sweepSceneTubes(loaded), shading);
-    else renderer.setTubes(buildSceneTubeVertices(loaded), shading);
-}
-
-TubeShading sceneTubeShading(const Scene& scene) {
-    TubeShading shading = scene.tubeShading;
-    double radius = 0;
-    for (const SceneTubes& t : scene.tubes) radius = std::max(radius, t.settings.radiusMm);
-    shading.thicknessMm = 2.0 * radius;  // the depth a tube fills behind its surface in the slab pass
-    return shading;
+    setSceneTubes(renderer, scene.tubes, TubeRendering{scene.tubesAsLines, scene.tubeShading, scene.tubesBuiltOnGpu}, loaded.tracts);
 }
 
 namespace {
@@ -58,29 +44,37 @@ void logSkipped(const SceneTubes& tubes, const TubeBuildStats& stats) {
 
 }  // namespace
 
-TubeRings sweepSceneTubes(const LoadedScene& loaded) {
-    const Scene& scene = loaded.scene;
+void setSceneTubes(Renderer& renderer, const std::vector<SceneTubes>& tubes, const TubeRendering& rendering,
+                   const std::vector<Tractogram>& tracts) {
+    if (tubes.empty()) {
+        renderer.clearTubes();
+        return;
+    }
+    TubeShading shading = sceneTubeShading(tubes, rendering.shading);
+    if (rendering.builtOnGpu && !rendering.lines) renderer.setTubeRings(sceneTubeRings(tubes, tracts), shading);
+    else renderer.setTubes(sceneTubeVertices(tubes, rendering.lines, tracts), shading);
+}
+
+TubeRings sceneTubeRings(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts) {
     TubeRings all;
-    for (std::size_t i = 0; i < scene.tubes.size(); ++i) {
+    for (std::size_t i = 0; i < tubes.size(); ++i) {
         TubeBuildStats stats;
-        TubeRings rings = sweepTubeRings(loaded.tracts[i], scene.tubes[i].settings, &stats);
-        logSkipped(scene.tubes[i], stats);
+        TubeRings rings = sweepTubeRings(tracts[i], tubes[i].settings, &stats);
+        logSkipped(tubes[i], stats);
         if (i == 0) all = std::move(rings);
         else all.append(rings);
     }
     return all;
 }
 
-TubeVertices buildSceneTubeVertices(const LoadedScene& loaded) {
+TubeVertices sceneTubeVertices(const std::vector<SceneTubes>& tubes, bool lines, const std::vector<Tractogram>& tracts) {
     // All entries into one vertex set (tubes, or lines for the illuminated-lines mode).
-    const Scene& scene = loaded.scene;
     TubeVertices all;
-    all.lines = scene.tubesAsLines;
-    for (std::size_t i = 0; i < scene.tubes.size(); ++i) {
+    all.lines = lines;
+    for (std::size_t i = 0; i < tubes.size(); ++i) {
         TubeBuildStats stats;
-        TubeVertices v = scene.tubesAsLines ? buildIlluminatedLines(loaded.tracts[i], scene.tubes[i].settings, &stats)
-                                            : buildTubes(loaded.tracts[i], scene.tubes[i].settings, &stats);
-        logSkipped(scene.tubes[i], stats);
+        TubeVertices v = lines ? buildIlluminatedLines(tracts[i], tubes[i].settings, &stats) : buildTubes(tracts[i], tubes[i].settings, &stats);
+        logSkipped(tubes[i], stats);
         if (i == 0) {
             all = std::move(v);   // no copy of the (large) first set
             continue;
@@ -92,6 +86,14 @@ TubeVertices buildSceneTubeVertices(const LoadedScene& loaded) {
         for (std::uint32_t index : v.indices) all.indices.push_back(base + index);
     }
     return all;
+}
+
+TubeShading sceneTubeShading(const std::vector<SceneTubes>& tubes, const TubeShading& shading) {
+    TubeShading out = shading;
+    double radius = 0;
+    for (const SceneTubes& t : tubes) radius = std::max(radius, t.settings.radiusMm);
+    out.thicknessMm = 2.0 * radius;  // the depth a tube fills behind its surface in the slab pass
+    return out;
 }
 
 ShadingMode parseShadingOption(const std::string& option, const std::string& text) {

@@ -23,12 +23,16 @@ LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
 // render the same thing.
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer);
 
-// The pieces configureRenderer hands the renderer for the scene's tubes (bench tracts times them one by one):
-// the shading (its thickness twice the largest radius), every entry's swept rings (for "build": "gpu"), and
-// every entry's vertices built on the CPU (tubes, or illuminated lines in "mode": "lines").
-TubeShading sceneTubeShading(const Scene& scene);
-TubeRings sweepSceneTubes(const LoadedScene& loaded);
-TubeVertices buildSceneTubeVertices(const LoadedScene& loaded);
+// Every bundle of a scene's tubes in one vertex set (tubes, or lines for the illuminated-lines mode), and
+// their shading (the depth a tube fills in the slab pass is the diameter of the largest): what
+// configureRenderer and the session step (after a tube edit) hand the renderer.
+TubeVertices sceneTubeVertices(const std::vector<SceneTubes>& tubes, bool lines, const std::vector<Tractogram>& tracts);
+TubeShading sceneTubeShading(const std::vector<SceneTubes>& tubes, const TubeShading& shading);
+// Every bundle's swept rings, for tubes expanded on the GPU ("build": "gpu", render/gpu_tube_builder.h).
+TubeRings sceneTubeRings(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts);
+// The scene's tubes into the renderer as `rendering` says (lines, CPU-built or GPU-built tubes).
+void setSceneTubes(Renderer& renderer, const std::vector<SceneTubes>& tubes, const TubeRendering& rendering,
+                   const std::vector<Tractogram>& tracts);
 
 // Applies the --size/--shading/--azimuth/--elevation overrides shared by render-like commands.
 struct FrameOverrides {

@@ -43,7 +43,7 @@ glm::dvec3 rotationDegrees(const glm::dquat& q) {
     return glm::degrees(glm::dvec3(a, b, c));
 }
 
-std::string planSceneJson(const Scene& scene, const std::string& sceneText, const InteractionState& state) {
+std::string planSceneJson(const Scene& scene, const std::string& sceneText, const InteractionState& state, const OrbitCamera* camera) {
     nlohmann::json root;
     try {
         root = nlohmann::json::parse(sceneText);
@@ -80,6 +80,38 @@ std::string planSceneJson(const Scene& scene, const std::string& sceneText, cons
     }
     root["clip_meshes"] = meshes;
     root["shading"] = shadingModeName(state.shading);
+    // Edited settings: the value of the last edit of each key (lights and tubes below).
+    for (const auto& [key, value] : state.editedKeys)
+        if (key.find('[') == std::string::npos) root[key] = value;
+    if (!state.tubes.empty()) {
+        for (std::size_t i = 0; i < state.tubes.size(); ++i) {
+            auto edited = state.editedKeys.find("tubes[" + std::to_string(i) + "]");
+            if (edited == state.editedKeys.end()) continue;
+            nlohmann::json entry = edited->second;   // every key but the path
+            entry["path"] = state.tubes[i].path.lexically_normal().string();
+            makeAbsolute(entry["path"], directory);
+            root["tubes"][i] = entry;
+        }
+    }
+    // The lights as they are now: each one's JSON (edited or the scene's) with its current direction.
+    nlohmann::json lights = nlohmann::json::array();
+    for (std::size_t i = 0; i < state.lights.size(); ++i) {
+        nlohmann::json entry = state.keyJson(scene, "lights[" + std::to_string(i) + "]");
+        if (!entry.is_object()) entry = nlohmann::json::object();   // the default light of a scene without "lights"
+        const glm::dvec3& d = state.lights[i].direction;
+        entry["direction"] = {d.x, d.y, d.z};
+        lights.push_back(entry);
+    }
+    root["lights"] = lights;
+    if (camera) {
+        root["camera"] = {{"target", {camera->target.x, camera->target.y, camera->target.z}},
+                          {"distance_mm", camera->distanceMm},
+                          {"azimuth_deg", camera->azimuthDeg},
+                          {"elevation_deg", camera->elevationDeg},
+                          {"fov_deg", camera->fovYDeg},
+                          {"near_mm", camera->nearMm},
+                          {"far_mm", camera->farMm}};
+    }
     return root.dump(2) + "\n";
 }
 

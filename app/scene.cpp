@@ -1,6 +1,7 @@
 #include "app/scene.h"
 
 #include "app/io/transfer_function_file.h"
+#include "app/scene_keys.h"
 #include "clip/mesh_description.h"
 #include "clip/limits.h"
 #include "base/atomic_file.h"
@@ -102,101 +103,16 @@ void parseCamera(const JsonReader& r, CameraSpec& camera) {
     if (auto a = r.find("azimuth_deg")) camera.azimuthDeg = a->number(-360, 360);
     if (auto e = r.find("elevation_deg")) camera.elevationDeg = e->number(-89.9, 89.9);
     if (auto f = r.find("fov_deg")) camera.fovYDeg = f->number(1, 170);
+    if (auto n = r.find("near_mm")) camera.nearMm = n->number(1e-6, 1e7);
+    if (auto f = r.find("far_mm")) camera.farMm = f->number(1e-6, 1e8);
     r.finish();
-}
-
-Light parseLight(const JsonReader& r, IsmosLightShape& shape) {
-    Light light;
-    light.direction = r.at("direction").vec3();
-    if (glm::length(light.direction) < 1e-9) r.at("direction").fail("a non-zero direction");
-    glm::dvec3 color(1.0);
-    if (auto c = r.find("color")) color = c->vec3(0, 1);
-    double intensity = 1.0;
-    if (auto i = r.find("intensity")) intensity = i->number(0, 100);
-    light.color = color * intensity;
-    if (auto s = r.find("space")) light.cameraSpace = s->oneOf({"camera", "world"}) == "camera";
-    if (auto d = r.find("disk_radius")) shape.diskRadius = d->number(0, 10);
-    if (auto spot = r.find("spot")) {
-        shape.spotAngleDeg = spot->at("angle_deg").number(0.1, 180);
-        if (auto t = spot->find("target")) shape.spotTarget = t->vec3();
-        spot->finish();
-    }
-    r.finish();
-    return light;
-}
-
-LaoSettings parseLao(const JsonReader& r) {
-    LaoSettings lao;
-    if (auto rays = r.find("rays")) {
-        std::string text = rays->isNumber() ? std::to_string(rays->integer(1, 4096)) : rays->string();
-        if (!parseLaoPattern(text, lao.directions))
-            rays->fail("one of \"6\", \"14\", \"26\", \"54\" (the paper's patterns) or \"fibonacci:K\" with K in [1, 4096]");
-    }
-    if (auto m = r.find("samples")) lao.samples = m->integer(1, 1024);
-    if (auto s = r.find("step_mm")) lao.stepMm = s->number(1e-3, 100);
-    if (auto n = r.find("antialiasing_samples")) lao.antiAliasingSamples = n->integer(0, 256);
-    if (auto j = r.find("jitter")) lao.directions.jitter = j->number(0, 0.5);
-    if (auto w = r.find("weights")) lao.directions.skyWeighting = w->oneOf({"uniform", "sky"}) == "sky";
-    if (auto a = r.find("ambient_scale")) lao.ambientScale = a->number(0, 10);
-    if (auto d = r.find("dispatch"))
-        lao.dispatch = d->oneOf({"compacted", "full_grid"}) == "full_grid" ? LaoSettings::Dispatch::FullGrid
-                                                                             : LaoSettings::Dispatch::Compacted;
-    r.finish();
-    return lao;
-}
-
-SceneClipMesh parseClipMesh(const JsonReader& r, const fs::path& sceneFile, std::size_t index) {
-    SceneClipMesh mesh;
-    mesh.name = "mesh " + std::to_string(index);
-    if (auto n = r.find("name")) mesh.name = n->string();
-    mesh.geometry = std::make_shared<const clip::TriangleMesh>(clip::meshFromJson(r.at("mesh"), sceneFile.parent_path()));
-    if (auto p = r.find("position_mm")) mesh.pose.position = p->vec3(-1e5, 1e5);
-    if (auto rot = r.find("rotation_deg")) {
-        glm::dvec3 a = glm::radians(rot->vec3(-3600, 3600));
-        mesh.pose.orientation = glm::angleAxis(a.z, glm::dvec3(0, 0, 1)) * glm::angleAxis(a.y, glm::dvec3(0, 1, 0)) *
-                                glm::angleAxis(a.x, glm::dvec3(1, 0, 0));
-    }
-    if (auto c = r.find("clips_tubes")) mesh.clipsTubes = c->boolean();
-    if (auto s = r.find("scale")) {
-        if (s->isNumber()) {
-            mesh.scale = glm::dvec3(s->number(1e-6, 1e6));
-        } else {
-            mesh.scale = s->vec3(1e-6, 1e6);
-        }
-    }
-    r.finish();
-    return mesh;
 }
 
 SceneTubes parseTubes(const JsonReader& r, const fs::path& sceneFile) {
     SceneTubes t;
     t.path = resolvePath(sceneFile, r.at("path").string());
-    TubeSettings& s = t.settings;
-    if (auto v = r.find("radius_mm")) s.radiusMm = v->number(1e-3, 100);
-    if (auto v = r.find("sides")) s.sides = v->integer(3, 64);
-    if (auto v = r.find("caps")) s.caps = v->boolean();
-    if (auto v = r.find("smoothing")) s.smoothing = v->oneOf({"catmull-rom", "none"}) == "none" ? TubeSettings::Smoothing::None
-                                                                                                 : TubeSettings::Smoothing::CatmullRom;
-    if (auto v = r.find("step_mm")) s.stepMm = v->number(1e-2, 100);
-    if (auto c = r.find("color")) {
-        if (c->isArray()) {
-            s.coloring = TubeSettings::Coloring::Uniform;
-            s.uniformColor = c->vec3(0, 1);
-        } else {
-            s.coloring = c->oneOf({"direction", "scalar"}) == "scalar" ? TubeSettings::Coloring::Scalar : TubeSettings::Coloring::Direction;
-        }
-    }
-    if (auto v = r.find("scalar")) s.scalarName = v->string();
-    if (auto v = r.find("scalar_range")) {
-        glm::dvec2 range = v->vec2();
-        s.scalarMin = range.x, s.scalarMax = range.y;
-    }
-    if (s.coloring == TubeSettings::Coloring::Scalar && s.scalarName.empty())
-        throw InputError(sceneFile.string(), r.path() + ".scalar", "the name of a per-point scalar for \"color\": \"scalar\"", "nothing");
     t.name = fileStem(t.path);
-    if (auto v = r.find("name")) t.name = v->string();
-    if (auto v = r.find("protected")) t.protectedBundle = v->boolean();
-    r.finish();
+    readTubeKeys(r, t, sceneFile.string());
     return t;
 }
 
@@ -245,49 +161,6 @@ ReportSpec parseReport(const JsonReader& r) {
     return spec;
 }
 
-void parseTubeRendering(const JsonReader& r, Scene& scene) {
-    TubeShading& t = scene.tubeShading;
-    if (auto v = r.find("mode")) scene.tubesAsLines = v->oneOf({"tubes", "lines"}) == "lines";
-    if (auto v = r.find("build")) scene.tubesBuiltOnGpu = v->oneOf({"cpu", "gpu"}) == "gpu";
-    if (auto v = r.find("geometry_opacity")) t.geometryOpacity = v->number(0, 1);
-    if (auto v = r.find("vicinity_distance_mm")) t.vicinityDistanceMm = v->number(0, 1000);
-    if (auto v = r.find("vicinity_samples")) t.vicinitySamples = v->integer(1, 256);
-    if (auto v = r.find("depth_bias_mm")) t.depthBiasMm = v->number(0, 100);
-    if (auto v = r.find("line_diffuse_exponent")) t.lineDiffuseExponent = v->number(0.1, 20);
-    if (auto m = r.find("material")) io::readMaterial(*m, t.material);
-    r.finish();
-}
-
-DosSettings parseDos(const JsonReader& r) {
-    DosSettings d;
-    if (auto v = r.find("cone_angle_deg")) d.coneAngleDeg = v->number(0, 89.9);
-    if (auto v = r.find("grid")) d.gridSize = v->integer(1, 16);
-    if (auto v = r.find("slice_distance_mm")) d.sliceDistanceMm = v->number(0, 100);
-    if (auto v = r.find("ambient")) d.ambientRadiance = v->number(0, 100);
-    r.finish();
-    return d;
-}
-
-IsmosSettings parseIsmos(const JsonReader& r) {
-    IsmosSettings s;
-    if (auto v = r.find("occlusion")) s.partial = v->oneOf({"partial", "full"}) == "partial";
-    if (auto v = r.find("opacity")) s.fit = v->oneOf({"exact", "fit"}) == "fit";
-    if (auto v = r.find("layers")) s.layers = v->integer(1, 4);
-    if (auto v = r.find("blend_layers")) s.blendLayers = v->boolean();
-    if (auto v = r.find("light_samples")) s.lightSamples = v->integer(1, 1024);
-    if (auto v = r.find("test_points")) s.testPoints = v->integer(1, 4096);
-    if (auto v = r.find("hemisphere_radius")) s.hemisphereRadius = v->number(0.01, 100);
-    if (auto v = r.find("disk_radius")) s.diskRadius = v->number(0, 10);
-    if (auto v = r.find("ambient")) s.ambient = v->number(0, 1);
-    if (auto v = r.find("opacity_threshold")) s.opacityThreshold = v->number(0, 1);
-    if (auto v = r.find("depth_bias")) s.depthBias = v->number(0, 1);
-    if (auto v = r.find("falloff")) s.falloff = v->boolean();
-    if (auto v = r.find("light_positions")) s.sphere = v->oneOf({"hemisphere", "sphere"}) == "sphere";
-    if (auto v = r.find("base")) s.base = v->oneOf({"phong", "solid"}) == "solid" ? ShadingMode::Solid : ShadingMode::Phong;
-    r.finish();
-    return s;
-}
-
 }  // namespace
 
 Scene parseScene(std::string_view text, const fs::path& path) {
@@ -296,6 +169,7 @@ Scene parseScene(std::string_view text, const fs::path& path) {
     nlohmann::json json = parseJson(text, path.string());
     JsonReader root(json, path.string());
     if (!root.isObject()) root.fail("a JSON object describing a scene");
+    scene.json = json;
 
     parseVolume(root.at("volume"), scene);
 
@@ -305,7 +179,7 @@ Scene parseScene(std::string_view text, const fs::path& path) {
         scene.transferFunction = io::readTransferFunction(tfPath);
         scene.transferFunctionSource = tfPath.string();
     } else if (tf.isObject()) {
-        scene.transferFunction = io::parseTransferFunctionJson(tf.json(), path.string(), "transfer_function");
+        scene.transferFunction = readInlineTransferFunction(tf);
         scene.transferFunctionSource = path.string() + ": transfer_function";
     } else {
         tf.fail("a transfer-function file name (.json or .vp) or an inline transfer function object");
@@ -313,16 +187,12 @@ Scene parseScene(std::string_view text, const fs::path& path) {
 
     if (auto c = root.find("camera")) parseCamera(*c, scene.camera);
     std::vector<IsmosLightShape> lightShapes;   // ISMOS per-light keys, kept beside the lights
-    if (auto s = root.find("shading")) {
-        auto mode = parseShadingMode(s->isString() ? s->string() : "");
-        if (!mode) s->fail("one of " + shadingModeList());
-        scene.shading = *mode;
-    }
+    if (auto s = root.find("shading")) scene.shading = readShading(*s);
     if (auto lights = root.find("lights")) {
         scene.lights.clear();
         for (const JsonReader& l : lights->elements(0, 4)) {
             IsmosLightShape shape;
-            scene.lights.push_back(parseLight(l, shape));
+            scene.lights.push_back(readLight(l, shape));
             lightShapes.push_back(shape);
         }
     }
@@ -332,29 +202,22 @@ Scene parseScene(std::string_view text, const fs::path& path) {
         if (auto b = image->find("background")) scene.background = b->vec4(0, 1);
         image->finish();
     }
-    if (auto rc = root.find("raycast")) {
-        if (auto s = rc->find("step_mm")) scene.raycast.stepMm = s->number(0, 100);
-        if (auto e = rc->find("early_termination")) scene.raycast.earlyTerminationAlpha = e->number(0.5, 1.0);
-        if (auto j = rc->find("jitter_seed")) scene.raycast.jitterSeed = static_cast<std::uint32_t>(j->unsignedInteger(UINT32_MAX));
-        if (auto k = rc->find("skip_empty_space")) scene.raycast.skipEmptySpace = k->boolean();
-        if (auto faces = rc->find("cut_faces")) {
-            CutFaceSettings& f = scene.raycast.cutFace;
-            if (auto e = faces->find("enabled")) f.enabled = e->boolean();
-            if (auto d = faces->find("normal_depth_mm")) f.normalDepthMm = d->number(0.01, 100);
-            faces->finish();
-        }
-        rc->finish();
-    }
-    if (auto lao = root.find("ambient_occlusion")) scene.lao = parseLao(*lao);
+    if (auto rc = root.find("raycast")) scene.raycast = readRaycast(*rc);
+    if (auto lao = root.find("ambient_occlusion")) scene.lao = readLao(*lao);
     if (auto meshes = root.find("clip_meshes")) {
         std::vector<JsonReader> list = meshes->elements(0, clip::kMaxClipMeshes);
-        for (std::size_t i = 0; i < list.size(); ++i) scene.clipMeshes.push_back(parseClipMesh(list[i], path, i));
+        for (std::size_t i = 0; i < list.size(); ++i) scene.clipMeshes.push_back(readClipMesh(list[i], path.parent_path(), i));
     }
     if (auto tubes = root.find("tubes"))
         for (const JsonReader& t : tubes->elements(0, 64)) scene.tubes.push_back(parseTubes(t, path));
-    if (auto r = root.find("tube_rendering")) parseTubeRendering(*r, scene);
-    if (auto d = root.find("dos")) scene.dos = parseDos(*d);
-    if (auto i = root.find("ismos")) scene.ismos = parseIsmos(*i);
+    if (auto r = root.find("tube_rendering")) {
+        TubeRendering t = readTubeRendering(*r);
+        scene.tubesAsLines = t.lines;
+        scene.tubesBuiltOnGpu = t.builtOnGpu;
+        scene.tubeShading = t.shading;
+    }
+    if (auto d = root.find("dos")) scene.dos = readDos(*d);
+    if (auto i = root.find("ismos")) scene.ismos = readIsmos(*i);
     scene.ismos.lightShapes = lightShapes;
     if (auto labels = root.find("labels"))
         for (const JsonReader& l : labels->elements(0, 8)) scene.labels.push_back(parseLabels(l, path));
@@ -382,6 +245,8 @@ OrbitCamera resolveCamera(const CameraSpec& spec, const VolumeGeometry& geometry
         camera.nearMm = std::max(0.1, camera.distanceMm - 4.0 * radius);
         camera.farMm = camera.distanceMm + 4.0 * radius;
     }
+    if (spec.nearMm) camera.nearMm = *spec.nearMm;
+    if (spec.farMm) camera.farMm = *spec.farMm;
     return camera;
 }
 

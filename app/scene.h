@@ -11,7 +11,8 @@
 //                      "gzip": false}},                                  (raw only)
 //   "transfer_function": "tf.json" | "tf.vp" | { inline TF, see assets/tf/README.md },
 //   "camera": {"target": "center" | [x,y,z], "distance_mm": "fit" | number, "azimuth_deg": 0,
-//              "elevation_deg": 0, "fov_deg": 30},
+//              "elevation_deg": 0, "fov_deg": 30, "near_mm", "far_mm" (default: from the distance and the
+//              volume's bounding radius; a saved scene writes them, app/plan_scene.h)},
 //   "shading": "solid" | "phong" | "lao" | "cao" | "dos" | "ismos",
 //   "lights": [{"direction": [x,y,z], "color": [r,g,b], "intensity": 1, "space": "camera" | "world"}],
 //   "image": {"width": 512, "height": 512, "background": [r,g,b,a]},
@@ -48,6 +49,7 @@
 // Tube entries also take "name" (default: file stem) and "protected": true (the report's margins and warnings).
 
 #include "app/io/volume_file.h"
+#include "app/scene_keys.h"
 #include "clip/rigid_pose.h"
 #include "clip/triangle_mesh.h"
 #include "render/lao_settings.h"
@@ -66,21 +68,7 @@ struct CameraSpec {
     std::optional<glm::dvec3> target;        // nullopt: the volume's centre
     std::optional<double> distanceMm;        // nullopt: fit the volume in view
     double azimuthDeg = 0, elevationDeg = 0, fovYDeg = 30;
-};
-
-struct SceneClipMesh {
-    std::string name;
-    std::shared_ptr<const clip::TriangleMesh> geometry;
-    clip::RigidPose pose;
-    glm::dvec3 scale{1.0};
-    bool clipsTubes = false;
-};
-
-struct SceneTubes {
-    std::filesystem::path path;
-    TubeSettings settings;
-    std::string name;            // the bundle's name in the report
-    bool protectedBundle = false;
+    std::optional<double> nearMm, farMm;     // nullopt: from the distance and the volume (OrbitCamera::fit)
 };
 
 // A label volume beside the scan. Ids and names are resolved against the table when the scene is loaded
@@ -108,6 +96,7 @@ struct ReportSpec {
 
 struct Scene {
     std::filesystem::path file;
+    nlohmann::json json;                     // the file as parsed (the scene writer and the panels start from it)
     std::filesystem::path volumePath;
     io::VolumeReadOptions volumeOptions;
     TransferFunction transferFunction;

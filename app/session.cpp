@@ -56,6 +56,17 @@ void requireVersion2(const JsonReader& r, int version) {
     if (version < 2) r.fail("nothing: session version " + std::to_string(version) + " has no lights (they came with version 2)");
 }
 
+// Keys of version 3 (setting edits).
+void requireVersion3(const JsonReader& r, int version) {
+    if (version < 3) r.fail("nothing: session version " + std::to_string(version) + " has no setting edits (they came with version 3)");
+}
+
+nlohmann::ordered_json editsJson(const std::vector<SettingEdit>& edits) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::array();
+    for (const SettingEdit& e : edits) j.push_back(settingEditJson(e));
+    return j;
+}
+
 nlohmann::ordered_json inputStateJson(const input::InputPipelineState& s) {
     nlohmann::ordered_json j;
     j["devices"] = nlohmann::ordered_json::array();
@@ -133,6 +144,7 @@ std::string sessionHeaderLine(const SessionHeader& h) {
         e["initial_position_mm"] = vec(m.initialPose.position);
         e["initial_orientation"] = quaternion(m.initialPose.orientation);
         e["scale"] = vec(m.scale);
+        if (m.clipsTubes) e["clips_tubes"] = *m.clipsTubes;
         j["meshes"].push_back(e);
     }
     j["next_mesh_id"] = h.nextMeshId;
@@ -141,6 +153,7 @@ std::string sessionHeaderLine(const SessionHeader& h) {
         for (const SessionLight& l : *h.lights) j["lights"].push_back({{"direction", vec(l.direction)}, {"space", l.cameraSpace ? "camera" : "world"}});
         j["selected_light"] = h.selectedLight;
     }
+    if (!h.edits.empty()) j["edits"] = editsJson(h.edits);
     j["input_state"] = inputStateJson(h.inputState);
     j["keyboard"] = {{"mm_per_s", h.keyboardMmPerSecond}, {"deg_per_s", h.keyboardDegPerSecond}};
     return j.dump();
@@ -179,6 +192,7 @@ std::string sessionFrameLine(const SessionFrame& f) {
             j["meshes_added"].push_back({{"id", m.id}, {"name", m.name}, {"mesh", nlohmann::ordered_json::parse(m.description)}});
     }
     if (!f.meshesRemoved.empty()) j["meshes_removed"] = f.meshesRemoved;
+    if (!f.edits.empty()) j["edits"] = editsJson(f.edits);
     j["reports"] = nlohmann::ordered_json::array();
     for (const SessionReport& r : f.reports) j["reports"].push_back({{"device", r.device}, {"time", r.time}, {"bytes", input::toHex(r.bytes)}});
     return j.dump();
@@ -201,6 +215,7 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
     const std::string file = path.string();
     if (lines.empty()) throw InputError(file, "line 1", "a session header", "an empty file");
 
+    std::filesystem::path directory;
     // Header (always strict).
     {
         nlohmann::json json = parseLine(lines[0], file, 1);
@@ -215,6 +230,10 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
                              std::to_string(version));
         session.header.version = version;
         session.header.scene = r.at("scene").string();
+        // Where the scene is: glTF paths in edits are relative to its folder (checked when read).
+        std::filesystem::path scenePath = session.header.scene;
+        if (scenePath.is_relative()) scenePath = path.parent_path() / scenePath;
+        directory = scenePath.parent_path();
         if (auto c = r.find("created")) session.header.created = c->string();
         for (const JsonReader& d : r.at("devices").elements(0, 64)) session.header.devices.push_back(readDevice(d));
         session.header.mappingJson = r.at("mapping").json().dump();
@@ -230,6 +249,10 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
             mesh.pose = {m.at("position_mm").vec3(-1e6, 1e6), readQuaternion(m.at("orientation"))};
             mesh.initialPose = {m.at("initial_position_mm").vec3(-1e6, 1e6), readQuaternion(m.at("initial_orientation"))};
             mesh.scale = m.at("scale").vec3(1e-9, 1e6);
+            if (auto c = m.find("clips_tubes")) {
+                requireVersion3(*c, version);
+                mesh.clipsTubes = c->boolean();
+            }
             m.finish();
             session.header.meshes.push_back(mesh);
         }
@@ -248,6 +271,15 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
             }
             session.header.selectedLight = r.at("selected_light").integer(0, std::max(0, static_cast<int>(list.size()) - 1));
             session.header.lights = std::move(list);
+        }
+        if (auto edits = r.find("edits")) {
+            requireVersion3(*edits, version);
+            for (const JsonReader& e : edits->elements(0, 1024)) {
+                SettingEdit edit = readSettingEdit(e, directory);
+                if (settingInfo(edit.setting).target == SettingTarget::Mesh)
+                    e.at("setting").fail("a setting that is not a clip mesh's (the header's \"meshes\" hold those)");
+                session.header.edits.push_back(std::move(edit));
+            }
         }
         session.header.inputState = readInputState(r.at("input_state"), bindings);
         for (const auto& entry : session.header.inputState.devices) {
@@ -318,6 +350,14 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
                 for (const JsonReader& l : lights->elements(count, count)) directions.push_back(readLightDirection(l));
                 f.lights = std::move(directions);
             }
+            if (auto edits = r.find("edits")) {
+                requireVersion3(*edits, session.header.version);
+                for (const JsonReader& e : edits->elements(0, 1024)) {
+                    f.edits.push_back(readSettingEdit(e, directory));
+                    if (f.edits.back().setting == Setting::MeshAdd && !meshIds.count(f.edits.back().target))
+                        e.at("mesh").fail("the id of a mesh in this frame's meshes_added (where an added mesh is listed too)");
+                }
+            }
             f.keys = static_cast<std::uint32_t>(r.at("keys").unsignedInteger(0xFFFFFFFFu));
             f.drag = r.at("drag").vec2(-1e5, 1e5);
             if (auto drag = r.find("light_drag")) {
@@ -351,6 +391,11 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
         }
     }
     return session;
+}
+
+std::filesystem::path sessionScenePath(const Session& session) {
+    std::filesystem::path scene = session.header.scene;
+    return scene.is_relative() ? session.file.parent_path() / scene : scene;
 }
 
 Session readSession(const std::filesystem::path& path, bool lenient) {

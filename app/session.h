@@ -1,10 +1,11 @@
 #pragma once
 // Sessions: JSON Lines, written atomically. Line 1 is the header (format, version, scene, devices, mapping,
 // and the state at the start: shading, meshes, input pipeline, so a recording may start mid-run); every further line is one frame: time, dt, image size, camera, shading, every clip
-// mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, and the raw HID
-// reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
+// mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, the panels' setting
+// edits (version 3, app/setting_edit.h), and the raw HID reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
 // back to the same doubles.
 
+#include "app/setting_edit.h"
 #include "clip/rigid_pose.h"
 #include "input/pipeline.h"
 #include "render/camera.h"
@@ -19,7 +20,7 @@
 
 namespace curette {
 
-inline constexpr int kSessionVersion = 2;
+inline constexpr int kSessionVersion = 3;   // 3: setting edits (app/setting_edit.h)
 inline constexpr int kOldestSessionVersion = 1;
 
 struct SessionDevice {
@@ -67,6 +68,7 @@ struct SessionFrame {
     std::vector<int> devicesRemoved;
     std::vector<SessionAddedMesh> meshesAdded;
     std::vector<int> meshesRemoved;
+    std::vector<SettingEdit> edits;   // the frame's panel edits, as applied, after its actions (version 3)
     std::vector<SessionReport> reports;
 };
 
@@ -78,6 +80,7 @@ struct SessionMeshStart {
     std::string description;
     clip::RigidPose pose, initialPose;   // initialPose: where reset_pose puts it
     glm::dvec3 scale{1.0};
+    std::optional<bool> clipsTubes;      // version 3 (before: the scene's, or false for added meshes)
 };
 
 struct SessionHeader {
@@ -91,6 +94,7 @@ struct SessionHeader {
     int nextMeshId = 0;                           // the id the next added mesh takes
     std::optional<std::vector<SessionLight>> lights;   // at the start (version 2; absent: the scene's)
     int selectedLight = 0;                        // the light MoveLight{-1} turns, at the start
+    std::vector<SettingEdit> edits;               // settings edited before the start (version 3; no mesh edits)
     input::InputPipelineState inputState;         // at the start: device states, held meshes, previous buttons
     double keyboardMmPerSecond = 40.0, keyboardDegPerSecond = 60.0;
 };
@@ -101,6 +105,9 @@ struct Session {
     std::vector<SessionFrame> frames;
     std::string warning;          // set when lenient reading dropped a bad tail
 };
+
+// The scene a session was recorded on: its header's path, relative to the session file's folder.
+std::filesystem::path sessionScenePath(const Session& session);
 
 std::string sessionHeaderLine(const SessionHeader& header);
 std::string sessionFrameLine(const SessionFrame& frame);

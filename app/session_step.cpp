@@ -1,6 +1,9 @@
 #include "app/session_step.h"
 
+#include "app/loaded_scene.h"
 #include "base/error.h"
+
+#include <set>
 
 namespace curette {
 
@@ -12,10 +15,31 @@ bool samePoses(const std::vector<SessionMesh>& a, const std::vector<SessionMesh>
     return true;
 }
 
+namespace {
+
+// The frame's settings that come from the state (the rest, camera and size, the callers own).
+void frameFromState(const InteractionState& state, FrameDescription& frame) {
+    frame.shading = state.shading;
+    frame.lights = state.lights;
+    frame.raycast = state.raycast;
+    frame.dos = state.dos;
+    frame.ismos = state.ismos;
+}
+
+}  // namespace
+
 SessionStep::SessionStep(InteractionState state, FrameDescription frame) : state_(std::move(state)), frame_(std::move(frame)) {
-    frame_.shading = state_.shading;
     if (state_.lights.empty()) state_.lights = frame_.lights;
-    frame_.lights = state_.lights;
+    if (!state_.fromSceneSettings) {   // a state made by hand (tests, benches): the frame's settings
+        state_.raycast = frame_.raycast;
+        state_.dos = frame_.dos;
+        state_.ismos = frame_.ismos;
+        state_.fromSceneSettings = true;
+    }
+    frameFromState(state_, frame_);
+    syncedTransferFunction_ = state_.transferFunctionVersion;
+    syncedTubes_ = state_.tubesVersion;
+    syncedTubeShading_ = state_.tubeShadingVersion;
 }
 
 StepChanges SessionStep::compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, const std::vector<Light>& lightsBefore,
@@ -25,18 +49,22 @@ StepChanges SessionStep::compare(const std::vector<SessionMesh>& before, Shading
     c.poses = !samePoses(before, state_.sessionPoses());
     c.shading = state_.shading != shadingBefore;
     c.lights = state_.lights != lightsBefore;
-    frame_.shading = state_.shading;
-    frame_.lights = state_.lights;
+    c.settings = !state_.appliedEdits.empty();
+    for (const SettingEdit& e : state_.appliedEdits) c.meshes = c.meshes || e.setting == Setting::MeshShape;
+    frameFromState(state_, frame_);
     return c;
 }
 
-StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int viewportHeight) {
+StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int viewportHeight, const std::vector<SettingEdit>& edits,
+                               const std::string& source) {
     std::vector<SessionMesh> before = state_.sessionPoses();
     ShadingMode shadingBefore = state_.shading;
     std::vector<Light> lightsBefore = state_.lights;
     state_.addedMeshIds.clear();
     state_.removedMeshIds.clear();
+    state_.appliedEdits.clear();
     state_.apply(actions, frame_.camera, viewportHeight);
+    state_.applyEdits(edits, source);
     return compare(before, shadingBefore, lightsBefore, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty());
 }
 
@@ -44,6 +72,16 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     std::vector<SessionMesh> before = state_.sessionPoses();
     ShadingMode shadingBefore = state_.shading;
     std::vector<Light> lightsBefore = state_.lights;
+    state_.addedMeshIds.clear();
+    state_.removedMeshIds.clear();
+    state_.appliedEdits.clear();
+    // Meshes an edit adds or removes are also in meshes_added/meshes_removed: the edit makes them (it
+    // carries every key of the mesh), after the ones the frame's actions made, as live.
+    std::set<int> addedByEdits, removedByEdits;
+    for (const SettingEdit& e : f.edits) {
+        if (e.setting == Setting::MeshAdd) addedByEdits.insert(e.target);
+        if (e.setting == Setting::MeshRemove) removedByEdits.insert(e.target);
+    }
     if (f.lights) {
         if (f.lights->size() != state_.lights.size())
             throw InputError(where, "lights", "one direction per light of the session (" + std::to_string(state_.lights.size()) + ")",
@@ -51,6 +89,7 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
         for (std::size_t i = 0; i < f.lights->size(); ++i) state_.lights[i].direction = (*f.lights)[i];
     }
     for (const SessionAddedMesh& a : f.meshesAdded) {
+        if (addedByEdits.count(a.id)) continue;
         MeshState m;
         m.id = a.id;
         m.name = a.name;
@@ -59,7 +98,8 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
         state_.meshes.push_back(m);
     }
     for (int id : f.meshesRemoved)
-        if (int i = state_.indexOf(id); i >= 0) state_.meshes.erase(state_.meshes.begin() + i);
+        if (int i = state_.indexOf(id); i >= 0 && !removedByEdits.count(id)) state_.meshes.erase(state_.meshes.begin() + i);
+    state_.applyEdits(f.edits, where);
     for (const SessionMesh& r : f.meshes) {
         int i = state_.indexOf(r.id);
         if (i < 0) throw InputError(where, "meshes", "ids of meshes present at that frame", std::to_string(r.id));
@@ -73,6 +113,24 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
 }
 
 void SessionStep::syncTo(clip::ClipMeshSet& set) const { syncClipMeshes(state_, set); }
+
+void SessionStep::syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts) {
+    syncClipMeshes(state_, renderer.clipMeshes());
+    if (syncedTransferFunction_ != state_.transferFunctionVersion) {
+        renderer.setTransferFunction(state_.transferFunction);
+        syncedTransferFunction_ = state_.transferFunctionVersion;
+    }
+    renderer.setLaoSettings(state_.lao);   // changes nothing when equal
+    if (syncedTubes_ != state_.tubesVersion || syncedTubeShading_ != state_.tubeShadingVersion) {
+        if (state_.tubes.empty() || syncedTubes_ != state_.tubesVersion) {
+            setSceneTubes(renderer, state_.tubes, state_.tubeRendering, tracts);
+        } else {
+            renderer.setTubeShading(sceneTubeShading(state_.tubes, state_.tubeRendering.shading));
+        }
+        syncedTubes_ = state_.tubesVersion;
+        syncedTubeShading_ = state_.tubeShadingVersion;
+    }
+}
 
 void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set) {
     const std::vector<MeshState>& meshes = state.meshes;

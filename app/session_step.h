@@ -7,9 +7,11 @@
 
 #include "app/interaction.h"
 #include "app/session.h"
+#include "base/tractogram.h"
 #include "clip/clip_mesh_set.h"
 #include "input/actions.h"
 #include "render/frame.h"
+#include "render/renderer.h"
 
 #include <filesystem>
 #include <string>
@@ -21,8 +23,9 @@ struct StepChanges {
     bool poses = false;    // a position, an orientation or a scale
     bool meshes = false;   // a mesh added or removed
     bool shading = false;
-    bool lights = false;   // a light's direction (MoveLight, or a recorded frame's lights)
-    bool any() const { return poses || meshes || shading || lights; }
+    bool lights = false;   // a light (MoveLight, a recorded frame's lights, a light edit)
+    bool settings = false; // a setting edit (app/setting_edit.h)
+    bool any() const { return poses || meshes || shading || lights || settings; }
 };
 
 // SessionStep::syncTo for a state without a step (a scene's first frame: render, bench raycast/dos).
@@ -44,14 +47,22 @@ public:
 
     // Live input, or input re-derived from recorded reports: the actions applied through the interaction
     // state with the frame's camera, for a viewport `viewportHeight` pixels high (drags).
-    StepChanges apply(const std::vector<input::Action>& actions, int viewportHeight);
+    // Then the frame's setting edits (the panels', or a session's recorded ones), `source` naming them in errors.
+    StepChanges apply(const std::vector<input::Action>& actions, int viewportHeight, const std::vector<SettingEdit>& edits = {},
+                      const std::string& source = "<panel>");
     // A recorded frame followed as recorded (replay without --from-reports): meshes added and removed, every
-    // pose and scale, the lights' directions, the shading, camera and image size. `where` names the line in errors.
+    // pose and scale, the lights' directions, the setting edits, the shading, camera and image size. `where`
+    // names the line in errors.
     StepChanges follow(const SessionFrame& recorded, const std::filesystem::path& sceneDirectory, const std::string& where);
 
     // Makes `set` match the state's meshes (index i = state().meshes[i]). Poses, scales and clips_tubes are set
     // (cheap: a rigid motion only changes a camera matrix); meshes are re-added only when the list changed.
     void syncTo(clip::ClipMeshSet& set) const;
+    // Makes a renderer match the state: the clip meshes as above, and the transfer function, the LAO
+    // settings and the tubes (rebuilt from `tracts`, one per scene bundle) when an edit changed them. The one
+    // path by which edited settings reach a renderer (the frame's raycast, dos, ismos and lights reach it in
+    // frame()).
+    void syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts);
 
 private:
     StepChanges compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, const std::vector<Light>& lightsBefore,
@@ -59,6 +70,8 @@ private:
 
     InteractionState state_;
     FrameDescription frame_;
+    // The state's setting versions the renderer was last given (those of the scene: configureRenderer).
+    std::uint64_t syncedTransferFunction_ = 0, syncedTubes_ = 0, syncedTubeShading_ = 0;
 };
 
 }  // namespace curette

@@ -8,6 +8,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -348,6 +349,20 @@ glm::ivec2 WindowContext::framebufferSize() const {
 }
 
 void WindowContext::swapBuffers() { glfwSwapBuffers(window_); }
+
+std::vector<std::uint8_t> WindowContext::readBackBuffer() const {
+    glm::ivec2 size = framebufferSize();
+    std::vector<std::uint8_t> bottomUp(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
+    std::vector<std::uint8_t> out(bottomUp.size());
+    std::size_t row = static_cast<std::size_t>(size.x) * 4;
+    for (int y = 0; y < size.y; ++y)
+        std::copy_n(bottomUp.data() + static_cast<std::size_t>(size.y - 1 - y) * row, row, out.data() + static_cast<std::size_t>(y) * row);
+    return out;
+}
 bool WindowContext::shouldClose() const { return glfwWindowShouldClose(window_); }
 
 std::unique_ptr<WindowContext> createWindowContext(const std::string& title, glm::ivec2 size) {

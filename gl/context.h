@@ -118,6 +118,9 @@ public:
     glm::ivec2 framebufferSize() const;
     void swapBuffers();
     bool shouldClose() const;
+    // The window's back buffer as 8-bit RGBA, row 0 at the top (what the next swapBuffers shows): for
+    // screenshots of the window itself (`view --play`).
+    std::vector<std::uint8_t> readBackBuffer() const;
 
 private:
     friend std::unique_ptr<WindowContext> createWindowContext(const std::string&, glm::ivec2);

@@ -37,14 +37,17 @@ std::vector<std::uint8_t> toRgba8(const Image& image, glm::vec4 background) {
 }
 
 void writePng(const std::filesystem::path& path, const Image& image, glm::vec4 background) {
-    std::vector<std::uint8_t> rgba = toRgba8(image, background);
+    writePngRgba8(path, image.width, image.height, toRgba8(image, background));
+}
+
+void writePngRgba8(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba) {
     std::vector<std::uint8_t> encoded;
     auto sink = [](void* context, void* data, int size) {
         auto* bytes = static_cast<std::vector<std::uint8_t>*>(context);
         auto* begin = static_cast<std::uint8_t*>(data);
         bytes->insert(bytes->end(), begin, begin + size);
     };
-    if (!stbi_write_png_to_func(sink, &encoded, image.width, image.height, 4, rgba.data(), image.width * 4))
+    if (!stbi_write_png_to_func(sink, &encoded, width, height, 4, rgba.data(), width * 4))
         throw SystemError(path.string() + ": PNG encoding failed");
     writeFileAtomically(path, encoded);
 }

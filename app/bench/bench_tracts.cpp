@@ -147,7 +147,7 @@ int benchTracts(const CommandLine& cl) {
     loaded.scene.tubes = entries;
     FrameDescription base = initialFrame(loaded.scene, renderer.geometry());
     base.size = size;
-    const TubeShading shading = sceneTubeShading(loaded.scene);
+    const TubeShading shading = sceneTubeShading(loaded.scene.tubes, loaded.scene.tubeShading);
     std::size_t available = 0;
     for (const Tractogram& t : full) available += t.streamlineCount();
     std::string modeNames;
@@ -219,7 +219,7 @@ int benchTracts(const CommandLine& cl) {
         // Illuminated lines, built on the CPU.
         loaded.scene.tubesAsLines = true;
         auto start = Clock::now();
-        TubeVertices lines = buildSceneTubeVertices(loaded);
+        TubeVertices lines = sceneTubeVertices(loaded.scene.tubes, loaded.scene.tubesAsLines, loaded.tracts);
         double linesBuildMs = msSince(start);
         std::size_t lineVertices = lines.positions.size(), segments = lines.indices.size() / 2;
         start = Clock::now();
@@ -238,7 +238,7 @@ int benchTracts(const CommandLine& cl) {
         std::printf("  %zu streamlines: tubes built on the CPU ...\n", streamlines);
         std::fflush(stdout);
         start = Clock::now();
-        TubeRings rings = sweepSceneTubes(loaded);
+        TubeRings rings = sceneTubeRings(loaded.scene.tubes, loaded.tracts);
         double sweepMs = msSince(start);
         start = Clock::now();
         TubeVertices cpuTubes = expandTubeRings(rings);

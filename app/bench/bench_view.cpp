@@ -18,6 +18,7 @@
 #include "app/session_step.h"
 #include "app/view_frame_loop.h"
 #include "base/error.h"
+#include "render/lao_directions.h"
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -86,6 +87,11 @@ int benchView(const CommandLine& cl) {
     std::filesystem::path scenePath = session.header.scene;
     if (scenePath.is_relative()) scenePath = file.parent_path() / scenePath;
     LoadedScene loaded = loadSceneWithVolume(scenePath);
+    // --rays K: the LAO ray count instead of the scene's (as in bench cao; the test runs with few).
+    if (auto rays = cl.value("rays")) {
+        std::string k = std::to_string(CommandLine::parseInt("rays", *rays, 1, 1024));
+        if (!parseLaoPattern(k, loaded.scene.lao.directions)) parseLaoPattern("fibonacci:" + k, loaded.scene.lao.directions);
+    }
 
     auto context = gl::createHeadlessContext(gpuChoice(cl));
     FrameLoopSettings settings;

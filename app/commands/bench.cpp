@@ -100,6 +100,7 @@ int bench(const Arguments& args) {
                                             {"precompute-budget", true, "ms of step I per frame while it runs (default 60)"},
                                             {"preview-target", true, "ms a motion preview is steered to (default 70)"},
                                             {"check", false, "also render the last state in a fresh renderer and compare image hashes"},
+                                            {"rays", true, "LAO ray count K instead of the scene's (6, 14, 26, 54 or any fibonacci count)"},
                                             {"json", true, "JSON output file (default bench-view.json)"}}));
         return bench::benchView(cl);
     }

@@ -8,6 +8,7 @@
 //   --no-render      with --from-reports: check the poses only (no GL context)
 //   --lenient        replay the valid prefix of a session with a bad line instead of refusing it
 //   --mp4            with --out: DIR/replay.mp4 of the frames at the recorded rate (app/movie.h; needs ffmpeg)
+//   --save-scene F   the state after the last frame as a scene file (meshes, lights, edited settings, camera)
 //   --report         with --out: the removal report (app/carve_report.h) of every Nth frame in
 //                    DIR/report/frame_NNNNNN/, the plan's exports for the last of them, and removal.csv and
 //                    removal.png (removed mL and cut streamlines over time)
@@ -17,6 +18,7 @@
 #include "app/interaction.h"
 #include "app/loaded_scene.h"
 #include "app/movie.h"
+#include "app/plan_scene.h"
 #include "app/session.h"
 #include "app/session_step.h"
 #include "base/atomic_file.h"
@@ -72,7 +74,8 @@ int replay(const Arguments& args) {
                           {"size", true, "render at WxH instead of the recorded size"},
                           {"no-render", false, "with --from-reports: only check the poses, render nothing"},
                           {"report", false, "with --out: the removal report every Nth frame, removal.csv and removal.png"},
-                          {"mp4", false, "with --out: also DIR/replay.mp4 of the frames, at the recorded rate (needs ffmpeg on PATH)"}}));
+                          {"mp4", false, "with --out: also DIR/replay.mp4 of the frames, at the recorded rate (needs ffmpeg on PATH)"},
+                          {"save-scene", true, "write the state after the last frame as a scene file (app/plan_scene.h), camera included"}}));
     if (cl.positional().size() != 1) throw InputError("<command line>", "FILE", "one session file: curette replay FILE [options]");
     std::filesystem::path file = cl.positional()[0];
     int every = CommandLine::parseInt("every", cl.valueOr("every", "1"), 1, 1 << 20);
@@ -88,8 +91,7 @@ int replay(const Arguments& args) {
     }
 
     Session session = readSession(file, cl.flag("lenient"));
-    std::filesystem::path scenePath = session.header.scene;
-    if (scenePath.is_relative()) scenePath = file.parent_path() / scenePath;
+    std::filesystem::path scenePath = sessionScenePath(session);
     LoadedScene loaded = loadSceneWithVolume(scenePath);
     bool render = !cl.flag("no-render");
     bool reporting = cl.flag("report");
@@ -140,7 +142,7 @@ int replay(const Arguments& args) {
             input::KeyboardMouseState keys{f.keys, f.drag, f.lightDrag};
             step.frame().camera = f.camera;
             step.frame().size = f.size;
-            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size())), f.size.y);
+            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size())), f.size.y, f.edits, where);
             // The re-derived poses, lights (version 2) and shading must be the recorded ones, bit for bit.
             bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights);
             if (!same && poseMismatches++ == 0)
@@ -150,7 +152,7 @@ int replay(const Arguments& args) {
             step.follow(f, scenePath.parent_path(), where);
         }
         if (!render || n % static_cast<std::size_t>(every) != 0) continue;
-        step.syncTo(renderer->clipMeshes());
+        step.syncTo(*renderer, loaded.tracts);
         FrameDescription frame = step.frame();
         frame.size = size.value_or(f.size);
         frame.shading = f.shading;
@@ -212,6 +214,11 @@ int replay(const Arguments& args) {
         plotRemoval(*out);
         std::printf("wrote %s, %s and the plan of the last reported frame in %s\n", (*out / "removal.csv").c_str(),
                     (*out / "removal.png").c_str(), (*out / "report").c_str());
+    }
+    if (auto saved = cl.value("save-scene")) {
+        std::vector<std::uint8_t> text = readFileBytes(scenePath);
+        writeFileAtomically(*saved, planSceneJson(loaded.scene, std::string(text.begin(), text.end()), state, &step.frame().camera));
+        std::printf("wrote the scene %s\n", saved->c_str());
     }
     if (movie && !movieFrames.empty()) {
         // The recorded rate, over the frames rendered: a movie as long as the session.

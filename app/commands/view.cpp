@@ -8,6 +8,10 @@
 // never freezes for it; the overlay says PREVIEW or EXACT and shows step I's progress. The plan panel shows the removal report (removed mL,
 // the structures and bundles the carve touches or must spare, margins; protected ones in red when touched),
 // updated 0.2 s after the meshes stop; F5 writes the report and the plan's exports (app/carve_report.h).
+// The settings panels (app/view_panels.h) turn every widget into a setting edit that the session step
+// applies with the frame's actions (and a recording records). --play F plays a recorded session in this
+// loop instead of live input (its poses, lights and edits through SessionStep::follow), then writes a
+// screenshot of the window without the overlay (--screenshot) and exits.
 #include "app/carve_report.h"
 #include "app/command_line.h"
 #include "app/commands/commands.h"
@@ -16,6 +20,7 @@
 #include "app/loaded_scene.h"
 #include "app/session_step.h"
 #include "app/view_frame_loop.h"
+#include "app/view_panels.h"
 #include "base/error.h"
 #include "base/log.h"
 #include "input/hid/fake_backend.h"
@@ -87,9 +92,14 @@ int view(const Arguments& args) {
                           {"mapping", true, "device mapping JSON (default: the shipped assets/input/default_mapping.json)"},
                           {"record", true, "record a session to this file from the start (F9 toggles recording too)"},
                           {"no-devices", false, "keyboard and mouse only (do not open HID devices)"},
-                          {"quality", true, "exact|adaptive: previews while moving, exact when still (default: adaptive on a software renderer, exact on a GPU)"}});
+                          {"quality", true, "exact|adaptive: previews while moving, exact when still (default: adaptive on a software renderer, exact on a GPU; --play: exact)"},
+                          {"play", true, "play this recorded session in the viewer's loop instead of live input, then screenshot and exit"},
+                          {"screenshot", true, "with --play: the PNG of the window after the last frame (default curette-play.png)"}});
     glm::ivec2 windowSize = CommandLine::parseSize("size", cl.valueOr("size", "1024x768"));
-    std::string scenePath = cl.required("scene");
+    std::optional<Session> play;
+    if (auto p = cl.value("play")) play = readSession(*p, false);
+    if (cl.value("screenshot") && !play) throw InputError("<command line>", "--screenshot", "together with --play F (the session to play)");
+    std::string scenePath = play && !cl.value("scene") ? sessionScenePath(*play).string() : cl.required("scene");
     input::MappingConfig mapping = cl.value("mapping") ? input::loadMapping(*cl.value("mapping")) : input::defaultMapping();
     LoadedScene loaded = loadSceneWithVolume(scenePath);
 
@@ -100,7 +110,8 @@ int view(const Arguments& args) {
     }
     auto window = gl::createWindowContext("curette - " + scenePath, windowSize);
     FrameLoopSettings loopSettings;
-    loopSettings.quality = quality.value_or(defaultViewQuality(window->info().softwareRenderer));
+    // A played session is for its last image: exact every frame unless asked otherwise.
+    loopSettings.quality = quality.value_or(play ? ViewQuality::Exact : defaultViewQuality(window->info().softwareRenderer));
     ViewFrameLoop loop(loopSettings);
     bool exactEveryFrame = loopSettings.quality == ViewQuality::Exact;
     Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
@@ -121,10 +132,14 @@ int view(const Arguments& args) {
     bool stereoKeyWasDown = false;
     int exports = 0;
 
-    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+    SessionStep step(play ? InteractionState::fromSessionStart(play->header, loaded.scene, loaded.scene.file.parent_path(), play->file.string())
+                          : InteractionState::fromScene(loaded.scene),
+                     initialFrame(loaded.scene, renderer.geometry()));
+    ViewPanels panels(loaded, shippedPresetDirectory());
+    std::size_t played = 0;
     FrameDescription& frame = step.frame();
     InteractionState& state = step.state();
-    LiveInput live(openHid(!cl.flag("no-devices")), mapping, 40.0, 60.0);
+    LiveInput live(openHid(!cl.flag("no-devices") && !play), mapping, 40.0, 60.0);
     std::unique_ptr<LiveRecording> recording;
     auto startRecording = [&](const std::filesystem::path& path, double now) {
         recording = std::make_unique<LiveRecording>(path, std::filesystem::absolute(scenePath).string(), state, live, now);
@@ -198,7 +213,18 @@ int view(const Arguments& args) {
 
         // Devices and keys -> actions -> the scene (the session step every command runs).
         InputFrame input = live.step(now, keys, dt, static_cast<int>(state.meshes.size()));
-        StepChanges changes = step.apply(input.actions, framebuffer.y);
+        StepChanges changes;
+        if (!play) {
+            try {
+                changes = step.apply(input.actions, framebuffer.y, panels.draw(state, frame.camera));
+            } catch (const InputError& e) {   // a panel value the scene reader refuses: said, not applied
+                messages.push_back(e.what());
+            }
+        } else if (played < play->frames.size()) {
+            step.follow(play->frames[played], loaded.scene.file.parent_path(), play->file.string() + " line " + std::to_string(played + 2));
+            ++played;
+        }
+        for (std::string& m : panels.takeMessages()) messages.push_back(std::move(m));
         for (std::string& m : live.takeMessages()) {
             messages.push_back(std::move(m));
             if (messages.size() > 6) messages.pop_front();
@@ -274,7 +300,7 @@ int view(const Arguments& args) {
         ImGui::Render();
 
         if (framebuffer.x > 0 && framebuffer.y > 0) {
-            step.syncTo(renderer.clipMeshes());
+            step.syncTo(renderer, loaded.tracts);
             glm::ivec2 exactSize = glm::max(glm::ivec2(glm::dvec2(framebuffer) * renderScale), glm::ivec2(1));
             frame.size = exactSize;
             FrameLoopInputs loopInputs;
@@ -320,6 +346,12 @@ int view(const Arguments& args) {
             }
             presenter.present(stereo != StereoMode::Off ? stereoView.texture() : renderer.outputTexture(), framebuffer,
                               glm::vec4(loaded.scene.background));
+            if (play && played == play->frames.size() && shownExact) {   // the last frame, exact, without the overlay
+                std::string name = cl.valueOr("screenshot", "curette-play.png");
+                writePngRgba8(name, framebuffer.x, framebuffer.y, window->readBackBuffer());
+                std::printf("played %zu frames of %s; wrote %s (%dx%d)\n", played, play->file.c_str(), name.c_str(), framebuffer.x, framebuffer.y);
+                break;
+            }
 
             std::uint64_t version = renderer.clipMeshes().version();
             if (version != seenVersion) seenVersion = version, versionChangedAt = now;

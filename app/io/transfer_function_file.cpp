@@ -5,6 +5,7 @@
 #include "base/json_reader.h"
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <sstream>
 
@@ -149,6 +150,38 @@ std::string writeTransferFunctionJson(const TransferFunction& tf) {
     j["material"] = {{"ambient", tf.material.ambient}, {"diffuse", tf.material.diffuse}, {"specular", tf.material.specular},
                      {"specular_power", tf.material.specularPower}};
     return j.dump(2) + "\n";
+}
+
+namespace {
+
+std::string exact(double v) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    return text;
+}
+
+}  // namespace
+
+std::string writeSlicerVolumeProperty(const TransferFunction& tf) {
+    std::string out = "1\n1\n" + exact(tf.material.diffuse) + "\n" + exact(tf.material.ambient) + "\n" + exact(tf.material.specular) + "\n" +
+                      exact(tf.material.specularPower) + "\n";
+    auto function = [&](const std::vector<TransferFunction::ScalarPoint>& points) {
+        std::string line = std::to_string(2 * points.size());
+        for (const auto& p : points) line += " " + exact(p.value) + " " + exact(p.y);
+        return line + "\n";
+    };
+    out += function(tf.opacity);
+    out += function(tf.gradientOpacity);
+    std::string color = std::to_string(4 * tf.color.size());
+    for (const auto& p : tf.color) color += " " + exact(p.value) + " " + exact(p.rgb.r) + " " + exact(p.rgb.g) + " " + exact(p.rgb.b);
+    return out + color + "\n";
+}
+
+void writeTransferFunction(const std::filesystem::path& path, const TransferFunction& tf) {
+    std::string extension = path.extension().string();
+    if (extension == ".json") writeFileAtomically(path, writeTransferFunctionJson(tf));
+    else if (extension == ".vp") writeFileAtomically(path, writeSlicerVolumeProperty(tf));
+    else throw InputError(path.string(), "extension", ".json (curette) or .vp (3D Slicer volume property)", "\"" + extension + "\"");
 }
 
 }  // namespace curette::io

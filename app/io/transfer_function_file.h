@@ -32,6 +32,12 @@ TransferFunction parseTransferFunctionJson(const nlohmann::json& json, const std
 TransferFunction parseTransferFunctionJsonText(std::string_view text, const std::string& source);
 TransferFunction parseSlicerVolumeProperty(std::string_view text, const std::string& source);
 std::string writeTransferFunctionJson(const TransferFunction& tf);
+// The same TF as a 3D Slicer volume property (.vp): linear interpolation, shading on, the material, then the
+// three functions. A .vp has no name and no unit length: it reads back with the file's stem as its name and a
+// unit length of 1 mm (the .vp convention), every point and the material exactly (17 significant digits).
+std::string writeSlicerVolumeProperty(const TransferFunction& tf);
+// Writes `tf` atomically as JSON or .vp by the extension of `path` (InputError for any other).
+void writeTransferFunction(const std::filesystem::path& path, const TransferFunction& tf);
 // The "material" object of a TF file or a scene's tubes: keys it names override `material`'s fields.
 void readMaterial(const JsonReader& object, TransferFunction::Material& material);
 

@@ -1,0 +1,69 @@
+#pragma once
+// The viewer's settings panels (Dear ImGui): the transfer function over the volume's histogram, shading and
+// its settings, clip meshes, tubes and lights. A widget never changes the scene: it produces a SettingEdit
+// (app/setting_edit.h) whose value is the scene file's JSON of its key, and the frame loop hands the frame's
+// edits to the session step, which applies them as it applies device actions (and a recording records them).
+// Call draw() between ImGui::NewFrame() and ImGui::Render(); it issues no GL call (the GL backend stays in
+// app/commands/view.cpp).
+
+#include "app/interaction.h"
+#include "app/loaded_scene.h"
+#include "app/setting_edit.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace curette {
+
+class ViewPanels {
+public:
+    // `presetDirectory`: where the TF presets are (assets/tf).
+    ViewPanels(const LoadedScene& loaded, std::filesystem::path presetDirectory);
+
+    // Draws the panels for `state` seen through `camera` (an added mesh goes to its target) and returns the
+    // edits the user made. Messages (a file written, a file refused) go to takeMessages().
+    std::vector<SettingEdit> draw(const InteractionState& state, const OrbitCamera& camera);
+    std::vector<std::string> takeMessages() { return std::move(messages_); }
+
+    // Where the TF editor's opacity canvas was drawn last (screen pixels) and the value range it spans: a
+    // point (value, alpha) is at (x + w (value - lo) / (hi - lo), y + h (1 - alpha)).
+    struct Canvas {
+        float x = 0, y = 0, w = 0, h = 0;
+        double lo = 0, hi = 1;
+    };
+    const Canvas& transferFunctionCanvas() const { return canvas_; }
+    // The TF presets found (file names), for the combo.
+    const std::vector<std::filesystem::path>& presets() const { return presets_; }
+
+private:
+    void transferFunctionPanel(const InteractionState& state, std::vector<SettingEdit>& edits);
+    void shadingPanel(const InteractionState& state, std::vector<SettingEdit>& edits);
+    void meshPanel(const InteractionState& state, const OrbitCamera& camera, std::vector<SettingEdit>& edits);
+    void tubePanel(const InteractionState& state, std::vector<SettingEdit>& edits);
+    void lightPanel(const InteractionState& state, std::vector<SettingEdit>& edits);
+    void scenePanel(const InteractionState& state, const OrbitCamera& camera);
+
+    const LoadedScene& loaded_;
+    std::vector<std::filesystem::path> presets_;
+    std::vector<double> histogram_;        // log(1 + count) per bin, over [valueMin_, valueMax_]
+    double valueMin_ = 0, valueMax_ = 1;
+    int draggedOpacity_ = -1, draggedColor_ = -1, selectedColor_ = -1;
+    int addShape_ = 0;
+    float addSizeMm_ = 15.0f;
+    char tfPath_[512] = "transfer-function.json";
+    char scenePath_[512] = "curette-scene.json";
+    std::vector<std::string> messages_;
+    Canvas canvas_;
+};
+
+// The shipped presets, assets/tf of the source tree the binary was built from.
+std::filesystem::path shippedPresetDirectory();
+
+// A primitive mesh description of `shape` (sphere, box, cylinder, cone, capsule, torus) whose size is
+// `sizeMm` (radius, half edge, ...), as clip/mesh_description.h reads it.
+nlohmann::json primitiveMeshJson(const std::string& shape, double sizeMm);
+extern const char* const kPrimitiveShapes[6];
+
+}  // namespace curette
