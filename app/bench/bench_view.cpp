@@ -16,6 +16,7 @@
 #include "app/loaded_scene.h"
 #include "app/session.h"
 #include "app/session_step.h"
+#include "app/view_frame_inputs.h"
 #include "app/view_frame_loop.h"
 #include "base/error.h"
 #include "render/lao_directions.h"
@@ -126,18 +127,10 @@ int benchView(const CommandLine& cl) {
         FrameDescription frame = step.frame();
         frame.shading = step.state().shading;
         frame.size = size;
-        step.syncTo(renderer.clipMeshes());
-        FrameLoopInputs in;
-        in.now = now;
-        in.moved = moved;
-        in.precomputePending = renderer.precomputePending(frame);
-        in.exactSize = size;
-        double stepMm = renderer.resolveStepMm(frame.raycast);
-        in.shown = [&](FrameKind kind, glm::ivec2 s) {
-            FrameDescription f = decidedFrame(frame, kind, s, loop.settings().previewStepScale, stepMm);
-            return kind == FrameKind::Exact ? renderer.showing(f) : renderer.showingPreview(f);
-        };
+        step.syncTo(renderer, loaded.tracts);   // as the viewer: meshes, and a session's setting edits
+        FrameLoopInputs in = frameLoopInputs(renderer, loop, frame, now, moved);
         FrameDecision d = loop.decide(in);
+        double stepMm = renderer.resolveStepMm(frame.raycast);
         LoopFrame out;
         out.kind = d.render;
         out.size = d.size;

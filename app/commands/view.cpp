@@ -19,6 +19,7 @@
 #include "app/live_input.h"
 #include "app/loaded_scene.h"
 #include "app/session_step.h"
+#include "app/view_frame_inputs.h"
 #include "app/view_frame_loop.h"
 #include "app/view_panels.h"
 #include "base/error.h"
@@ -303,17 +304,8 @@ int view(const Arguments& args) {
             step.syncTo(renderer, loaded.tracts);
             glm::ivec2 exactSize = glm::max(glm::ivec2(glm::dvec2(framebuffer) * renderScale), glm::ivec2(1));
             frame.size = exactSize;
-            FrameLoopInputs loopInputs;
-            loopInputs.now = now;
-            loopInputs.moved = changes.any() || cameraMoving;
-            loopInputs.precomputePending = renderer.precomputePending(frame);
-            loopInputs.exactSize = exactSize;
+            FrameDecision decision = loop.decide(frameLoopInputs(renderer, loop, frame, now, changes.any() || cameraMoving));
             double stepMm = renderer.resolveStepMm(frame.raycast);
-            loopInputs.shown = [&](FrameKind kind, glm::ivec2 size) {
-                FrameDescription f = decidedFrame(frame, kind, size, loop.settings().previewStepScale, stepMm);
-                return kind == FrameKind::Exact ? renderer.showing(f) : renderer.showingPreview(f);
-            };
-            FrameDecision decision = loop.decide(loopInputs);
             if (decision.render != FrameKind::None) frame.size = decision.size;
             FrameDescription decided = decidedFrame(frame, decision.render, frame.size, decision.rayStepScale, stepMm);
             bool stereoKeyDown = !io.WantCaptureKeyboard && glfwGetKey(w, GLFW_KEY_F3) == GLFW_PRESS;

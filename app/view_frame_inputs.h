@@ -1,0 +1,17 @@
+#pragma once
+// What the viewer's frame loop (app/view_frame_loop.h, which knows no renderer) needs to know of a renderer
+// this frame: one definition for the viewer (app/commands/view.cpp) and `bench view`, which drives the same
+// loop headless.
+
+#include "app/view_frame_loop.h"
+#include "render/renderer.h"
+
+namespace curette {
+
+// The loop's inputs for `frame` (its size is the exact frame's) on `renderer` at `now`: whether step I is
+// pending, and whether the renderer already shows the frame the loop would decide on. `renderer` and `loop`
+// must outlive the inputs (their `shown` refers to both).
+FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& loop, const FrameDescription& frame, double now,
+                                bool moved);
+
+}  // namespace curette
