@@ -43,19 +43,9 @@ namespace {
 using curette::testing::Invocation;
 using curette::testing::runCurette;
 
-std::filesystem::path scratch(const std::string& name) {
-    auto dir = std::filesystem::temp_directory_path() / ("curette-panels-" + std::to_string(::getpid())) / name;
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
-}
+std::filesystem::path scratch(const std::string& name) { return curette::testing::freshScratchFolder("curette-panels", name); }
 
-std::string readText(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+std::string readText(const std::filesystem::path& path) { return curette::testing::readTextFile(path); }
 
 // A 32^3 ball with a soft shell and an LAO scene with two small clip meshes. (b) and (c) compare a renderer
 // that played the session with a fresh one, so two histories of the renderer must not show:

@@ -35,12 +35,7 @@ constexpr int kN = 48;                            // 48^3 voxels of 1 mm, voxel 
 const glm::dvec3 kCentre(22.0, 24.3, 23.6);       // the carving sphere, off the voxel lattice
 constexpr double kRadius = 10.0;
 
-fs::path scratch(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / ("curette-report-cli-" + std::to_string(::getpid())) / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path scratch(const std::string& name) { return curette::testing::freshScratchFolder("curette-report-cli", name); }
 
 // The scene, its uniform volume, the labels (1 "left" where x < 20 mm, 2 "right" elsewhere; right is
 // protected) and two streamlines along y: one through the sphere's centre, one 15 mm from it.

@@ -31,19 +31,9 @@ namespace {
 using curette::testing::Invocation;
 Invocation run(const std::string& arguments) { return curette::testing::runCurette(arguments); }
 
-std::filesystem::path scratch(const std::string& name) {
-    auto dir = std::filesystem::temp_directory_path() / ("curette-session-" + std::to_string(::getpid())) / name;
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
-}
+std::filesystem::path scratch(const std::string& name) { return curette::testing::freshScratchFolder("curette-session", name); }
 
-std::string readText(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+std::string readText(const std::filesystem::path& path) { return curette::testing::readTextFile(path); }
 
 void writeText(const std::filesystem::path& p, const std::string& text) {
     std::ofstream out(p, std::ios::binary);
@@ -70,9 +60,9 @@ SessionHeader exampleHeader() {
     h.devices = {{3, "dualshock4", "/dev/hidraw3", "Wireless Controller", "usb", 0x054c, 0x09cc}};
     h.mappingJson = R"({"bindings": [{"device": {"family": "gamepad", "index": 0}, "mesh": 1}]})";
     h.shading = ShadingMode::Cao;
-    h.meshes = {{0, "sphere", "", {{1, 2, 3}, glm::dquat(1, 0, 0, 0)}, {{1, 2, 3}, glm::dquat(1, 0, 0, 0)}, glm::dvec3(1)},
+    h.meshes = {{0, "sphere", "", {{1, 2, 3}, glm::dquat(1, 0, 0, 0)}, {{1, 2, 3}, glm::dquat(1, 0, 0, 0)}, glm::dvec3(1), std::nullopt},
                 {4, "added 4", R"({"shape":"sphere","radius_mm":15})", {{0.1, 0.2, 0.3}, glm::normalize(glm::dquat(0.9, 0.1, 0.2, 0.3))},
-                 {{0, 0, 0}, glm::dquat(1, 0, 0, 0)}, glm::dvec3(2, 1, 1)}};
+                 {{0, 0, 0}, glm::dquat(1, 0, 0, 0)}, glm::dvec3(2, 1, 1), std::nullopt}};
     h.nextMeshId = 5;
     input::DeviceSnapshot snapshot{3, input::DeviceFamily::DualShock4, {}};
     snapshot.state.axes[0] = 0.25f;

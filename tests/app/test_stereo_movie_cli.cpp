@@ -31,19 +31,9 @@ Invocation runWith(const std::string& environment, const std::string& arguments)
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
 
-std::filesystem::path scratch(const std::string& name) {
-    auto dir = std::filesystem::temp_directory_path() / ("curette-stereo-movie-" + std::to_string(::getpid())) / name;
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
-}
+std::filesystem::path scratch(const std::string& name) { return curette::testing::freshScratchFolder("curette-stereo-movie", name); }
 
-std::string readText(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+std::string readText(const std::filesystem::path& path) { return curette::testing::readTextFile(path); }
 
 // A 24^3 ball with 2 mm voxels, solid shading: cheap to render at any angle.
 std::filesystem::path writeBallScene(const std::filesystem::path& dir) {
