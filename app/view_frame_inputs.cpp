@@ -17,4 +17,13 @@ FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& l
     return in;
 }
 
+bool renderDecidedImage(Renderer& renderer, const FrameDecision& decision, const FrameDescription& decided) {
+    if (decision.render == FrameKind::Preview) renderer.renderPreview(decided);
+    if (decision.render == FrameKind::Exact) {
+        if (decision.exactBudgetMs > 0) return renderer.advanceExact(decided, decision.exactBudgetMs);
+        renderer.render(decided);
+    }
+    return decision.render != FrameKind::None;
+}
+
 }  // namespace curette

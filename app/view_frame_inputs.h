@@ -14,4 +14,9 @@ namespace curette {
 FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& loop, const FrameDescription& frame, double now,
                                 bool moved);
 
+// The image of `decision` on `renderer` (after step I's slices, which the caller runs and times apart): the
+// preview or the exact frame `decided` (decidedFrame of the decision), the exact one in slices when the
+// decision gives it a budget. Returns whether the image shown changed.
+bool renderDecidedImage(Renderer& renderer, const FrameDecision& decision, const FrameDescription& decided);
+
 }  // namespace curette

@@ -57,6 +57,7 @@ FrameDecision ViewFrameLoop::decide(const FrameLoopInputs& in) {
         want(FrameKind::Preview, previewSize(in.exactSize));
     } else {
         want(FrameKind::Exact, in.exactSize);
+        if (d.render == FrameKind::Exact && adaptive) d.exactBudgetMs = settings_.exactBudgetMs;
     }
     return d;
 }

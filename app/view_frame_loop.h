@@ -15,6 +15,9 @@
 //     so a slow scene (or a loaded machine) drops resolution rather than frames; its ray step is
 //     `previewStepScale` times the exact frame's (VTK's interactive sample distance), halving its samples.
 //   - exact quality: the exact frame whenever it is not on screen (a hardware GPU's default).
+//   - adaptive quality computes the exact frame in slices of `exactBudgetMs` per frame (steps V and VI are
+//     sliced: Renderer::advanceExact), showing the last preview meanwhile, so the window never freezes for it;
+//     the decision stays "exact" until the renderer shows it.
 //   - in both, while step I is to run, each frame runs slices of it for `precomputeBudgetMs` and shows a
 //     preview (phong: there is no AO yet) at the preview resolution (a full-size frame on llvmpipe would stall
 //     the window for seconds), so the window keeps presenting and the overlay shows the progress.
@@ -44,6 +47,9 @@ struct FrameLoopSettings {
     double maxPreviewScale = 0.5;
     double previewStepScale = 2.0;     // the preview's ray step over the exact frame's
     double precomputeBudgetMs = 60;    // step I per frame while it runs
+    double exactBudgetMs = 60;         // adaptive quality: the exact frame in slices of this much per frame
+                                       // (Renderer::advanceExact), so the window keeps presenting while it is
+                                       // computed; exact quality renders it whole
 };
 
 enum class FrameKind { None, Preview, Exact };
@@ -54,6 +60,8 @@ struct FrameDecision {
     glm::ivec2 size{0};                // of the image to render (unset for None)
     double rayStepScale = 1.0;         // times the exact frame's ray step (previews: previewStepScale)
     double precomputeBudgetMs = 0;     // > 0: first run slices of step I for this long
+    double exactBudgetMs = 0;          // exact frames: > 0 run the next slices of it for this long
+                                       // (Renderer::advanceExact), 0 render it whole
     bool inMotion = false;             // something moved within settleSeconds
 };
 

@@ -22,9 +22,11 @@ struct CameraGpu {  // std140 layout of ClipMeshGpu in shaders/clip_test.glsl
 };
 static_assert(sizeof(CameraGpu) == 96);
 
+// Whether any pixel of the resolution x resolution corner of a 2-D texture is finite.
 bool anyFinite(GLuint texture, int resolution) {
     std::vector<float> values(static_cast<std::size_t>(resolution) * static_cast<std::size_t>(resolution));
-    glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)), values.data());
+    glGetTextureSubImage(texture, 0, 0, 0, 0, resolution, resolution, 1, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)),
+                         values.data());
     return std::any_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); });
 }
 
@@ -179,7 +181,8 @@ bool ClipMeshSet::needsReallocation(int wanted, bool dilatedNeeded) const {
 
 bool ClipMeshSet::mapsCurrent(bool dilatedNeeded) const {
     if (meshes_.empty()) return true;
-    if (!depthProgram_ || needsReallocation(wantedResolution(), dilatedNeeded)) return false;
+    int wanted = wantedResolution();
+    if (!depthProgram_ || needsReallocation(wanted, dilatedNeeded) || wanted != mapResolution_) return false;
     for (const Mesh& m : meshes_)
         if (m.mapsDirty || (dilatedNeeded && m.dilatedDirty)) return false;
     return true;
@@ -210,10 +213,16 @@ void ClipMeshSet::update() {
         allocateArrays(layersPerMesh * std::max(count(), 4));
         for (Mesh& m : meshes_) m.mapsDirty = true;
     }
+    // The maps are drawn at the wanted resolution, not the allocated one, so they depend on the meshes alone
+    // and not on what the set held before: a renderer that once held a larger mesh draws what a fresh one draws.
+    if (wanted != mapResolution_) {
+        mapResolution_ = wanted;
+        for (Mesh& m : meshes_) m.mapsDirty = true;
+    }
     for (int i = 0; i < count(); ++i) {
         Mesh& m = meshes_[static_cast<std::size_t>(i)];
         if (m.mapsDirty) {
-            m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, resolution_);
+            m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, mapResolution_);
             renderMaps(i);
             m.mapsDirty = false;
             m.dilatedDirty = true;
@@ -231,7 +240,7 @@ void ClipMeshSet::renderMaps(int index) {
     Mesh& m = meshes_[static_cast<std::size_t>(index)];
     const int base = layersPerMesh * index;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.name());
-    glViewport(0, 0, resolution_, resolution_);
+    glViewport(0, 0, mapResolution_, mapResolution_);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -262,9 +271,9 @@ void ClipMeshSet::renderMaps(int index) {
         glCullFace(front ? GL_BACK : GL_FRONT);
         depthProgram_.set("peelAgainst", layer >= 2 ? base + layer - 2 : -1);
         glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
-        if (layer == 2) m.intervals = anyFinite(scratch_.name(), resolution_) ? 2 : 1;
+        if (layer == 2) m.intervals = anyFinite(scratch_.name(), mapResolution_) ? 2 : 1;
         if (layer == 4) {
-            m.deeperThanTwoIntervals = anyFinite(scratch_.name(), resolution_);
+            m.deeperThanTwoIntervals = anyFinite(scratch_.name(), mapResolution_);
             if (m.deeperThanTwoIntervals) {
                 log::warn("clip mesh \"" + m.name + "\" has more than two depth intervals seen from its clipping camera "
                           "(local +z); beyond the second it clips like its hull (CAO section 3.4, step II)");
@@ -281,12 +290,12 @@ void ClipMeshSet::renderMaps(int index) {
                 glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
                 glDepthFunc(GL_LESS);
                 glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
-                                   base + 3, resolution_, resolution_, 1);
+                                   base + 3, mapResolution_, mapResolution_, 1);
             }
             break;
         }
         glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
-                           base + layer, resolution_, resolution_, 1);
+                           base + layer, mapResolution_, mapResolution_, 1);
     }
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
@@ -298,15 +307,15 @@ void ClipMeshSet::dilateMaps(int index) {
     const Mesh& m = meshes_[static_cast<std::size_t>(index)];
     const int base = layersPerMesh * index;
     gl::Program& p = dilationProgram_;
-    p.set("resolution", resolution_);
+    p.set("resolution", mapResolution_);
     p.set("radiusMm", static_cast<float>(kernelRadiusMm(index)));
     p.set("pixelMm", static_cast<float>(m.camera.pixelMm()));
-    glm::uvec3 items(static_cast<unsigned>(resolution_), static_cast<unsigned>(resolution_), 1u);
+    glm::uvec3 items(static_cast<unsigned>(mapResolution_), static_cast<unsigned>(mapResolution_), 1u);
     for (int layer = 0; layer < layersPerMesh; ++layer) {
         p.set("backMap", layer % 2 == 1 ? 1 : 0);
         if (layer >= 2 * m.intervals) {
             const float empty = layer % 2 == 0 ? kInfinity : -kInfinity;
-            glClearTexSubImage(dilatedMaps_.name(), 0, 0, 0, base + layer, resolution_, resolution_, 1, GL_RED, GL_FLOAT, &empty);
+            glClearTexSubImage(dilatedMaps_.name(), 0, 0, 0, base + layer, mapResolution_, mapResolution_, 1, GL_RED, GL_FLOAT, &empty);
             continue;
         }
         // Pass 1 along x into the scratch array, pass 2 along y into the dilated array.
@@ -383,7 +392,7 @@ void ClipMeshSet::uploadCameras() {
         std::memcpy(cameras[i].worldToMap, &m[0][0], sizeof cameras[i].worldToMap);
         cameras[i].info[0] = static_cast<std::int32_t>(layersPerMesh * i);
         cameras[i].info[1] = meshes_[i].intervals;
-        cameras[i].info[2] = resolution_;
+        cameras[i].info[2] = mapResolution_;
         cameras[i].info[3] = meshes_[i].clipsTubes ? 1 : 0;
         // The map box (x, y across the map, z over the depth range plus margin) and its slack (mapBoxSlackMm).
         glm::dvec3 lo, hi;
@@ -405,10 +414,10 @@ void ClipMeshSet::apply(gl::Program& program) const {
 }
 
 std::vector<float> ClipMeshSet::readMap(int index, int layer, bool dilated) const {
-    std::vector<float> values(static_cast<std::size_t>(resolution_) * static_cast<std::size_t>(resolution_));
+    std::vector<float> values(static_cast<std::size_t>(mapResolution_) * static_cast<std::size_t>(mapResolution_));
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // the dilated maps are written by image stores
     glGetTextureSubImage(dilated ? dilatedMaps_.name() : depthMaps_.name(), 0, 0, 0, layersPerMesh * index + layer,
-                         resolution_, resolution_, 1, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)),
+                         mapResolution_, mapResolution_, 1, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)),
                          values.data());
     return values;
 }

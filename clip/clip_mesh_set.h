@@ -61,7 +61,10 @@ public:
     // Whether some map pixel of mesh `index` sees more than two intervals: interval 2 then ends at the
     // farthest back face (beyond the second interval the mesh clips like its hull).
     bool deeperThanTwoIntervals(int index) const { return meshes_[static_cast<std::size_t>(index)].deeperThanTwoIntervals; }
-    int resolution() const { return resolution_; }
+    // The maps' resolution (pixels a side; the wanted one of the meshes last drawn) and the arrays' allocated
+    // one (at least that: it grows with headroom and shrinks only below half, to reallocate rarely).
+    int resolution() const { return mapResolution_; }
+    int allocatedResolution() const { return resolution_; }
     double dilationRadiusMm() const { return dilationRadiusMm_; }
     // The radius the dilation kernel uses for mesh `index`: R plus sqrt(2) map pixels plus a rounding margin.
     double kernelRadiusMm(int index) const;
@@ -130,7 +133,8 @@ private:
     std::vector<Mesh> meshes_;
     double dilationRadiusMm_ = 0.0;
     bool dilatedNeeded_ = false;
-    int resolution_ = 0;
+    int resolution_ = 0;        // allocated
+    int mapResolution_ = 0;     // drawn (<= resolution_)
     int allocatedLayers_ = 0;
     bool dilatedAllocated_ = false;
     std::uint64_t version_ = 1, mapRenders_ = 0;

@@ -184,33 +184,53 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExponent) {
-    const std::uint32_t zero[2] = {0, 0};
-    glNamedBufferSubData(list_.name(), 0, 8, zero);
+void AmbientOcclusion::bindLao(GLuint target, float opacityExponent) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboRecomputeList, list_.name());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboLaoDirections, directions_.name());
     glBindTextureUnit(binding::opacity, opacity_.name());
     glBindTextureUnit(binding::mask, mask_.name());
     glBindTextureUnit(binding::precomputedAo, precomputed_.name());
     glBindImageTexture(binding::imageAmbient, target, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
-    // One work group per visited brick (shaders/visit_bricks.glsl).
-    glm::uvec2 grid = groupGrid(visitCount_);
     setLaoUniforms(laoProgram_, opacityExponent);
     laoProgram_.set("volumeSize", volume_.geometry().dims);
+    laoProgram_.set("listOffset", 0u);
     setVisitUniforms(laoProgram_);
+}
+
+void AmbientOcclusion::buildRecomputeList() {
+    // Every visited voxel's decision: copies and unreachable voxels are written here, the rest appended.
+    compactProgram_.set("volumeSize", volume_.geometry().dims);
+    compactProgram_.set("maxGroupsX", 32768u);
+    setVisitUniforms(compactProgram_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
+    compactProgram_.set("prepareDispatch", 0);
+    compactProgram_.use();
+    glm::uvec2 grid = groupGrid(visitCount_);
+    glDispatchCompute(grid.x, grid.y, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void AmbientOcclusion::readRecomputeCounts() {
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    std::uint32_t counts[2] = {0, 0};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // the counters were written by shader atomics
+    glGetNamedBufferSubData(list_.name(), 0, 8, counts);
+    listCount_ = counts[0];
+    stats_.recomputed = counts[1];
+}
+
+void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExponent) {
+    const std::uint32_t zero[2] = {0, 0};
+    glNamedBufferSubData(list_.name(), 0, 8, zero);
+    bindLao(target, opacityExponent);
+    // One work group per visited brick (shaders/visit_bricks.glsl).
     if (!compacted) {
+        glm::uvec2 grid = groupGrid(visitCount_);
         laoProgram_.set("laoMode", 0);
         laoProgram_.use();
         glDispatchCompute(grid.x, grid.y, 1);
     } else {
-        compactProgram_.set("volumeSize", volume_.geometry().dims);
-        compactProgram_.set("maxGroupsX", 32768u);
-        setVisitUniforms(compactProgram_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
-        compactProgram_.set("prepareDispatch", 0);
-        compactProgram_.use();
-        glDispatchCompute(grid.x, grid.y, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        buildRecomputeList();
         compactProgram_.set("prepareDispatch", 1);
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -220,11 +240,42 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
         glDispatchComputeIndirect(0);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     }
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    std::uint32_t counts[2] = {0, 0};
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // the counters were written by shader atomics
-    glGetNamedBufferSubData(list_.name(), 0, 8, counts);
-    stats_.recomputed = counts[1];
+    readRecomputeCounts();
+}
+
+std::uint32_t AmbientOcclusion::beginRecompute(const TransferFunctionTexture& tf) {
+    recomputeGroups_ = recomputeGroupsDone_ = 0;
+    if (visitCount_ == 0) return 0;
+    if (laoFlagsPending_) markLaoBricks();
+    float exponent = static_cast<float>(settings_.stepMm / tf.unitLengthMm());
+    if (settings_.dispatch != LaoSettings::Dispatch::Compacted) {
+        runLao(ambient_.name(), false, exponent);   // the full-grid baseline is not sliced
+        return 0;
+    }
+    const std::uint32_t zero[2] = {0, 0};
+    glNamedBufferSubData(list_.name(), 0, 8, zero);
+    bindLao(ambient_.name(), exponent);
+    buildRecomputeList();
+    readRecomputeCounts();   // waits for the list's length: the slices are sized on the CPU
+    recomputeExponent_ = exponent;
+    recomputeGroups_ = (listCount_ + kLaoGroupSize - 1) / kLaoGroupSize;
+    return recomputeGroups_;
+}
+
+std::uint32_t AmbientOcclusion::advanceRecompute(std::uint32_t groups) {
+    std::uint32_t n = std::min(groups, recomputeGroups_ - recomputeGroupsDone_);
+    if (n == 0) return 0;
+    // Other passes may have bound their own resources since the last slice.
+    bindLao(ambient_.name(), recomputeExponent_);
+    laoProgram_.set("laoMode", 1);
+    laoProgram_.set("listOffset", recomputeGroupsDone_ * kLaoGroupSize);
+    laoProgram_.use();
+    glm::uvec2 grid = groupGrid(n);
+    glDispatchCompute(grid.x, grid.y, 1);
+    recomputeGroupsDone_ += n;
+    if (recomputeGroupsDone_ == recomputeGroups_) readRecomputeCounts();
+    else glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    return n;
 }
 
 void AmbientOcclusion::precompute(const TransferFunctionTexture& tf) {

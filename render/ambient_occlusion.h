@@ -89,6 +89,16 @@ public:
     void clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode);
     // Step V over the bricks step IV just visited.
     void recomputeLao(const TransferFunctionTexture& tf);
+    // Step V in slices (Renderer::advanceExact): beginRecompute(tf) decides every visited voxel (copies and
+    // unreachable voxels are written at once), builds the recompute list and returns its LAO work in groups
+    // of kLaoGroupSize entries; each advanceRecompute(groups) computes the next `groups` of them and returns
+    // how many it ran. Each voxel's LAO is its own, so after the last slice V_AO is what recomputeLao() writes,
+    // bit for bit (Cao.SlicedStepVEqualsOneDispatch). The full-grid dispatch (a baseline) is not sliced:
+    // beginRecompute runs it whole and returns 0.
+    static constexpr std::uint32_t kLaoGroupSize = 64;   // lao.comp's local size
+    std::uint32_t beginRecompute(const TransferFunctionTexture& tf);
+    std::uint32_t advanceRecompute(std::uint32_t groups);
+    std::uint32_t recomputeGroupsLeft() const { return recomputeGroups_ - recomputeGroupsDone_; }
 
     GLuint ambientTexture() const { return ambient_.name(); }
     const AmbientOcclusionStats& lastStats() const { return stats_; }
@@ -110,6 +120,9 @@ private:
     void setVisitUniforms(gl::Program& program) const;
     void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation);
     void runLao(GLuint target, bool compacted, float opacityExponent);
+    void bindLao(GLuint target, float opacityExponent);
+    void buildRecomputeList();      // lao_compact.comp over the visited bricks
+    void readRecomputeCounts();     // the list's length and the LAO rays run, into listCount_ and stats_
     void setLaoUniforms(gl::Program& program, float opacityExponent);
 
     const GpuVolume& volume_;
@@ -119,6 +132,9 @@ private:
     gl::ComputeVariants clipPrograms_{"voxel_clip.comp"};
     gl::Program laoProgram_, compactProgram_;
     AmbientOcclusionStats stats_;
+    std::uint32_t listCount_ = 0;            // the recompute list's length (read after it is built)
+    std::uint32_t recomputeGroups_ = 0, recomputeGroupsDone_ = 0;   // sliced step V
+    float recomputeExponent_ = 1;
     std::uint32_t visitCount_ = 0;   // bricks in the uploaded list: what the last step IV visited, step V visits the same
     bool laoFlagsPending_ = false;   // a CAO list without its "LAO can change" flags yet: markLaoBricks before step V
     LaoReachBricks laoReach_;

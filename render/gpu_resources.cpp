@@ -23,6 +23,7 @@ constexpr ResourceInfo kResources[] = {
     {Resource::GBuffer, "G-buffer + partial occlusion", "RGBA16F x2, R32F x2, D32F", "tube colour, normal, depth; occlusion at the surface"},
     {Resource::OcclusionBuffers, "DOS occlusion buffers (2, ping-pong)", "RG32F 2D x2", "the slab pass's cone-blurred visibility"},
     {Resource::OutputImage, "output image", "RGBA32F 2D", "the frame"},
+    {Resource::PreviewImage, "preview image", "RGBA32F 2D", "the viewer's preview frames"},
     {Resource::IsmosLayers, "ISMOS depth layers + opacities", "RGBA32F 2D x2", "seed 003 sec. 3.6: z = 1 - depth of 4 layer fronts, their opacity"},
     {Resource::IsmosLayerBacks, "ISMOS layer backs", "RGBA32F 2D", "exact partial occlusion: where each layer ends"},
     {Resource::IsmosFit, "ISMOS transmittance fit", "R32F 2D", "seed 003 eq. 10: beta of T(z) ~ exp(-beta z^2)"},

@@ -27,6 +27,7 @@ enum class Resource {
     GBuffer,           // tube G-buffer and the partial-occlusion buffer
     OcclusionBuffers,  // the slab pass's ping-pong DOS occlusion buffers
     OutputImage,       // the frame's RGBA
+    PreviewImage,      // a viewer's preview frames' RGBA (kept apart from the exact frame in slices)
     IsmosLayers,       // ISMOS: layer fronts and opacities (pass 1 -> pass 2)
     IsmosLayerBacks,   // ISMOS: layer backs (exact partial occlusion only)
     IsmosFit,          // ISMOS: beta of the transmittance fit (alpha_app only)

@@ -93,11 +93,12 @@ void Renderer::updateOccupancy() {
 }
 
 void Renderer::ensureOutput(glm::ivec2 size) {
-    if (size == outputSize_ && output_) return;
-    output_ = gl::createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(output_.name(), 1, GL_RGBA32F, size.x, size.y);
-    glObjectLabel(GL_TEXTURE, output_.name(), -1, "output image");
-    outputSize_ = size;
+    OutputImage& image = images_[target_];
+    if (size == image.size && image.texture) return;
+    image.texture = gl::createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(image.texture.name(), 1, GL_RGBA32F, size.x, size.y);
+    glObjectLabel(GL_TEXTURE, image.texture.name(), -1, target_ == kExactImage ? "output image" : "preview image");
+    image.size = size;
 }
 
 void Renderer::setTubes(const TubeVertices& vertices, const TubeShading& shading) {
@@ -185,6 +186,7 @@ void Renderer::validateSize(const FrameDescription& frame) const {
 }
 
 void Renderer::markShown(const FrameDescription& frame, bool exact) {
+    shownImage_ = exact ? kExactImage : kPreviewImage;
     shownFrame_ = frame;
     shownVersions_ = currentVersions();
     shownAppearanceVersion_ = appearanceVersion_;
@@ -193,6 +195,9 @@ void Renderer::markShown(const FrameDescription& frame, bool exact) {
 
 void Renderer::render(const FrameDescription& frame) {
     validateSize(frame);
+    finishPendingStepV(-1);
+    exactJob_.reset();
+    target_ = kExactImage;
     ensureOutput(frame.size);
     lastPlan_ = plan(frame);
     // A rigid motion changes only the clipping cameras: upload them when the maps are not redrawn anyway.
@@ -203,6 +208,144 @@ void Renderer::render(const FrameDescription& frame) {
         timers_.end();
     }
     markShown(frame, true);
+}
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+// A slice's size: `rate` units per ms times the budget left, within [1, left]; a probe of `probe` units before the
+// rate is known.
+std::uint32_t sliceSize(double rate, double budgetMs, std::uint32_t left, std::uint32_t probe, std::uint32_t fixed) {
+    if (fixed > 0) return std::min(fixed, left);
+    if (!(rate > 0)) return std::clamp<std::uint32_t>(probe, 1, left);
+    return static_cast<std::uint32_t>(std::clamp(rate * std::max(budgetMs, 1.0), 1.0, double(left)));
+}
+}  // namespace
+
+bool Renderer::exactJobCurrent(const FrameDescription& frame) const {
+    return exactJob_ && exactJob_->frame == frame && exactJob_->versionsSeen == currentVersions() &&
+           exactJob_->appearanceSeen == appearanceVersion_ && exactJob_->previewsSeen == previewsRendered_;
+}
+
+void Renderer::beginStepV(ExactJob& job) {
+    job.stepVGroups = ao_->beginRecompute(*tf_);
+    job.stepVBegun = true;
+}
+
+bool Renderer::stepVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits) {
+    // The first slice builds the list (and waits for its length); later ones run its LAO rays.
+    if (!job.stepVBegun) {
+        beginStepV(job);
+    } else if (ao_->recomputeGroupsLeft() > 0) {
+        std::uint32_t n = sliceSize(stepVGroupsPerMs_, budgetMs, ao_->recomputeGroupsLeft(), std::max<std::uint32_t>(job.stepVGroups / 64, 1), sliceUnits);
+        if (sliceUnits == 0 && job.lastStepVGroups > 0) n = std::min(n, 2 * job.lastStepVGroups);   // as the ray cast's bands
+        job.lastStepVGroups = n;
+        auto start = Clock::now();
+        ao_->advanceRecompute(n);
+        glFinish();
+        double ms = msSince(start);
+        if (ms > 0.5) stepVGroupsPerMs_ = n / ms;
+    }
+    if (ao_->recomputeGroupsLeft() > 0) return false;
+    ambientWritten_ = true;
+    freshness_.markAmbient(job.ambientVersions, job.frame.shading);
+    job.stepVDone = true;
+    return true;
+}
+
+bool Renderer::finishPendingStepV(double budgetMs) {
+    if (!exactJob_ || !exactJob_->stepIVDone || exactJob_->stepVDone) return true;
+    // Step I started over since (another TF, volume or LAO settings): it rewrites every AO volume anyway.
+    if (!ao_ || !Freshness::samePrecomputeInputs(exactJob_->ambientVersions, currentVersions())) return true;
+    auto start = Clock::now();
+    timers_.begin(passInfo(Pass::LaoRecompute).name);
+    bool done = false;
+    for (bool first = true; !done && (first || budgetMs < 0 || msSince(start) < budgetMs); first = false)
+        done = stepVSlice(*exactJob_, budgetMs < 0 ? 1e9 : budgetMs - msSince(start), budgetMs < 0 ? ~0u : 0u);
+    timers_.end();
+    return done;
+}
+
+void Renderer::runExactSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits) {
+    Pass pass = job.plan.passes[job.next].pass;
+    timers_.begin(passInfo(pass).name);
+    if (pass == Pass::LaoRecompute) {
+        if (stepVSlice(job, budgetMs, sliceUnits)) ++job.next;
+    } else if (pass == Pass::RayCast) {
+        if (job.bands == 0) {
+            // The first slice: a probe of one band, which also says how many there are.
+            auto start = Clock::now();
+            job.bands = runRayCast(job.frame, false, 0, 1);
+            glFinish();
+            job.bandsDone = 1;
+            if (double ms = msSince(start); ms > 0.5) rayCastBandsPerMs_ = 1 / ms;
+        } else {
+            std::uint32_t left = static_cast<std::uint32_t>(job.bands - job.bandsDone);
+            // The rate comes from the last slice, whose bands may have been cheap (air at the top of the image):
+            // a slice at most doubles the last one's size, so a wrong rate overruns the budget little.
+            auto n = static_cast<int>(sliceSize(rayCastBandsPerMs_, budgetMs, left, 1, sliceUnits));
+            if (sliceUnits == 0) n = std::min(n, 2 * std::max(job.lastBands, 1));
+            job.lastBands = n;
+            auto start = Clock::now();
+            runRayCast(job.frame, false, job.bandsDone, n);
+            glFinish();
+            job.bandsDone += n;
+            if (double ms = msSince(start); ms > 0.5) rayCastBandsPerMs_ = n / ms;
+        }
+        if (job.bandsDone >= job.bands) ++job.next;
+    } else {
+        run(pass, job.frame);
+        if (pass == Pass::VoxelClipping) {
+            job.stepIVDone = true;
+            job.ambientVersions = currentVersions();
+        }
+        ++job.next;
+    }
+    timers_.end();
+}
+
+bool Renderer::advanceExact(const FrameDescription& frame, double budgetMs, std::uint32_t sliceUnits) {
+    validateSize(frame);
+    auto start = Clock::now();
+    if (exactJob_ && !exactJobCurrent(frame)) {
+        if (!finishPendingStepV(budgetMs)) return false;
+        exactJob_.reset();
+    }
+    if (!exactJob_ && showing(frame)) return true;
+    target_ = kExactImage;
+    if (!exactJob_) {
+        ensureOutput(frame.size);
+        ExactJob job;
+        job.frame = frame;
+        job.plan = plan(frame);
+        // As render(): a rigid motion changes only the clipping cameras.
+        if (!job.plan.runs(Pass::ClipMaps)) clip_.uploadCameras();
+        exactJob_ = std::move(job);
+    }
+    ExactJob& job = *exactJob_;
+    for (bool first = true; job.next < job.plan.passes.size() && (first || msSince(start) < budgetMs); first = false)
+        runExactSlice(job, budgetMs - msSince(start), sliceUnits);
+    job.versionsSeen = currentVersions();
+    job.appearanceSeen = appearanceVersion_;
+    job.previewsSeen = previewsRendered_;
+    if (job.next < job.plan.passes.size()) return false;
+    lastPlan_ = job.plan;
+    markShown(frame, true);
+    exactJob_.reset();
+    return true;
+}
+
+double Renderer::exactProgress() const {
+    if (!exactJob_ || exactJob_->plan.passes.empty()) return 0.0;
+    const ExactJob& job = *exactJob_;
+    double within = 0;
+    if (job.next < job.plan.passes.size()) {
+        Pass pass = job.plan.passes[job.next].pass;
+        if (pass == Pass::LaoRecompute && job.stepVBegun && job.stepVGroups > 0)
+            within = 1.0 - double(ao_->recomputeGroupsLeft()) / job.stepVGroups;
+        if (pass == Pass::RayCast && job.bands > 0) within = double(job.bandsDone) / job.bands;
+    }
+    return (double(job.next) + within) / double(job.plan.passes.size());
 }
 
 Renderer::PreviewAmbient Renderer::previewAmbient() const {
@@ -218,7 +361,10 @@ GLuint Renderer::shadedAmbientTexture() const {
 
 void Renderer::renderPreview(const FrameDescription& frame) {
     validateSize(frame);
+    // Previews have their own image, so an exact frame in slices (advanceExact) is not drawn over.
+    target_ = kPreviewImage;
     ensureOutput(frame.size);
+    ++previewsRendered_;
     PreviewAmbient source = previewAmbient();
     // The image passes shade `shaded`: the frame itself, or phong while V_PAO is not there. The clip maps are
     // drawn for the frame's own mode (cao wants the dilated ones), exactly as the exact frame would draw them.
@@ -239,9 +385,11 @@ void Renderer::renderPreview(const FrameDescription& frame) {
         }
     } catch (...) {
         previewing_.reset();
+        target_ = kExactImage;
         throw;
     }
     previewing_.reset();
+    target_ = kExactImage;
     markShown(frame, false);
     shownPreviewAmbient_ = source;
 }
@@ -333,7 +481,7 @@ void Renderer::run(Pass pass, const FrameDescription& frame) {
             runRayCast(frame, true);
             return;
         case Pass::IsmosOcclusion:
-            ismos_->runOcclusion(frame, ismosSpaceOf(frame), volume_.geometry().worldCenter(), output_.name());
+            ismos_->runOcclusion(frame, ismosSpaceOf(frame), volume_.geometry().worldCenter(), targetTexture());
             return;
         case Pass::Count: break;
     }
@@ -344,7 +492,7 @@ IsmosSpace Renderer::ismosSpaceOf(const FrameDescription& frame) const {
     return ismosSpace(frame, volume_.geometry().worldCenter(), volume_.geometry().boundingRadiusMm());
 }
 
-void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
+int Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers, int firstBand, int bandCount) {
     // ISMOS pass 1 is this ray caster shading with the mode's base (phong or solid) plus the layer outputs;
     // every other mode compiles without ISMOS_LAYERS, so its program is unchanged.
     ShadingMode shading = ismosLayers ? frame.ismos.base : frame.shading;
@@ -374,7 +522,7 @@ void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
     p.set("brickSize", GpuVolume::brickSize);
     p.set("maxSkipBricks", emptySpaceJumpLimit_);
     glBindTextureUnit(binding::occupancy, occupancy_.name());
-    glBindImageTexture(binding::imageOutput, output_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(binding::imageOutput, targetTexture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (countSamples_) {
         if (!sampleCounter_) {
             sampleCounter_ = gl::createBuffer();
@@ -384,14 +532,17 @@ void Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers) {
         glNamedBufferSubData(sampleCounter_.name(), 0, 16, zero);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboSampleCounter, sampleCounter_.name());
     }
-    TileOrderPiece{frame.size, tileRowsPerBand_}.dispatch(p);
+    TileOrderPiece tiles{frame.size, tileRowsPerBand_};
+    int bands = tiles.bandCount(p.workGroupSize());
+    tiles.dispatchBands(p, firstBand, bandCount < 0 ? bands : bandCount);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    return bands;
 }
 
 void Renderer::runSlabPass(const FrameDescription& frame, bool withTubes) {
     // Without tubes only dos comes here (all rays advance slice by slice together); with tubes every mode.
     GLuint ambient = usesAmbientOcclusion(frame.shading) ? shadedAmbientTexture() : 0;
-    slab_.run(SlabInputs{frame, volume_, *tf_, clip_, SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ambient, frame.raycast.cutFace}, output_.name(),
+    slab_.run(SlabInputs{frame, volume_, *tf_, clip_, SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ambient, frame.raycast.cutFace}, targetTexture(),
                          withTubes ? &gbuffer_ : nullptr, withTubes ? tubeShading_.geometryOpacity : 0.0, tubeShading_.thicknessMm});
     slabUsed_ = true;
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -417,7 +568,7 @@ void Renderer::runComposite(const FrameDescription& frame) {
     c.set("depthBiasMm", static_cast<float>(tubeShading_.depthBiasMm));
     c.set("useOcclusion", traits(frame.shading).occludesTubes ? 1 : 0);
     c.set("lineDiffuseExponent", static_cast<float>(tubeShading_.lineDiffuseExponent));
-    glBindImageTexture(binding::imageOutput, output_.name(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(binding::imageOutput, targetTexture(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glBindTextureUnit(binding::tubeDepth, gbuffer_.depth());
     glBindTextureUnit(binding::tubeColor, gbuffer_.color());
     glBindTextureUnit(binding::tubeNormal, gbuffer_.normal());
@@ -455,12 +606,13 @@ glm::dvec2 Renderer::rayStepsByDispatchHalf() const {
 
 Image Renderer::readImage() const {
     Image image;
-    image.width = outputSize_.x;
-    image.height = outputSize_.y;
+    const OutputImage& shown = images_[shownImage_];
+    image.width = shown.size.x;
+    image.height = shown.size.y;
     image.pixels.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
     // The shader writes row 0 as the top of the picture, which is also Image's convention.
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // written by image stores
-    glGetTextureImage(output_.name(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.pixels.size() * sizeof(glm::vec4)),
+    glGetTextureImage(shown.texture.name(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.pixels.size() * sizeof(glm::vec4)),
                       image.pixels.data());
     return image;
 }
@@ -483,8 +635,11 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
         {Resource::TransferFunction, static_cast<std::size_t>(tf_->tableSize()) * 16u, {}},
         {Resource::GradientOpacity, TransferFunctionTexture::gradientTableSize * 4u, {}},
         {Resource::Occupancy, static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y) * static_cast<std::size_t>(grid.z), {}},
-        {Resource::OutputImage, static_cast<std::size_t>(outputSize_.x) * static_cast<std::size_t>(outputSize_.y) * 16u, {}},
+        {Resource::OutputImage, static_cast<std::size_t>(images_[kExactImage].size.x) * static_cast<std::size_t>(images_[kExactImage].size.y) * 16u, {}},
     };
+    if (images_[kPreviewImage].texture)
+        list.push_back({Resource::PreviewImage,
+                        static_cast<std::size_t>(images_[kPreviewImage].size.x) * static_cast<std::size_t>(images_[kPreviewImage].size.y) * 16u, {}});
     if (labels_) list.push_back({Resource::LabelVolume, labels_->gpuBytes(), {}});
     if (clip_.count() > 0) {
         list.push_back({Resource::ClipMeshGeometry, clip_.geometryBytes(), {}});

@@ -91,6 +91,20 @@ public:
     // exact frame reads, so the next render() is unchanged by it (Preview.NeverChangesTheExactFrame).
     void renderPreview(const FrameDescription& frame);
     PreviewAmbient previewAmbient() const;
+    // The exact frame in slices, for a viewer that keeps presenting while it is computed: each call runs the
+    // next part of render(frame)'s plan for about budgetMs of wall time (at least one slice) and returns true
+    // once the frame is done. Then showing(frame) holds and the image shown is render(frame)'s, bit for bit;
+    // until then the image shown stays the last one (previews have their own image). Step V runs in slices of
+    // its recompute list (AmbientOcclusion::advanceRecompute), the ray cast in bands of tile rows
+    // (TileOrderPiece::dispatchBands), every other pass whole. A call for another frame, or after the scene
+    // changed or a preview was drawn, starts over, except that once step IV has run its step V is finished
+    // first: the next update starts from step IV's poses, so a half-done step V would leave V_AO stale where
+    // they were (render() finishes it too). sliceUnits > 0 fixes the slice size (step V: work groups of the
+    // list, the ray cast: bands), for tests.
+    bool advanceExact(const FrameDescription& frame, double budgetMs, std::uint32_t sliceUnits = 0);
+    // How far the exact frame in slices is, in [0, 1] (passes done, the sliced ones by their share done; 0 when
+    // none is under way).
+    double exactProgress() const;
     // Whether the image shown is a preview of `frame` under the current scene (showing() is for exact ones).
     bool showingPreview(const FrameDescription& frame) const;
     bool lastFrameExact() const { return shownExact_; }
@@ -105,8 +119,9 @@ public:
     double precomputeProgress() const;
     // Waits until the GPU has finished every pass submitted so far (for wall-clock timing).
     void finish() const;
-    GLuint outputTexture() const { return output_.name(); }
-    glm::ivec2 outputSize() const { return outputSize_; }
+    // The image shown: the last exact frame or preview (a preview is kept in an image of its own).
+    GLuint outputTexture() const { return images_[shownImage_].texture.name(); }
+    glm::ivec2 outputSize() const { return images_[shownImage_].size; }
     Image readImage() const;
 
     // Count the volume samples the ray caster takes (for `bench`; slows the frame slightly when on).
@@ -136,7 +151,34 @@ private:
     bool dilatedMapsWanted(ShadingMode mode) const;
     bool tubesInView(const FrameDescription& frame) const;
     void run(Pass pass, const FrameDescription& frame);
-    void runRayCast(const FrameDescription& frame, bool ismosLayers = false);
+    // The whole image, or (bandCount >= 0) its bands [firstBand, firstBand + bandCount) of tile rows;
+    // returns the image's number of bands.
+    int runRayCast(const FrameDescription& frame, bool ismosLayers = false, int firstBand = 0, int bandCount = -1);
+    // The exact frame in slices (advanceExact).
+    struct ExactJob {
+        FrameDescription frame;
+        FramePlan plan;
+        std::size_t next = 0;                 // the pass of plan.passes under way
+        InputVersions versionsSeen;           // the scene at the end of the last slice ...
+        std::uint64_t appearanceSeen = 0;
+        std::uint64_t previewsSeen = 0;       // ... and the previews drawn by then
+        bool stepIVDone = false, stepVBegun = false, stepVDone = false;
+        InputVersions ambientVersions;        // what step IV clipped (V_AO's freshness once step V is done)
+        std::uint32_t stepVGroups = 0;
+        int bands = 0, bandsDone = 0;         // the ray cast's
+        int lastBands = 0;                    // the last slices' sizes
+        std::uint32_t lastStepVGroups = 0;
+    };
+    bool exactJobCurrent(const FrameDescription& frame) const;
+    void runExactSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
+    // Runs step V's slices of the exact frame under way (its step IV ran) for about budgetMs (< 0: to the end);
+    // whether step V is done (or was never begun).
+    bool finishPendingStepV(double budgetMs);
+    void beginStepV(ExactJob& job);
+    bool stepVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
+    std::optional<ExactJob> exactJob_;
+    std::uint64_t previewsRendered_ = 0;
+    double stepVGroupsPerMs_ = 0, rayCastBandsPerMs_ = 0;   // the last slices' rates (0: not measured yet)
     // The ambient texture the image passes shade lao/cao with: V_AO, or in a preview previewAmbient()'s.
     GLuint shadedAmbientTexture() const;
     void validateSize(const FrameDescription& frame) const;
@@ -170,8 +212,15 @@ private:
     std::optional<InputVersions> slicingFor_;    // the inputs the step I in slices is computing V_PAO for
     double precomputeBricksPerMs_[2] = {0, 0};   // the last slice's rate per phase (0: not measured yet)
     gl::Texture occupancy_;
-    gl::Texture output_;
-    glm::ivec2 outputSize_{0};
+    struct OutputImage {
+        gl::Texture texture;
+        glm::ivec2 size{0};
+    };
+    static constexpr int kExactImage = 0, kPreviewImage = 1;
+    OutputImage images_[2];          // exact frames (render, advanceExact) and previews (renderPreview)
+    int target_ = kExactImage;       // the image the passes write
+    int shownImage_ = kExactImage;
+    GLuint targetTexture() const { return images_[target_].texture.name(); }
     gl::Buffer sampleCounter_;
     bool countSamples_ = false;
     int emptySpaceJumpLimit_ = 255;

@@ -20,16 +20,33 @@ void CameraRayPiece::apply(gl::Program& p) const {
 
 int TileOrderPiece::defaultRowsPerBand() { return static_cast<int>(std::max(2u, std::thread::hardware_concurrency())); }
 
-void TileOrderPiece::dispatch(gl::Program& p) const {
-    glm::uvec3 group = p.workGroupSize();
+namespace {
+struct TileBands {
+    glm::uvec2 tiles;
+    unsigned perBand, bands;
+};
+TileBands tileBands(glm::ivec2 size, int rowsPerBand, glm::uvec3 group) {
     glm::uvec2 tiles = (glm::uvec2(glm::max(size, glm::ivec2(1))) + glm::uvec2(group) - 1u) / glm::uvec2(group);
     unsigned perBand = static_cast<unsigned>(std::clamp(rowsPerBand, 1, static_cast<int>(tiles.y)));
-    unsigned b = (tiles.y + perBand - 1) / perBand;
-    p.set("tileBands", b);
-    p.set("rowsPerBand", perBand);
-    p.set("tileGrid", tiles);
+    return {tiles, perBand, (tiles.y + perBand - 1) / perBand};
+}
+}  // namespace
+
+int TileOrderPiece::bandCount(glm::uvec3 workGroupSize) const { return static_cast<int>(tileBands(size, rowsPerBand, workGroupSize).bands); }
+
+void TileOrderPiece::dispatch(gl::Program& p) const { dispatchBands(p, 0, bandCount(p.workGroupSize())); }
+
+void TileOrderPiece::dispatchBands(gl::Program& p, int firstBand, int bands) const {
+    TileBands t = tileBands(size, rowsPerBand, p.workGroupSize());
+    unsigned first = static_cast<unsigned>(std::clamp(firstBand, 0, static_cast<int>(t.bands)));
+    unsigned count = std::min(static_cast<unsigned>(std::max(bands, 0)), t.bands - first);
+    if (count == 0) return;
+    p.set("tileBands", count);
+    p.set("firstBand", first);
+    p.set("rowsPerBand", t.perBand);
+    p.set("tileGrid", t.tiles);
     p.use();
-    glDispatchCompute(tiles.x, b * perBand, 1);
+    glDispatchCompute(t.tiles.x, count * t.perBand, 1);
 }
 
 void VolumePiece::apply(gl::Program& p) const {

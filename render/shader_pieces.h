@@ -36,7 +36,11 @@ struct TileOrderPiece {
     // One row per llvmpipe worker thread (it starts one per CPU core, LP_NUM_THREADS aside), at least 2: each
     // thread then gets one row of every band.
     static int defaultRowsPerBand();
+    // The image's bands of rowsPerBand rows of tiles (the last may be partly past the image).
+    int bandCount(glm::uvec3 workGroupSize) const;
+    // The whole image, or the bands [firstBand, firstBand + bands) of it (clamped to the image's).
     void dispatch(gl::Program& program) const;
+    void dispatchBands(gl::Program& program, int firstBand, int bands) const;
 };
 
 // volume.glsl: the data volume, its world-to-texture map and the gradient's map to world units.

@@ -18,11 +18,13 @@ layout(std430, binding = SSBO_RECOMPUTE_LIST) buffer RecomputeList { uint listCo
 
 uniform int laoMode;
 uniform ivec3 volumeSize;
+uniform uint listOffset;   // mode LIST: the first list entry of this dispatch (step V in slices)
 
 void main() {
     uint id = linearInvocation();
     ivec3 v;
     if (laoMode == MODE_LIST) {
+        id += listOffset;
         if (id >= listCount) return;
         v = voxelFromIndex(listVoxels[id], volumeSize);
     } else {

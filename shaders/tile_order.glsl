@@ -11,15 +11,19 @@
 // per band, each of up to m threads gets rows from every band (two threads: the first and the second half of
 // every band). The dispatch has B * m rows (up to m - 1 more than the image); groups past the last row do
 // nothing. m = 1: scanline order.
+// A dispatch may cover a run of bands only (the exact frame in slices, Renderer::advanceExact): bands
+// firstBand .. firstBand + tileBands - 1, dealt out the same way, so each slice is a horizontal strip of the
+// image that the threads share alike, and the slices of a frame together shade every pixel once.
 
-uniform uint tileBands;
-uniform uint rowsPerBand;     // m; B = ceil(tile rows / m)
+uniform uint tileBands;       // B: the bands this dispatch covers (all: ceil(tile rows / m))
+uniform uint firstBand;       // the first of them
+uniform uint rowsPerBand;     // m
 uniform uvec2 tileGrid;       // tiles across and down
 
 // The pixel this invocation shades; false when its group lies past the last row of tiles.
 bool tilePixel(uvec2 tileSize, out ivec2 pixel) {
     uint j = gl_WorkGroupID.y;
-    uint row = (j % tileBands) * rowsPerBand + j / tileBands;
+    uint row = (firstBand + j % tileBands) * rowsPerBand + j / tileBands;
     pixel = ivec2(uvec2(gl_WorkGroupID.x, row) * tileSize + gl_LocalInvocationID.xy);
     return row < tileGrid.y;
 }

@@ -51,6 +51,7 @@ struct LoopFrame {
     double ms = 0;             // wall time of the iteration's work (step I slices, render, finish)
     double renderMs = 0;       // of it, the render
     FrameKind kind = FrameKind::None;
+    bool exactShown = false;   // the exact frame was on screen after it (an exact frame in slices: its last)
     glm::ivec2 size{0};
     bool inMotion = false;
     bool precomputing = false;
@@ -60,7 +61,7 @@ struct LoopFrame {
 };
 
 nlohmann::json toJson(const LoopFrame& f) {
-    return {{"t_s", f.t}, {"ms", f.ms}, {"render_ms", f.renderMs}, {"kind", frameKindName(f.kind)}, {"size", {f.size.x, f.size.y}},
+    return {{"t_s", f.t}, {"ms", f.ms}, {"render_ms", f.renderMs}, {"kind", frameKindName(f.kind)}, {"exact_shown", f.exactShown}, {"size", {f.size.x, f.size.y}},
             {"in_motion", f.inMotion}, {"precomputing", f.precomputing}, {"step1_progress", f.progress}, {"recorded_frames_applied", f.followed},
             {"pass_ms", [&] {
                  nlohmann::json passes = nlohmann::json::object();
@@ -107,6 +108,8 @@ int benchView(const CommandLine& cl) {
         CommandLine::parseDouble("precompute-budget", cl.valueOr("precompute-budget", std::to_string(settings.precomputeBudgetMs)), 1, 10000);
     settings.previewTargetMs =
         CommandLine::parseDouble("preview-target", cl.valueOr("preview-target", std::to_string(settings.previewTargetMs)), 1, 10000);
+    // 0: the exact frame whole, in one iteration (as before it was sliced; and as exact quality does).
+    settings.exactBudgetMs = CommandLine::parseDouble("exact-budget", cl.valueOr("exact-budget", std::to_string(settings.exactBudgetMs)), 0, 100000);
     glm::vec4 background(loaded.scene.background);
 
     double loadBefore = loadAverage();
@@ -140,11 +143,10 @@ int benchView(const CommandLine& cl) {
         if (d.precomputeBudgetMs > 0) renderer.advancePrecompute(d.precomputeBudgetMs);
         auto renderStart = Clock::now();
         if (d.render != FrameKind::None) {
-            FrameDescription f = decidedFrame(frame, d.render, d.size, d.rayStepScale, stepMm);
-            if (d.render == FrameKind::Preview) renderer.renderPreview(f);
-            else renderer.render(f);
+            renderDecidedImage(renderer, d, decidedFrame(frame, d.render, d.size, d.rayStepScale, stepMm));
             renderer.finish();
         }
+        out.exactShown = d.render == FrameKind::Exact && renderer.lastFrameExact() && renderer.showing(decidedFrame(frame, d.render, d.size, d.rayStepScale, stepMm));
         auto end = Clock::now();
         out.renderMs = msBetween(renderStart, end);
         out.ms = msBetween(start, end);
@@ -170,7 +172,7 @@ int benchView(const CommandLine& cl) {
         if (f.kind != FrameKind::None && firstImageMs < 0) firstImageMs = 1000 * f.t;
         if (f.precomputing) step1Ms = 1000 * f.t;
         first.push_back(f);
-        if (f.kind == FrameKind::Exact) {
+        if (f.exactShown) {
             firstExactMs = 1000 * f.t;
             break;
         }
@@ -207,7 +209,7 @@ int benchView(const CommandLine& cl) {
         f.followed = followed;
         played.push_back(f);
         bool sessionOver = next == session.frames.size();
-        if (sessionOver && f.kind == FrameKind::Exact) {
+        if (sessionOver && f.exactShown) {
             exactAfterMotion = f.t;
             break;
         }
@@ -232,8 +234,13 @@ int benchView(const CommandLine& cl) {
         }
         previousEnd = f.inMotion ? f.t : -1;
     }
-    const LoopFrame& lastExact = played.back();
-    double exactRenderMs = lastExact.kind == FrameKind::Exact ? lastExact.renderMs : 0;
+    // The last exact frame's work: the iterations that ran it (one, or its slices), and the longest of all the
+    // iterations after the last motion was applied (how long the window waited at most while it settled).
+    double exactRenderMs = 0, settleFrameMaxMs = 0;
+    int exactSlices = 0;
+    for (auto f = played.rbegin(); f != played.rend() && f->kind == FrameKind::Exact; ++f) exactRenderMs += f->renderMs, ++exactSlices;
+    for (const LoopFrame& f : played)
+        if (lastMotionApplied >= 0 && f.t - f.ms / 1000.0 >= lastMotionApplied) settleFrameMaxMs = std::max(settleFrameMaxMs, f.ms);
     double fromRecordedMotion = lastMotionRecorded >= 0 ? 1000 * (exactAfterMotion - lastMotionRecorded) : 0;
     double fromAppliedMotion = lastMotionApplied >= 0 ? 1000 * (exactAfterMotion - lastMotionApplied) : 0;
     FrameDescription lastFrame = step.frame();
@@ -244,10 +251,19 @@ int benchView(const CommandLine& cl) {
 
     std::optional<std::string> freshHash;
     if (cl.flag("check")) {
+        // A fresh renderer and a fresh session step that follows every recorded frame (the step syncs what changed
+        // since it last synced, so the played one cannot serve a second renderer): meshes and setting edits.
         Renderer fresh(*context, loaded.volume, loaded.scene.transferFunction);
         configureRenderer(loaded, fresh);
-        step.syncTo(fresh.clipMeshes());
-        fresh.render(lastFrame);
+        SessionStep freshStep(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
+                              initialFrame(loaded.scene, geometry));
+        for (std::size_t n = 0; n < session.frames.size(); ++n)
+            freshStep.follow(session.frames[n], scenePath.parent_path(), file.string() + " line " + std::to_string(n + 2));
+        freshStep.syncTo(fresh, loaded.tracts);
+        FrameDescription freshFrame = freshStep.frame();
+        freshFrame.shading = freshStep.state().shading;
+        freshFrame.size = size;
+        fresh.render(freshFrame);
         freshHash = imageHash(toRgba8(fresh.readImage(), background));
     }
 
@@ -275,7 +291,9 @@ int benchView(const CommandLine& cl) {
     table.add({"recorded frames skipped", static_cast<double>(skipped), "", "recorded frames applied together with a later one"});
     table.add({"last motion -> exact", fromRecordedMotion, "ms", "recorded time of the last motion to the exact frame on screen"});
     table.add({"applied motion -> exact", fromAppliedMotion, "ms", "wall time the last motion was applied to the exact frame on screen"});
-    table.add({"exact frame render", exactRenderMs, "ms", "the last exact frame's render + finish (steps IV, V, VI)"});
+    table.add({"exact frame render", exactRenderMs, "ms", "the last exact frame's render + finish (steps IV, V, VI), over its slices"});
+    table.add({"exact frame slices", static_cast<double>(exactSlices), "", "iterations that ran it (--exact-budget 0: one)"});
+    table.add({"settle frame max", settleFrameMaxMs, "ms", "the longest the window waited between the last motion and the exact frame"});
     table.add({"last frame exact", lastIsExact ? "yes" : "NO", "", "the image on screen at the end is the exact frame of the last state"});
     if (freshHash) table.add({"equals a fresh render", *freshHash == hash ? "yes" : "NO", "", "image hash against a fresh renderer of the last state"});
     table.print();
@@ -291,7 +309,7 @@ int benchView(const CommandLine& cl) {
         {"renderer", context->info().renderer},
         {"quality", viewQualityName(settings.quality)},
         {"settings",
-         {{"settle_s", settings.settleSeconds}, {"precompute_budget_ms", settings.precomputeBudgetMs}, {"preview_target_ms", settings.previewTargetMs},
+         {{"settle_s", settings.settleSeconds}, {"precompute_budget_ms", settings.precomputeBudgetMs}, {"preview_target_ms", settings.previewTargetMs}, {"exact_budget_ms", settings.exactBudgetMs},
           {"preview_scale_min", settings.minPreviewScale}, {"preview_scale_max", settings.maxPreviewScale}}},
         {"load_average", {{"start", loadBefore}, {"end", loadAfter}}},
         {"cores", std::thread::hardware_concurrency()},
@@ -311,6 +329,8 @@ int benchView(const CommandLine& cl) {
         {"exact_after_motion_ms", fromRecordedMotion},
         {"exact_after_applied_motion_ms", fromAppliedMotion},
         {"exact_render_ms", exactRenderMs},
+        {"exact_slices", exactSlices},
+        {"settle_frame_max_ms", settleFrameMaxMs},
         {"last_frame", {{"exact", lastIsExact}, {"image_hash", hash}, {"size", {size.x, size.y}}}},
         {"tables", {table.toJson()}},
         {"first_phase_frames", firstJson},

@@ -98,6 +98,7 @@ int bench(const Arguments& args) {
                                             {"quality", true, "exact|adaptive (default: adaptive on a software renderer, exact on a GPU)"},
                                             {"settle", true, "seconds without motion after which the motion counts as stopped (default 0.2)"},
                                             {"precompute-budget", true, "ms of step I per frame while it runs (default 60)"},
+                                            {"exact-budget", true, "adaptive quality: ms of the exact frame per frame, in slices (default 60; 0: whole)"},
                                             {"preview-target", true, "ms a motion preview is steered to (default 70)"},
                                             {"check", false, "also render the last state in a fresh renderer and compare image hashes"},
                                             {"rays", true, "LAO ray count K instead of the scene's (6, 14, 26, 54 or any fibonacci count)"},

@@ -250,6 +250,11 @@ int view(const Arguments& args) {
         ImGui::TextColored(shownExact ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", shownExact ? "EXACT" : "PREVIEW");
         ImGui::SameLine();
         if (ImGui::Checkbox("exact every frame", &exactEveryFrame)) loop.setQuality(exactEveryFrame ? ViewQuality::Exact : ViewQuality::Adaptive);
+        if (renderer.exactProgress() > 0) {   // the exact frame in slices (the preview stays on screen meanwhile)
+            ImGui::ProgressBar(static_cast<float>(renderer.exactProgress()), ImVec2(320, 0), "");
+            ImGui::SameLine();
+            ImGui::Text("exact frame %.0f %%", 100 * renderer.exactProgress());
+        }
         if (renderer.precomputePending(frame)) {
             ImGui::ProgressBar(static_cast<float>(renderer.precomputeProgress()), ImVec2(320, 0), "");
             ImGui::SameLine();
@@ -319,9 +324,7 @@ int view(const Arguments& args) {
             } else {
                 if (decision.precomputeBudgetMs > 0) renderer.advancePrecompute(decision.precomputeBudgetMs);
                 auto imageStart = std::chrono::steady_clock::now();
-                if (decision.render == FrameKind::Preview) renderer.renderPreview(decided);
-                if (decision.render == FrameKind::Exact) renderer.render(decided);
-                rendered = decision.render != FrameKind::None || decision.precomputeBudgetMs > 0;
+                rendered = renderDecidedImage(renderer, decision, decided) || decision.precomputeBudgetMs > 0;
                 renderer.finish();
                 loop.rendered(decision, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - imageStart).count());
                 shownExact = renderer.lastFrameExact();

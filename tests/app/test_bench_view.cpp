@@ -51,7 +51,7 @@ TEST(BenchView, TheLastFrameIsExactAndEqualsAFreshRenderOfTheSessionsLastState) 
     std::filesystem::create_directories(dir);
     std::filesystem::path json = dir / "bench-view.json";
     curette::testing::Invocation r =
-        curette::testing::runCurette("bench view --session " + session.string() + " --size 64x48 --rays 6 --quality adaptive --json " + json.string());
+        curette::testing::runCurette("bench view --session " + session.string() + " --size 64x48 --rays 6 --quality adaptive --exact-budget 1 --json " + json.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("motion frame p99"), std::string::npos) << "the table is printed:\n" << r.output;
     nlohmann::json j;
@@ -67,6 +67,7 @@ TEST(BenchView, TheLastFrameIsExactAndEqualsAFreshRenderOfTheSessionsLastState) 
     for (const nlohmann::json& f : j["playback_frames"]) previews += f["kind"] == "preview" && f["in_motion"].get<bool>();
     EXPECT_GE(previews, 1) << "the motion was previewed";
     EXPECT_EQ(j["quality"], "adaptive");
+    EXPECT_GE(j["exact_slices"].get<int>(), 2) << "at a 1 ms budget the last exact frame came in slices";
     ASSERT_TRUE(j["last_frame"]["exact"].get<bool>());
     EXPECT_EQ(j["last_frame"]["image_hash"].get<std::string>(), freshRenderOfLastState(session, {64, 48}, 6))
         << "the exact frame after the previews differs from a fresh render of the last state";

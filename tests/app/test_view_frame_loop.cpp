@@ -78,6 +78,8 @@ TEST(ViewFrameLoop, PreviewsWhileMovingAndRendersTheExactFrameOnceTheMotionHasSe
             EXPECT_EQ(d.render, FrameKind::Exact) << (t - lastMotion) << " s after the last motion";
             EXPECT_EQ(d.size, kWindow);
             EXPECT_EQ(d.rayStepScale, 1.0);
+            EXPECT_EQ(d.exactBudgetMs, s.exactBudgetMs) << "adaptive quality computes the exact frame in slices";
+            EXPECT_GT(d.exactBudgetMs, 0.0);
             EXPECT_FALSE(d.inMotion);
             exactAt = i;
         }
@@ -94,6 +96,7 @@ TEST(ViewFrameLoop, ExactQualityNeverPreviewsMotion) {
         FrameDecision d = run.frame(true);
         EXPECT_EQ(d.render, FrameKind::Exact);
         EXPECT_EQ(d.size, kWindow);
+        EXPECT_EQ(d.exactBudgetMs, 0.0) << "exact quality renders the exact frame whole";
     }
     EXPECT_EQ(run.frame(false).render, FrameKind::None);
 }

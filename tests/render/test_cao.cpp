@@ -630,6 +630,33 @@ TEST(Cao, RigidMotionDoesNotRedrawMaps) {
     EXPECT_EQ(set.mapRenderCount(), renders + 1);
 }
 
+// The clip maps depend on the meshes alone, not on what the set held before: a set whose arrays were allocated
+// for a larger mesh draws the maps (and so V_AO and the image) a fresh set draws. A saved scene so renders what
+// the viewer showed. Scales 1.4 -> 1.0 of a 12 mm sphere: the wanted resolution (72 -> 92 pixels at 0.5 mm)
+// shrinks by less than half, so the arrays stay at the larger size.
+TEST(Cao, TheClipMapsDependOnTheMeshesNotOnWhatTheSetHeldBefore) {
+    auto sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(12.0, 3));
+    clip::RigidPose pose{glm::dvec3(7.0, 6.0, 5.0), {}};
+    CaoScene used, fresh;
+    used.renderer->clipMeshes().add(sphere, glm::dvec3(1.4), pose, "sphere");
+    used.render(ShadingMode::Cao);
+    int larger = used.renderer->clipMeshes().resolution();
+    used.renderer->clipMeshes().setScale(0, glm::dvec3(1.0));
+    CaoScene::Result a = used.render(ShadingMode::Cao);
+    fresh.renderer->clipMeshes().add(sphere, glm::dvec3(1.0), pose, "sphere");
+    CaoScene::Result b = fresh.render(ShadingMode::Cao);
+    const clip::ClipMeshSet& u = used.renderer->clipMeshes();
+    const clip::ClipMeshSet& f = fresh.renderer->clipMeshes();
+    ASSERT_LT(f.resolution(), larger) << "the smaller mesh must want fewer pixels for the test to mean something";
+    EXPECT_GT(u.allocatedResolution(), f.allocatedResolution()) << "the used set keeps its larger arrays";
+    EXPECT_EQ(u.resolution(), f.resolution());
+    for (int layer = 0; layer < 2; ++layer)
+        for (bool dilated : {false, true}) EXPECT_EQ(u.readMap(0, layer, dilated), f.readMap(0, layer, dilated)) << "layer " << layer << (dilated ? " dilated" : "");
+    EXPECT_EQ(a.ambient, b.ambient);
+    EXPECT_EQ(a.image.pixels.size(), b.image.pixels.size());
+    EXPECT_TRUE(a.image.pixels == b.image.pixels) << "the image depends on the set's history";
+}
+
 TEST(Cao, MeshFarOutsideLeavesThePrecomputedAmbientOcclusion) {
     CaoScene scene;
     clip::ClipMeshSet& set = scene.renderer->clipMeshes();

@@ -1,0 +1,175 @@
+// The exact frame in slices (Renderer::advanceExact, docs/architecture.md "Preview and exact frames"): step V
+// in slices of its recompute list and the ray cast in bands of tile rows give render()'s V_AO and image bit
+// for bit; the image shown stays the last one until the exact frame is done; and when the scene moves while a
+// step V is under way, it is finished first, so CAO stays equal to a fresh renderer's (the exactness contract).
+#include "clip/primitives.h"
+#include "render/renderer.h"
+#include "tests/render/gl_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace curette {
+namespace {
+
+using test::glContext;
+
+// A 45 x 39 x 42 grid of 1 mm voxels, LAO K = 14, M = 4, a 5 mm sphere on a path across the blobs: its dilated
+// boxes (about 25 mm) at poses 0 and 3 barely overlap, so an update that lost where the mesh was would leave
+// V_AO stale there. 48 x 40 pixels: 5 rows of 8 x 8 tiles, 3 bands of 2 rows (the last one partly past the image).
+struct SliceScene {
+    VolumeData volume;
+    TransferFunction tf = test::rampTransferFunction(30, 180, 0.3);
+    std::unique_ptr<Renderer> renderer;
+    FrameDescription frame;
+    std::shared_ptr<const clip::TriangleMesh> sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 3));
+    explicit SliceScene(ShadingMode mode = ShadingMode::Cao) {
+        glContext();
+        glm::ivec3 dims(45, 39, 42);
+        volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, test::blobField);
+        renderer = std::make_unique<Renderer>(glContext(), volume, tf);
+        LaoSettings lao;
+        parseLaoPattern("14", lao.directions);
+        lao.samples = 4;
+        lao.stepMm = 1.0;
+        lao.antiAliasingSamples = 16;
+        renderer->setLaoSettings(lao);
+        renderer->clipMeshes().add(sphere, glm::dvec3(1.0), pose(0), "sphere");
+        frame.camera.fit(glm::dvec3(0), 0.9 * glm::length(glm::dvec3(dims)) / 2);
+        frame.camera.azimuthDeg = 30;
+        frame.camera.elevationDeg = 20;
+        frame.size = {48, 40};
+        frame.shading = mode;
+    }
+    static clip::RigidPose pose(int n) {
+        clip::RigidPose p;
+        p.position = glm::dvec3(-10.0 + 5.0 * n, 6.0 - 3.0 * n, 2.0);
+        return p;
+    }
+    void moveTo(int n) { renderer->clipMeshes().setPose(0, pose(n)); }
+    std::vector<std::uint16_t> ambient() const { return renderer->ambientOcclusion()->readAmbient(); }
+    // The fresh renderer's exact frame at pose n: what `curette render` gives.
+    static SliceScene freshAt(int n, ShadingMode mode = ShadingMode::Cao) {
+        SliceScene s(mode);
+        s.moveTo(n);
+        s.renderer->render(s.frame);
+        return s;
+    }
+};
+
+bool sameImage(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height && std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
+}
+
+// The index of `pass` in the plan `renderer` would run for `frame` (-1: not in it).
+int passIndex(const Renderer& renderer, const FrameDescription& frame, Pass pass) {
+    const FramePlan plan = renderer.plan(frame);
+    for (std::size_t i = 0; i < plan.passes.size(); ++i)
+        if (plan.passes[i].pass == pass) return static_cast<int>(i);
+    return -1;
+}
+
+TEST(ExactInSlices, EqualsOneRenderBitForBitAndShowsTheLastImageUntilDone) {
+    for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Lao, ShadingMode::Phong}) {
+        SCOPED_TRACE(shadingModeName(mode));
+        SliceScene sliced(mode), whole(mode);
+        sliced.renderer->render(sliced.frame);   // step I and a first exact frame at pose 0
+        whole.renderer->render(whole.frame);
+        sliced.moveTo(3);
+        whole.moveTo(3);
+        // ... and the camera turns, so every pixel changes (a band left out would keep the last frame's).
+        sliced.frame.camera.azimuthDeg = whole.frame.camera.azimuthDeg = 55;
+        sliced.frame.camera.fit(glm::dvec3(0), 9.0);   // close up: the volume fills the image, its last tile rows too
+        whole.frame.camera.fit(glm::dvec3(0), 9.0);
+        // A preview at pose 3 (as the viewer shows while the mesh moves): it stays on screen until the exact
+        // frame is done.
+        FrameDescription small = sliced.frame;
+        small.size = {24, 20};
+        sliced.renderer->renderPreview(small);
+        Image preview = sliced.renderer->readImage();
+        whole.renderer->render(whole.frame);
+
+        int calls = 0;
+        double progress = 0;
+        while (!sliced.renderer->advanceExact(sliced.frame, 0.0, 2)) {   // one slice per call: 2 groups of V, 2 bands
+            ASSERT_LT(++calls, 100000);
+            EXPECT_FALSE(sliced.renderer->showing(sliced.frame)) << "call " << calls;
+            EXPECT_TRUE(sameImage(sliced.renderer->readImage(), preview)) << "call " << calls << ": the image shown changed before the exact frame was done";
+            EXPECT_GE(sliced.renderer->exactProgress(), progress) << "call " << calls;
+            EXPECT_LT(sliced.renderer->exactProgress(), 1.0);
+            progress = sliced.renderer->exactProgress();
+        }
+        // phong: the ray cast's probe band, then two bands; cao/lao: step V's list too.
+        EXPECT_GE(calls, mode == ShadingMode::Phong ? 1 : 10) << "the exact frame came in too few calls: nothing was sliced";
+        EXPECT_TRUE(sliced.renderer->showing(sliced.frame));
+        EXPECT_TRUE(sliced.renderer->lastFrameExact());
+        EXPECT_DOUBLE_EQ(sliced.renderer->exactProgress(), 0.0) << "no exact frame under way after it is done";
+        EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "the exact frame in slices differs from render()";
+        EXPECT_FALSE(sameImage(preview, whole.renderer->readImage())) << "the preview must differ for the test to mean something";
+        Image exact = whole.renderer->readImage();
+        int coveredInLastRows = 0;
+        for (int y = exact.height - 8; y < exact.height; ++y)
+            for (int x = 0; x < exact.width; ++x) coveredInLastRows += exact.pixels[std::size_t(y) * std::size_t(exact.width) + std::size_t(x)].a > 0.0f;
+        EXPECT_GT(coveredInLastRows, exact.width * 4) << "the last tile row must show the volume for the test to mean something";
+        if (mode != ShadingMode::Phong) {
+            EXPECT_EQ(sliced.ambient(), whole.ambient()) << "V_AO in slices differs from render()'s";
+            EXPECT_TRUE(sliced.renderer->lastFrameUpdatedAmbient());
+        }
+        // Asked again, it is already shown.
+        EXPECT_TRUE(sliced.renderer->advanceExact(sliced.frame, 0.0, 2));
+    }
+}
+
+TEST(ExactInSlices, StepVIsSlicedIntoManyDispatches) {
+    // At 2 groups of 64 list entries per slice, the recompute list of a 5 mm sphere's update takes many calls;
+    // with slices of any size the result is the same.
+    SliceScene a, b;
+    a.renderer->render(a.frame);
+    b.renderer->render(b.frame);
+    a.moveTo(1);
+    b.moveTo(1);
+    int callsA = 0, callsB = 0;
+    while (!a.renderer->advanceExact(a.frame, 0.0, 2)) ASSERT_LT(++callsA, 100000);
+    while (!b.renderer->advanceExact(b.frame, 0.0, 13)) ASSERT_LT(++callsB, 100000);
+    EXPECT_GT(callsA, callsB + 10) << "smaller slices, more calls";
+    EXPECT_EQ(a.ambient(), b.ambient());
+    EXPECT_TRUE(sameImage(a.renderer->readImage(), b.renderer->readImage()));
+}
+
+// The scene moves while an exact frame is under way: after step IV (step V not begun), and in the middle of
+// step V. The exact frame of the new pose equals a fresh renderer's, V_AO and image: the step V under way was
+// finished first. Pose 0 (the last exact frame), pose 3 (the frame left under way) and pose 4 (the last) lie so
+// far apart that the update at pose 4 (which visits the bricks of poses 3 and 4) does not reach pose 0's: only
+// step V at pose 3 rewrites what pose 0 left, so a step V left half done would keep pose 0's LAO there.
+TEST(ExactInSlices, MotionDuringTheExactFrameFinishesItsStepVAndStaysExact) {
+    SliceScene fresh = SliceScene::freshAt(4);
+    for (int extraSlices : {0, 5}) {
+        SCOPED_TRACE(extraSlices == 0 ? "moved right after step IV" : "moved in the middle of step V");
+        SliceScene viewer;
+        viewer.renderer->render(viewer.frame);
+        viewer.moveTo(3);
+        int stepIV = passIndex(*viewer.renderer, viewer.frame, Pass::VoxelClipping);
+        ASSERT_GE(stepIV, 0);
+        for (int i = 0; i <= stepIV + extraSlices; ++i) ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));
+        // The mesh moves on, with a preview; then the exact frame of pose 4, in slices.
+        viewer.moveTo(4);
+        viewer.renderer->renderPreview(viewer.frame);
+        int calls = 0;
+        while (!viewer.renderer->advanceExact(viewer.frame, 0.0, 3)) ASSERT_LT(++calls, 100000);
+        EXPECT_EQ(viewer.ambient(), fresh.ambient()) << "V_AO differs from a fresh renderer's at the same pose";
+        EXPECT_TRUE(sameImage(viewer.renderer->readImage(), fresh.renderer->readImage()));
+    }
+    // The same with render() taking over from the exact frame in slices (a viewer switched to exact quality).
+    SliceScene viewer;
+    viewer.renderer->render(viewer.frame);
+    viewer.moveTo(3);
+    int stepIV = passIndex(*viewer.renderer, viewer.frame, Pass::VoxelClipping);
+    for (int i = 0; i <= stepIV; ++i) ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));
+    viewer.moveTo(4);
+    viewer.renderer->render(viewer.frame);
+    EXPECT_EQ(viewer.ambient(), fresh.ambient()) << "render() after an exact frame in slices left its step V half done";
+}
+
+}  // namespace
+}  // namespace curette
