@@ -143,10 +143,10 @@ int benchView(const CommandLine& cl) {
         if (d.precomputeBudgetMs > 0) renderer.advancePrecompute(d.precomputeBudgetMs);
         auto renderStart = Clock::now();
         if (d.render != FrameKind::None) {
-            renderDecidedImage(renderer, d, decidedFrame(frame, d.render, d.size, d.rayStepScale, stepMm));
+            bool shown = renderDecidedImage(renderer, d, decidedFrame(frame, d.render, d.size, d.rayStepScale, stepMm));
             renderer.finish();
+            out.exactShown = d.render == FrameKind::Exact && shown;
         }
-        out.exactShown = d.render == FrameKind::Exact && renderer.lastFrameExact() && renderer.showing(decidedFrame(frame, d.render, d.size, d.rayStepScale, stepMm));
         auto end = Clock::now();
         out.renderMs = msBetween(renderStart, end);
         out.ms = msBetween(start, end);

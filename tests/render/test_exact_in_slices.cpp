@@ -2,64 +2,23 @@
 // in slices of its recompute list and the ray cast in bands of tile rows give render()'s V_AO and image bit
 // for bit; the image shown stays the last one until the exact frame is done; and when the scene moves while a
 // step V is under way, it is finished first, so CAO stays equal to a fresh renderer's (the exactness contract).
-#include "clip/primitives.h"
-#include "render/renderer.h"
-#include "tests/render/gl_test_support.h"
+#include "tests/render/moving_sphere_scene.h"
 
 #include <gtest/gtest.h>
-
-#include <cstring>
 
 namespace curette {
 namespace {
 
-using test::glContext;
 
-// A 45 x 39 x 42 grid of 1 mm voxels, LAO K = 14, M = 4, a 5 mm sphere on a path across the blobs: its dilated
-// boxes (about 25 mm) at poses 0 and 3 barely overlap, so an update that lost where the mesh was would leave
-// V_AO stale there. 48 x 40 pixels: 5 rows of 8 x 8 tiles, 3 bands of 2 rows (the last one partly past the image).
-struct SliceScene {
-    VolumeData volume;
-    TransferFunction tf = test::rampTransferFunction(30, 180, 0.3);
-    std::unique_ptr<Renderer> renderer;
-    FrameDescription frame;
-    std::shared_ptr<const clip::TriangleMesh> sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 3));
-    explicit SliceScene(ShadingMode mode = ShadingMode::Cao) {
-        glContext();
-        glm::ivec3 dims(45, 39, 42);
-        volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, test::blobField);
-        renderer = std::make_unique<Renderer>(glContext(), volume, tf);
-        LaoSettings lao;
-        parseLaoPattern("14", lao.directions);
-        lao.samples = 4;
-        lao.stepMm = 1.0;
-        lao.antiAliasingSamples = 16;
-        renderer->setLaoSettings(lao);
-        renderer->clipMeshes().add(sphere, glm::dvec3(1.0), pose(0), "sphere");
-        frame.camera.fit(glm::dvec3(0), 0.9 * glm::length(glm::dvec3(dims)) / 2);
-        frame.camera.azimuthDeg = 30;
-        frame.camera.elevationDeg = 20;
-        frame.size = {48, 40};
-        frame.shading = mode;
-    }
-    static clip::RigidPose pose(int n) {
-        clip::RigidPose p;
-        p.position = glm::dvec3(-10.0 + 5.0 * n, 6.0 - 3.0 * n, 2.0);
-        return p;
-    }
-    void moveTo(int n) { renderer->clipMeshes().setPose(0, pose(n)); }
-    std::vector<std::uint16_t> ambient() const { return renderer->ambientOcclusion()->readAmbient(); }
-    // The fresh renderer's exact frame at pose n: what `curette render` gives.
-    static SliceScene freshAt(int n, ShadingMode mode = ShadingMode::Cao) {
-        SliceScene s(mode);
-        s.moveTo(n);
-        s.renderer->render(s.frame);
-        return s;
-    }
-};
+using test::MovingSphereScene;
+using test::sameImage;
 
-bool sameImage(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
+// The fresh renderer's exact frame at pose n: what `curette render` gives.
+MovingSphereScene freshAt(int n, ShadingMode mode = ShadingMode::Cao) {
+    MovingSphereScene s(mode);
+    s.moveTo(n);
+    s.renderer->render(s.frame);
+    return s;
 }
 
 // The index of `pass` in the plan `renderer` would run for `frame` (-1: not in it).
@@ -73,7 +32,7 @@ int passIndex(const Renderer& renderer, const FrameDescription& frame, Pass pass
 TEST(ExactInSlices, EqualsOneRenderBitForBitAndShowsTheLastImageUntilDone) {
     for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Lao, ShadingMode::Phong}) {
         SCOPED_TRACE(shadingModeName(mode));
-        SliceScene sliced(mode), whole(mode);
+        MovingSphereScene sliced(mode), whole(mode);
         sliced.renderer->render(sliced.frame);   // step I and a first exact frame at pose 0
         whole.renderer->render(whole.frame);
         sliced.moveTo(3);
@@ -124,7 +83,7 @@ TEST(ExactInSlices, EqualsOneRenderBitForBitAndShowsTheLastImageUntilDone) {
 TEST(ExactInSlices, StepVIsSlicedIntoManyDispatches) {
     // At 2 groups of 64 list entries per slice, the recompute list of a 5 mm sphere's update takes many calls;
     // with slices of any size the result is the same.
-    SliceScene a, b;
+    MovingSphereScene a, b;
     a.renderer->render(a.frame);
     b.renderer->render(b.frame);
     a.moveTo(1);
@@ -143,10 +102,10 @@ TEST(ExactInSlices, StepVIsSlicedIntoManyDispatches) {
 // far apart that the update at pose 4 (which visits the bricks of poses 3 and 4) does not reach pose 0's: only
 // step V at pose 3 rewrites what pose 0 left, so a step V left half done would keep pose 0's LAO there.
 TEST(ExactInSlices, MotionDuringTheExactFrameFinishesItsStepVAndStaysExact) {
-    SliceScene fresh = SliceScene::freshAt(4);
+    MovingSphereScene fresh = freshAt(4);
     for (int extraSlices : {0, 5}) {
         SCOPED_TRACE(extraSlices == 0 ? "moved right after step IV" : "moved in the middle of step V");
-        SliceScene viewer;
+        MovingSphereScene viewer;
         viewer.renderer->render(viewer.frame);
         viewer.moveTo(3);
         int stepIV = passIndex(*viewer.renderer, viewer.frame, Pass::VoxelClipping);
@@ -161,7 +120,7 @@ TEST(ExactInSlices, MotionDuringTheExactFrameFinishesItsStepVAndStaysExact) {
         EXPECT_TRUE(sameImage(viewer.renderer->readImage(), fresh.renderer->readImage()));
     }
     // The same with render() taking over from the exact frame in slices (a viewer switched to exact quality).
-    SliceScene viewer;
+    MovingSphereScene viewer;
     viewer.renderer->render(viewer.frame);
     viewer.moveTo(3);
     int stepIV = passIndex(*viewer.renderer, viewer.frame, Pass::VoxelClipping);

@@ -1,64 +1,21 @@
 // Preview and exact frames (docs/architecture.md): step I in slices equals step I in one dispatch bit for bit;
 // a preview (steps I, IV, V left out) writes nothing an exact frame reads, so the exact frame after any number
 // of previews equals a fresh renderer's; a preview during step I is the phong frame.
-#include "clip/primitives.h"
-#include "render/renderer.h"
-#include "tests/render/gl_test_support.h"
+#include "tests/render/moving_sphere_scene.h"
 
 #include <gtest/gtest.h>
-
-#include <cstring>
 
 namespace curette {
 namespace {
 
-using test::glContext;
 
-// A 45 x 39 x 42 grid (partial bricks on every upper face) of 1 mm voxels, LAO K = 14, M = 4, a sphere of 5 mm
-// moving 23 mm: the bricks its dilated box reaches (a box of about 25 mm) at the first and the last pose differ,
-// so an update that forgot where the mesh was would leave voxels behind.
-struct PreviewScene {
-    VolumeData volume;
-    TransferFunction tf = test::rampTransferFunction(30, 180, 0.3);
-    std::unique_ptr<Renderer> renderer;
-    FrameDescription frame;
-    std::shared_ptr<const clip::TriangleMesh> sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 3));
-    PreviewScene() {
-        glContext();
-        glm::ivec3 dims(45, 39, 42);
-        volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, test::blobField);
-        renderer = std::make_unique<Renderer>(glContext(), volume, tf);
-        LaoSettings lao;
-        parseLaoPattern("14", lao.directions);
-        lao.samples = 4;
-        lao.stepMm = 1.0;
-        lao.antiAliasingSamples = 16;
-        renderer->setLaoSettings(lao);
-        renderer->clipMeshes().add(sphere, glm::dvec3(1.0), pose(0), "sphere");
-        frame.camera.fit(glm::dvec3(0), 0.9 * glm::length(glm::dvec3(dims)) / 2);
-        frame.camera.azimuthDeg = 30;
-        frame.camera.elevationDeg = 20;
-        frame.size = {48, 40};
-        frame.shading = ShadingMode::Cao;
-    }
-    // Pose n of a path across the blobs.
-    static clip::RigidPose pose(int n) {
-        clip::RigidPose p;
-        p.position = glm::dvec3(-10.0 + 5.0 * n, 6.0 - 3.0 * n, 2.0);
-        return p;
-    }
-    void moveTo(int n) { renderer->clipMeshes().setPose(0, pose(n)); }
-    std::vector<std::uint16_t> ambient() const { return renderer->ambientOcclusion()->readAmbient(); }
-};
-
-bool sameImage(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
-}
+using test::MovingSphereScene;
+using test::sameImage;
 
 bool runs(const FramePlan& plan, Pass pass) { return plan.runs(pass); }
 
 TEST(Preview, StepIInSlicesEqualsStepIInOneDispatch) {
-    PreviewScene whole, sliced;
+    MovingSphereScene whole, sliced;
     whole.renderer->render(whole.frame);   // step I in one dispatch per phase, then IV, V, VI
     ASSERT_TRUE(runs(whole.renderer->lastPlan(), Pass::LaoPrecompute));
     std::vector<std::uint16_t> expected = whole.renderer->ambientOcclusion()->readPrecomputed();
@@ -85,7 +42,7 @@ TEST(Preview, StepIInSlicesEqualsStepIInOneDispatch) {
 }
 
 TEST(Preview, AnExactFrameDuringStepIInSlicesFinishesItAndEqualsOneDispatch) {
-    PreviewScene whole, sliced;
+    MovingSphereScene whole, sliced;
     whole.renderer->render(whole.frame);
     for (int i = 0; i < 300; ++i) sliced.renderer->advancePrecompute(0.0, 5);   // phase 1 done (264 slices), phase 2 begun
     ASSERT_TRUE(sliced.renderer->precomputePending(sliced.frame));
@@ -96,7 +53,7 @@ TEST(Preview, AnExactFrameDuringStepIInSlicesFinishesItAndEqualsOneDispatch) {
 }
 
 TEST(Preview, APreviewDuringStepIIsThePhongFrame) {
-    PreviewScene scene, phong;
+    MovingSphereScene scene, phong;
     scene.renderer->advancePrecompute(0.0, 3);
     ASSERT_TRUE(scene.renderer->precomputePending(scene.frame));
     EXPECT_EQ(scene.renderer->previewAmbient(), Renderer::PreviewAmbient::None);
@@ -120,7 +77,7 @@ TEST(Preview, APreviewDuringStepIIsThePhongFrame) {
 TEST(Preview, NeverChangesTheExactFrame) {
     for (bool exactFirst : {true, false}) {
         SCOPED_TRACE(exactFirst ? "previews after an exact frame" : "previews straight after step I");
-        PreviewScene viewer, fresh;
+        MovingSphereScene viewer, fresh;
         if (exactFirst) {
             viewer.renderer->render(viewer.frame);
             EXPECT_EQ(viewer.renderer->previewAmbient(), Renderer::PreviewAmbient::LastExact);
