@@ -19,8 +19,9 @@ struct CameraGpu {  // std140 layout of ClipMeshGpu in shaders/clip_test.glsl
     float worldToMap[16];
     std::int32_t info[4];
     float mapBox[4];
+    float depthBoxLo[4], depthBoxHi[4];
 };
-static_assert(sizeof(CameraGpu) == 96);
+static_assert(sizeof(CameraGpu) == 128);
 
 // Whether any pixel of the resolution x resolution corner of a 2-D texture is finite.
 bool anyFinite(GLuint texture, int resolution) {
@@ -367,6 +368,19 @@ void ClipMeshSet::dilatedBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) con
     hi = c.localMax + grow;
 }
 
+void ClipMeshSet::depthBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const {
+    // As dilatedBoxLocal without the dilation: a finite depth pixel's centre lies in the mesh's local x, y
+    // bounds and its values in its z bounds, and a point is looked up in the pixel holding it. A whole pixel
+    // (of the coarser of the camera's and the maps' resolutions) instead of half, the float slack and the
+    // ray caster's margin on top.
+    const ClippingCamera& c = camera(index);
+    double pixel = c.mapSizeMm / std::max(std::min(c.resolution, mapResolution_), 1);
+    double slack = mapBoxSlackMm(index) + rayClipSpanMarginMm;
+    glm::dvec3 grow(pixel + slack, pixel + slack, slack);
+    lo = c.localMin - grow;
+    hi = c.localMax + grow;
+}
+
 ClipMeshSet::WorldBox ClipMeshSet::mapBoxWorldBounds(int index) const {
     glm::dvec3 lo, hi;
     mapBoxLocal(index, lo, hi);
@@ -401,6 +415,16 @@ void ClipMeshSet::uploadCameras() {
         cameras[i].mapBox[1] = static_cast<float>(lo.z);
         cameras[i].mapBox[2] = static_cast<float>(hi.z);
         cameras[i].mapBox[3] = static_cast<float>(mapBoxSlackMm(static_cast<int>(i)));
+        // The depth box in map coordinates (x, y over the map side, z the local depth).
+        depthBoxLocal(static_cast<int>(i), lo, hi);
+        const ClippingCamera& c = meshes_[i].camera;
+        glm::dvec3 mapLo((lo.x - c.mapOrigin.x) / c.mapSizeMm, (lo.y - c.mapOrigin.y) / c.mapSizeMm, lo.z);
+        glm::dvec3 mapHi((hi.x - c.mapOrigin.x) / c.mapSizeMm, (hi.y - c.mapOrigin.y) / c.mapSizeMm, hi.z);
+        for (int k = 0; k < 3; ++k) {
+            cameras[i].depthBoxLo[k] = static_cast<float>(mapLo[k]);
+            cameras[i].depthBoxHi[k] = static_cast<float>(mapHi[k]);
+        }
+        cameras[i].depthBoxLo[3] = cameras[i].depthBoxHi[3] = 0.0f;
     }
     if (!cameras.empty())
         glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());

@@ -84,6 +84,13 @@ public:
     // nor its dilated maps call any point inside (derivation in the .cpp). It lies inside the map box. Steps IV
     // and V visit the bricks these boxes reach (render/mesh_voxel_box.h). Valid after update().
     void dilatedBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
+    // The depth box of mesh `index`, in its pose's local frame: the box outside which its depth maps (not the
+    // dilated ones) call no point inside, grown by rayClipSpanMarginMm. The ray caster tests a sample against
+    // the maps only where its ray meets this box (clip_test.glsl rayClipSpan). Valid after update().
+    void depthBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
+    // For the rounding between a point the ray caster computes from its ray parameter and the same point
+    // transformed into the map: far above it, and small beside a mesh.
+    static constexpr double rayClipSpanMarginMm = 0.5;
 
     // Changes whenever the clipped region may have changed (a pose, a scale, a mesh added or removed).
     std::uint64_t version() const { return version_; }

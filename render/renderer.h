@@ -117,6 +117,9 @@ public:
     // sliceBricks > 0 fixes the slice size instead (tests: slices that are neither rows nor slabs of bricks).
     double advancePrecompute(double budgetMs, std::uint32_t sliceBricks = 0);
     double precomputeProgress() const;
+    // A number that changes whenever step I's inputs (volume, TF and labels, LAO settings) change: the frame loop
+    // holds step I back while they are being edited (app/view_frame_loop.h).
+    std::uint64_t precomputeInputsVersion() const { return versions_.volume + versions_.transferFunction + versions_.laoSettings; }
     // Waits until the GPU has finished every pass submitted so far (for wall-clock timing).
     void finish() const;
     // The image shown: the last exact frame or preview (a preview is kept in an image of its own).
@@ -132,6 +135,10 @@ public:
     // The most bricks (Chebyshev radius) one empty-space jump may cross: 255 (the distance map's cap) by
     // default; 1 jumps one empty brick at a time (as before the distance map; for `bench` and tests).
     void setEmptySpaceJumpLimit(int bricks) { emptySpaceJumpLimit_ = bricks; }
+    // Whether the ray caster tests samples against the clip maps only where the ray meets a mesh's map box
+    // (shaders/clip_test.glsl, rayClipSpan): on by default; off tests every sample against every mesh (for
+    // `bench` and tests: the image is the same).
+    void setClipSpans(bool on) { clipSpans_ = on; }
     // ... and of the groups in the first and the second half of the ray caster's dispatch, which is how two
     // llvmpipe worker threads share it (shaders/tile_order.glsl): their ratio is the frame's thread balance.
     glm::dvec2 rayStepsByDispatchHalf() const;
@@ -224,6 +231,7 @@ private:
     gl::Buffer sampleCounter_;
     bool countSamples_ = false;
     int emptySpaceJumpLimit_ = 255;
+    bool clipSpans_ = true;
     int tileRowsPerBand_ = TileOrderPiece::defaultRowsPerBand();
     gl::ComputeVariants raycastPrograms_{"raycast.comp"};
     gl::TimerSet timers_;

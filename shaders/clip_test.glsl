@@ -16,6 +16,8 @@ struct ClipMeshGpu {
     vec4 mapBox;       // the camera's map box in its own frame: x the map side in mm, y and z the depth
                        // range (local z, mm) holding every finite map value, w a slack for float rounding.
                        // Outside the box no map answers "inside".
+    vec4 depthBoxLo;   // xyz: the depth box (ClipMeshSet::depthBoxLocal) in map coordinates (x, y over the
+    vec4 depthBoxHi;   // map side, z the local depth in mm): outside it no depth map answers "inside"
 };
 
 // A uniform block, not a storage buffer: the array is small and every invocation reads the same entries,
@@ -55,6 +57,54 @@ bool nearAnyClipMesh(vec3 world, float margin) {
         if (dot(outside, outside) <= reach * reach) return true;
     }
     return false;
+}
+
+// The stretch of a ray that can lie in a clip mesh. Along origin + t direction (t in mm, direction a unit
+// vector) mesh i's depth box (outside it no depth map answers "inside"; grown on the CPU by a margin for the
+// rounding between a point computed from t here and in the test, ClipMeshSet::depthBoxLocal) is met only for
+// t in [near_i, far_i]. A span holds the union of those intervals over the meshes and the set of meshes the
+// ray meets at all. A ray caster tests a sample against the depth maps only inside its span and only for
+// those meshes, so a mesh costs the samples near it, not every sample of the image; the answers are the same.
+struct ClipSpan {
+    float near, far;   // t in mm (near > far: the ray meets no mesh)
+    uint meshes;       // bit i: the ray meets mesh i's depth box
+};
+
+ClipSpan rayClipSpan(vec3 origin, vec3 direction) {
+    ClipSpan span = ClipSpan(1e30, -1e30, 0u);
+    for (int i = 0; i < clipMeshCount; ++i) {
+        ClipMeshGpu mesh = clipMeshes[i];
+        // Slabs in map coordinates: the map transform is affine, so t is the world ray's parameter. A zero
+        // component gets a tiny stand-in (no 0 * inf), ordering the slabs as inf would.
+        vec3 o = (mesh.worldToMap * vec4(origin, 1.0)).xyz;
+        vec3 d = mat3(mesh.worldToMap) * direction;
+        vec3 safe = mix(d, vec3(1e-30), lessThan(abs(d), vec3(1e-30)));
+        vec3 a = (mesh.depthBoxLo.xyz - o) / safe, b = (mesh.depthBoxHi.xyz - o) / safe;
+        vec3 nearAxes = min(a, b), farAxes = max(a, b);
+        float tNear = max(max(nearAxes.x, nearAxes.y), nearAxes.z), tFar = min(min(farAxes.x, farAxes.y), farAxes.z);
+        if (tFar >= tNear) {
+            span.near = min(span.near, tNear);
+            span.far = max(span.far, tFar);
+            span.meshes |= 1u << uint(i);
+        }
+    }
+    return span;
+}
+
+bool insideSpan(ClipSpan span, float t) { return t >= span.near && t <= span.far; }
+
+// insideAnyClipMesh of the ray's point at t, testing only the meshes of its span.
+bool insideAnyClipMeshOnRay(ClipSpan span, vec3 world) {
+    for (int i = 0; i < clipMeshCount; ++i)
+        if ((span.meshes & (1u << uint(i))) != 0u && insideMeshMaps(i, world, false)) return true;
+    return false;
+}
+
+// clipMeshHolding of the ray's point, testing only the meshes of its span.
+int clipMeshHoldingOnRay(ClipSpan span, vec3 world) {
+    for (int i = 0; i < clipMeshCount; ++i)
+        if ((span.meshes & (1u << uint(i))) != 0u && insideMeshMaps(i, world, false)) return i;
+    return -1;
 }
 
 // Clipped: inside at least one mesh (section 3.6: union of clipped regions).

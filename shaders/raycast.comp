@@ -25,6 +25,8 @@ uniform bool skipEmptySpace;
 uniform ivec3 volumeSize;
 uniform int brickSize;
 uniform int maxSkipBricks;           // the most bricks one jump crosses (Renderer::setEmptySpaceJumpLimit)
+uniform bool clipSpans;              // clip tests only in the ray's span (clip_test.glsl); off: every sample
+                                     // against every mesh (Renderer::setClipSpans, the tests' reference)
 #ifdef COUNT_SAMPLES
 // `curette bench` only: samples, loop steps, and the steps of the groups in each half of the dispatch.
 layout(std430, binding = 0) buffer SampleCounter { uint samplesTaken; uint raySteps; uint halfSteps[2]; };
@@ -70,6 +72,8 @@ void main() {
         float jitter = jitterSeed != 0u ? pixelRandom(uvec2(pixel), jitterSeed) : 0.0;
         int k = int(ceil(max(tNear, 0.0) / stepMm - jitter));
         int kLast = int(floor(tFar / stepMm - jitter));
+        ClipSpan span = ClipSpan(-1e30, 1e30, 0xffffffffu);
+        if (clipSpans) span = rayClipSpan(eyeWorld, direction);
 #ifdef ISMOS_TUBES
         // The ray stops in front of the tube surface (G-buffer view depth; 0: none).
         float tubeView = texelFetch(ismosTubeDepth, pixel, 0).r;
@@ -118,13 +122,16 @@ void main() {
             }
             // Step VI's shadow-test clipping: a sample inside any clip mesh is not there.
 #ifdef CUT_FACES
-            int holding = clipMeshHolding(eyeWorld + t * direction);
+            int holding = -1;
+            if (insideSpan(span, t)) holding = clipMeshHoldingOnRay(span, eyeWorld + t * direction);
             if (holding >= 0) {
                 // Through the mesh to the first visible lattice sample, then the face between the two.
                 int mesh = holding;
                 bool leaves = false;
                 while (k < kLast) {
-                    int next = clipMeshHolding(eyeWorld + (float(k + 1) + jitter) * stepMm * direction);
+                    float tNext = (float(k + 1) + jitter) * stepMm;
+                    int next = -1;
+                    if (insideSpan(span, tNext)) next = clipMeshHoldingOnRay(span, eyeWorld + tNext * direction);
                     ++k;
                     if (next < 0) {
                         leaves = true;
@@ -148,7 +155,7 @@ void main() {
                 tex = originTex + t * directionTex;
             }
 #else
-            if (clipMeshCount > 0 && insideAnyClipMesh(eyeWorld + t * direction)) {
+            if (clipMeshCount > 0 && insideSpan(span, t) && insideAnyClipMeshOnRay(span, eyeWorld + t * direction)) {
 #ifdef ISMOS_LAYERS
                 ismosGap(layers);
 #endif

@@ -1,6 +1,7 @@
 // Ray casting (shaders/raycast.comp) against its CPU double twin and against analytic answers.
 #include "gl/bindings.h"
 #include "render/reference/raycast_reference.h"
+#include "clip/primitives.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
 
@@ -219,6 +220,58 @@ TEST(Raycast, JumpingOverManyEmptyBricksAtOnceChangesNothingButTheSteps) {
         EXPECT_LT(stepsMap, stepsOne) << "the blobs leave empty regions several bricks wide";
         EXPECT_GT(stepsMap, samplesMap) << "every sample is a step, and some steps are jumps";
     }
+}
+
+// The ray caster tests a sample against the clip maps only inside the ray's span (clip_test.glsl,
+// rayClipSpan): the image is the one that tests every sample against every mesh, bit for bit, with and without
+// cut faces, for a sphere, a turned box, a torus (two intervals) turned off the axes and a box that reaches out
+// of the volume, from two sides.
+TEST(Raycast, ClipTestsOnlyInTheRaysSpanChangeNoPixel) {
+    glContext();
+    glm::ivec3 dims(48, 44, 40);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims, {0.9, 1.1, 1.3}), ScalarType::UInt8, blobs);
+    Renderer renderer(glContext(), volume, blobTransferFunction());
+    renderer.setCountSamples(true);
+    auto mesh = [](clip::TriangleMesh m) { return std::make_shared<const clip::TriangleMesh>(std::move(m)); };
+    auto turned = [](glm::dvec3 at, double angleDeg, glm::dvec3 axis) {
+        return clip::RigidPose{at, glm::angleAxis(glm::radians(angleDeg), glm::normalize(axis))};
+    };
+    clip::ClipMeshSet& set = renderer.clipMeshes();
+    set.add(mesh(clip::makeSphere(7, 3)), glm::dvec3(1.0), clip::RigidPose{{4, -3, 2}, {}}, "sphere");
+    set.add(mesh(clip::makeBox({9, 6, 12})), glm::dvec3(1.0), turned({-9, 6, -3}, 37, {1, 2, 0.5}), "turned box");
+    set.add(mesh(clip::makeTorus(8, 2.5, 48, 16)), glm::dvec3(1.0), turned({2, 10, -8}, 71, {0.3, -1, 1}), "torus");
+    set.add(mesh(clip::makeBox({30, 8, 8})), glm::dvec3(1.0), clip::RigidPose{{18, -12, 10}, {}}, "box out of the volume");
+    set.update();
+    int images = 0;
+    for (bool cutFaces : {false, true})
+        for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong})
+            for (double azimuth : {65.0, 230.0}) {
+                FrameDescription frame = frameLookingAt(glm::dvec3(1, -2, 0), 110, azimuth, 35, {72, 64}, mode);
+                frame.raycast.jitterSeed = 3;
+                frame.raycast.cutFace.enabled = cutFaces;
+                auto run = [&](bool spans) {
+                    renderer.setClipSpans(spans);
+                    renderer.render(frame);
+                    return std::pair{renderer.readImage(), renderer.samplesLastFrame()};
+                };
+                auto [everySample, samplesEvery] = run(false);
+                auto [inSpans, samplesInSpans] = run(true);
+                SCOPED_TRACE(std::string(shadingModeName(mode)) + (cutFaces ? ", cut faces" : "") + ", azimuth " + std::to_string(azimuth));
+                EXPECT_EQ(0, std::memcmp(everySample.pixels.data(), inSpans.pixels.data(), everySample.pixels.size() * sizeof(glm::vec4)));
+                EXPECT_EQ(samplesEvery, samplesInSpans);
+                ++images;
+            }
+    EXPECT_EQ(images, 8);
+    // The meshes do carve this view: without them the image is another.
+    FrameDescription frame = frameLookingAt(glm::dvec3(1, -2, 0), 110, 65, 35, {72, 64}, ShadingMode::Phong);
+    frame.raycast.jitterSeed = 3;
+    renderer.render(frame);
+    Image carved = renderer.readImage();
+    for (int i = set.count() - 1; i >= 0; --i) set.remove(i);
+    set.update();
+    renderer.render(frame);
+    Image whole = renderer.readImage();
+    EXPECT_NE(0, std::memcmp(carved.pixels.data(), whole.pixels.data(), carved.pixels.size() * sizeof(glm::vec4)));
 }
 
 // The tile order (shaders/tile_order.glsl) changes only which workgroup shades which pixels: every pixel is
