@@ -8,6 +8,7 @@ FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& l
     in.now = now;
     in.moved = moved;
     in.precomputePending = renderer.precomputePending(frame);
+    in.precomputeInputs = renderer.precomputeInputsVersion();
     in.exactSize = frame.size;
     double stepMm = renderer.resolveStepMm(frame.raycast);
     in.shown = [&renderer, &loop, frame, stepMm](FrameKind kind, glm::ivec2 size) {

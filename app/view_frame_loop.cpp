@@ -32,7 +32,10 @@ FrameDescription decidedFrame(FrameDescription frame, FrameKind kind, glm::ivec2
 }
 
 ViewFrameLoop::ViewFrameLoop(FrameLoopSettings settings)
-    : settings_(settings), previewScale_(settings.minPreviewScale), lastMotion_(-std::numeric_limits<double>::infinity()) {}
+    : settings_(settings),
+      previewScale_(settings.minPreviewScale),
+      lastMotion_(-std::numeric_limits<double>::infinity()),
+      lastPrecomputeEdit_(-std::numeric_limits<double>::infinity()) {}
 
 glm::ivec2 ViewFrameLoop::previewSize(glm::ivec2 exactSize) const {
     return glm::max(glm::ivec2(glm::round(glm::dvec2(exactSize) * previewScale_)), glm::ivec2(1));
@@ -40,6 +43,9 @@ glm::ivec2 ViewFrameLoop::previewSize(glm::ivec2 exactSize) const {
 
 FrameDecision ViewFrameLoop::decide(const FrameLoopInputs& in) {
     if (in.moved) lastMotion_ = in.now;
+    // The first frame's inputs are where step I starts, not an edit.
+    if (precomputeInputs_ && *precomputeInputs_ != in.precomputeInputs) lastPrecomputeEdit_ = in.now;
+    precomputeInputs_ = in.precomputeInputs;
     FrameDecision d;
     d.inMotion = in.now - lastMotion_ < settings_.settleSeconds;
     bool adaptive = settings_.quality == ViewQuality::Adaptive;
@@ -51,7 +57,9 @@ FrameDecision ViewFrameLoop::decide(const FrameLoopInputs& in) {
     };
     if (in.precomputePending) {
         // No exact frame before step I is done: a slice of it, and the frame without AO (the renderer's preview).
-        d.precomputeBudgetMs = settings_.precomputeBudgetMs;
+        // No slice while step I's inputs are being edited: the next edit would start it over.
+        bool editing = in.now - lastPrecomputeEdit_ < settings_.settleSeconds;
+        d.precomputeBudgetMs = editing ? 0.0 : settings_.precomputeBudgetMs;
         want(FrameKind::Preview, previewSize(in.exactSize));
     } else if (adaptive && d.inMotion) {
         want(FrameKind::Preview, previewSize(in.exactSize));

@@ -21,11 +21,16 @@
 //   - in both, while step I is to run, each frame runs slices of it for `precomputeBudgetMs` and shows a
 //     preview (phong: there is no AO yet) at the preview resolution (a full-size frame on llvmpipe would stall
 //     the window for seconds), so the window keeps presenting and the overlay shows the progress.
+//   - step I waits while its inputs are being edited: while they (volume, TF, LAO settings) changed within
+//     `settleSeconds`, no slice of it runs, only previews. A TF drag changes them every frame, and each change
+//     starts step I over, so a slice then would be thrown away by the next frame's edit and would only take
+//     its time from the previews.
 
 #include "render/frame.h"
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -69,6 +74,7 @@ struct FrameLoopInputs {
     double now = 0;                    // seconds, any origin (the loop compares differences)
     bool moved = false;                // the camera, a mesh, a light or the shading changed this frame
     bool precomputePending = false;    // the frame's mode needs step I and it has not finished
+    std::uint64_t precomputeInputs = 0; // changes whenever step I's inputs change (Renderer::precomputeInputsVersion)
     glm::ivec2 exactSize{1};           // the image size of the exact frame (the window times the user's scale)
     // Whether the renderer already shows this frame as `kind` at `size` (Renderer::showing, showingPreview).
     std::function<bool(FrameKind kind, glm::ivec2 size)> shown;
@@ -99,6 +105,8 @@ private:
     FrameLoopSettings settings_;
     double previewScale_;
     double lastMotion_;
+    double lastPrecomputeEdit_;                   // when step I's inputs last changed (-infinity: not since the first frame)
+    std::optional<std::uint64_t> precomputeInputs_;   // as of the last decision
 };
 
 }  // namespace curette

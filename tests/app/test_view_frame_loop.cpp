@@ -30,12 +30,14 @@ struct LoopRun {
     double now = 0;
     explicit LoopRun(FrameLoopSettings s = {}) : loop(s) {}
     // msAtHalf: what a frame costs at half the window's resolution; a frame's cost grows with its pixels.
+    std::uint64_t precomputeInputs = 7;   // step I's inputs (Renderer::precomputeInputsVersion)
     FrameDecision frame(bool moved, bool precomputePending = false, double msAtHalf = 50) {
         if (moved) screen.moved();
         FrameLoopInputs in;
         in.now = now;
         in.moved = moved;
         in.precomputePending = precomputePending;
+        in.precomputeInputs = precomputeInputs;
         in.exactSize = kWindow;
         in.shown = screen.query();
         FrameDecision d = loop.decide(in);
@@ -122,6 +124,31 @@ TEST(ViewFrameLoop, StepIRunsInSlicesWithAPreviewUntilItIsDone) {
         EXPECT_EQ(d.precomputeBudgetMs, 0);
         EXPECT_EQ(d.render, FrameKind::Exact) << "step I done and still: the exact frame";
     }
+}
+
+// A TF drag in lao or cao changes step I's inputs every frame, and each change starts step I over: its slices
+// wait until the edits have settled, and the drag gets previews alone.
+TEST(ViewFrameLoop, StepIWaitsWhileItsInputsAreBeingEdited) {
+    FrameLoopSettings s;
+    s.precomputeBudgetMs = 40;
+    LoopRun run(s);
+    FrameDecision d = run.frame(false, true);
+    EXPECT_EQ(d.precomputeBudgetMs, 40) << "the first frame's inputs are not an edit: step I starts at once";
+    for (int i = 0; i < 8; ++i) {   // half a second of dragging: an edit every frame
+        ++run.precomputeInputs;
+        d = run.frame(true, true);
+        EXPECT_EQ(d.precomputeBudgetMs, 0) << "frame " << i << " of the drag: no slice of a step I the next edit restarts";
+        EXPECT_EQ(d.render, FrameKind::Preview) << "frame " << i;
+        EXPECT_TRUE(d.inMotion);
+    }
+    // The drag stops: step I waits out the settle time (0.2 s = 3.2 frames), then runs.
+    int waited = 0;
+    while ((d = run.frame(false, true)).precomputeBudgetMs == 0) ASSERT_LT(++waited, 10) << "step I never resumed";
+    EXPECT_EQ(waited, 3) << "it resumes once the inputs have been still for the settle time";
+    EXPECT_EQ(d.precomputeBudgetMs, 40);
+    // A camera motion alone (inputs unchanged) does not hold step I back.
+    d = run.frame(true, true);
+    EXPECT_EQ(d.precomputeBudgetMs, 40);
 }
 
 TEST(ViewFrameLoop, ThePreviewResolutionFollowsItsCostWithinItsBounds) {
