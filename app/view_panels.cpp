@@ -62,7 +62,7 @@ ViewPanels::ViewPanels(const LoadedScene& loaded, std::filesystem::path presetDi
     for (std::uint64_t n : stats.histogram) histogram_.push_back(top > 0 ? std::log1p(static_cast<double>(n)) / top : 0);
 }
 
-std::vector<SettingEdit> ViewPanels::draw(const InteractionState& state, const OrbitCamera& camera) {
+std::vector<SettingEdit> ViewPanels::draw(const InteractionState& state, const OrbitCamera& camera, const input::InputPipeline& input) {
     std::vector<SettingEdit> edits;
     ImGuiIO& io = ImGui::GetIO();
     ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 8, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
@@ -70,7 +70,7 @@ std::vector<SettingEdit> ViewPanels::draw(const InteractionState& state, const O
     ImGui::Begin("settings");
     if (ImGui::CollapsingHeader("transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(state, edits);
     if (ImGui::CollapsingHeader("shading", ImGuiTreeNodeFlags_DefaultOpen)) shadingPanel(state, edits);
-    if (ImGui::CollapsingHeader("clip meshes", ImGuiTreeNodeFlags_DefaultOpen)) meshPanel(state, camera, edits);
+    if (ImGui::CollapsingHeader("clip meshes", ImGuiTreeNodeFlags_DefaultOpen)) meshPanel(state, camera, input, edits);
     if (!state.tubes.empty() && ImGui::CollapsingHeader("tubes")) tubePanel(state, edits);
     if (ImGui::CollapsingHeader("lights")) lightPanel(state, edits);
     if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(state, camera);
@@ -289,10 +289,47 @@ void ViewPanels::shadingPanel(const InteractionState& state, std::vector<Setting
     if (changed) edits.push_back(edit(Setting::Raycast, rc));
 }
 
-void ViewPanels::meshPanel(const InteractionState& state, const OrbitCamera& camera, std::vector<SettingEdit>& edits) {
-    for (const MeshState& m : state.meshes) {
+void ViewPanels::meshPanel(const InteractionState& state, const OrbitCamera& camera, const input::InputPipeline& input,
+                           std::vector<SettingEdit>& edits) {
+    // Who holds which mesh: the keyboard and every binding whose device is connected, each with the mesh index
+    // it moves (the mapper's and the keyboard's own state).
+    struct Holder {
+        int binding;
+        std::string name;
+        int mesh;
+    };
+    std::vector<Holder> holders{{input::kKeyboardBinding, "keyboard", input.keyboardSelection()}};
+    const input::Mapper& mapper = input.mapper();
+    for (std::size_t b = 0; b < mapper.config().bindings.size(); ++b) {
+        int binding = static_cast<int>(b), device = mapper.boundDevice(binding);
+        if (device < 0) continue;
+        const input::DeviceBinding& config = mapper.config().bindings[b];
+        holders.push_back({binding, config.family + " #" + std::to_string(config.index) + " (device " + std::to_string(device) + ")",
+                           mapper.heldMesh(binding)});
+    }
+    const int meshCount = static_cast<int>(state.meshes.size());
+    auto meshLabel = [&](int index) {
+        return index >= 0 && index < meshCount ? state.meshes[static_cast<std::size_t>(index)].name + " (id " + std::to_string(state.meshes[static_cast<std::size_t>(index)].id) + ")"
+                                               : std::string("no mesh");
+    };
+    ImGui::PushID("holders");   // apart from the meshes' ids below
+    for (const Holder& h : holders) {
+        ImGui::PushID(h.binding);
+        if (ImGui::BeginCombo(h.name.c_str(), meshLabel(std::min(h.mesh, meshCount - 1)).c_str())) {
+            for (int i = 0; i < meshCount; ++i)
+                if (ImGui::Selectable(meshLabel(i).c_str(), i == h.mesh) && i != h.mesh) holdRequests_.push_back({h.binding, i});
+            ImGui::EndCombo();
+        }
+        ImGui::PopID();
+    }
+    ImGui::PopID();
+    for (std::size_t index = 0; index < state.meshes.size(); ++index) {
+        const MeshState& m = state.meshes[index];
         ImGui::PushID(m.id);
-        ImGui::Text("%s (id %d)", m.name.c_str(), m.id);
+        std::string heldBy;
+        for (const Holder& h : holders)
+            if (std::min(h.mesh, meshCount - 1) == static_cast<int>(index)) heldBy += (heldBy.empty() ? "" : ", ") + h.name;
+        ImGui::Text("%s (id %d)%s%s", m.name.c_str(), m.id, heldBy.empty() ? "" : ", held by ", heldBy.c_str());
         float scale = static_cast<float>(m.scale.x);
         if (ImGui::SliderFloat("scale", &scale, 0.1f, 5.0f, "%.3f", ImGuiSliderFlags_Logarithmic))
             edits.push_back(edit(Setting::MeshScale, scale, m.id));

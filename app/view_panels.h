@@ -3,12 +3,15 @@
 // its settings, clip meshes, tubes and lights. A widget never changes the scene: it produces a SettingEdit
 // (app/setting_edit.h) whose value is the scene file's JSON of its key, and the frame loop hands the frame's
 // edits to the session step, which applies them as it applies device actions (and a recording records them).
+// The mesh panel's choice of which device holds which mesh is a hold request (input/pipeline.h) instead: it
+// is input, not a setting, and goes to the input pipeline's next step (and is recorded with that frame).
 // Call draw() between ImGui::NewFrame() and ImGui::Render(); it issues no GL call (the GL backend stays in
 // app/commands/view.cpp).
 
 #include "app/interaction.h"
 #include "app/loaded_scene.h"
 #include "app/setting_edit.h"
+#include "input/pipeline.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -22,10 +25,13 @@ public:
     // `presetDirectory`: where the TF presets are (assets/tf).
     ViewPanels(const LoadedScene& loaded, std::filesystem::path presetDirectory);
 
-    // Draws the panels for `state` seen through `camera` (an added mesh goes to its target) and returns the
-    // edits the user made. Messages (a file written, a file refused) go to takeMessages().
-    std::vector<SettingEdit> draw(const InteractionState& state, const OrbitCamera& camera);
+    // Draws the panels for `state` seen through `camera` (an added mesh goes to its target), with `input`'s
+    // bindings and the meshes they hold, and returns the edits the user made. Messages (a file written, a
+    // file refused) go to takeMessages(), the meshes chosen for a binding to takeHoldRequests() (for the
+    // input pipeline's next step).
+    std::vector<SettingEdit> draw(const InteractionState& state, const OrbitCamera& camera, const input::InputPipeline& input);
     std::vector<std::string> takeMessages() { return std::move(messages_); }
+    std::vector<input::HoldRequest> takeHoldRequests() { return std::move(holdRequests_); }
 
     // Where the TF editor's opacity canvas was drawn last (screen pixels) and the value range it spans: a
     // point (value, alpha) is at (x + w (value - lo) / (hi - lo), y + h (1 - alpha)).
@@ -40,7 +46,7 @@ public:
 private:
     void transferFunctionPanel(const InteractionState& state, std::vector<SettingEdit>& edits);
     void shadingPanel(const InteractionState& state, std::vector<SettingEdit>& edits);
-    void meshPanel(const InteractionState& state, const OrbitCamera& camera, std::vector<SettingEdit>& edits);
+    void meshPanel(const InteractionState& state, const OrbitCamera& camera, const input::InputPipeline& input, std::vector<SettingEdit>& edits);
     void tubePanel(const InteractionState& state, std::vector<SettingEdit>& edits);
     void lightPanel(const InteractionState& state, std::vector<SettingEdit>& edits);
     void scenePanel(const InteractionState& state, const OrbitCamera& camera);
@@ -55,6 +61,7 @@ private:
     char tfPath_[512] = "transfer-function.json";
     char scenePath_[512] = "curette-scene.json";
     std::vector<std::string> messages_;
+    std::vector<input::HoldRequest> holdRequests_;
     Canvas canvas_;
 };
 

@@ -10,6 +10,7 @@
 #include "app/session.h"
 #include "app/session_step.h"
 #include "base/atomic_file.h"
+#include "input/devices/encoders.h"
 #include "input/hid/fake_backend.h"
 #include "render/renderer.h"
 
@@ -180,7 +181,7 @@ TEST(PanelSessions, EditsReplayToTheLiveImageHashes) {
         EXPECT_NE(live.hashes[f], live.hashes[f - 1]) << "frame " << f << "'s edit shows in the image";
     Session s = readSession(session, false);
     ASSERT_EQ(s.frames.size(), 12u);
-    EXPECT_EQ(s.header.version, 3);
+    EXPECT_EQ(s.header.version, kSessionVersion);
     ASSERT_EQ(s.frames[5].edits.size(), 1u);
     EXPECT_EQ(s.frames[5].edits[0].target, 2) << "the added mesh's edit is recorded with its id";
     EXPECT_EQ(s.frames[9].edits.size(), 2u);
@@ -190,6 +191,99 @@ TEST(PanelSessions, EditsReplayToTheLiveImageHashes) {
         ASSERT_EQ(r.exitCode, 0) << r.output;
         std::vector<std::string> replayed;
         for (std::size_t f = 0; f < 12; ++f) {
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%06zu.png", f);
+            replayed.push_back(imageHash(readPng(out / name).rgba));
+        }
+        EXPECT_EQ(replayed, live.hashes) << "replay" << mode << " differs from the live frames";
+        if (*mode) {
+            EXPECT_NE(r.output.find("identical to the recorded ones"), std::string::npos) << r.output;
+        }
+    }
+}
+
+// The mesh panel's "which device holds it": a SpaceMouse (binding 0 of the default mapping, holding mesh 0)
+// pushes all the time; on frame 3 the panel makes it hold mesh 1, on frame 7 the keyboard (W held on frames
+// 5-8) too. The requests go to the next input step, as the viewer's loop hands them on.
+struct HoldRun {
+    std::vector<std::string> hashes;
+    std::vector<std::vector<SessionMesh>> poses;
+};
+
+HoldRun recordHoldSession(const std::filesystem::path& scene, const std::filesystem::path& session) {
+    HoldRun run;
+    LoadedScene loaded = loadSceneWithVolume(scene);
+    auto context = gl::createHeadlessContext();
+    Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, renderer);
+    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+    auto ports = std::make_shared<input::FakeHidBackend::Ports>();
+    input::HidDeviceDescription mouse;
+    mouse.path = "/dev/hidraw-test-spacemouse";
+    mouse.vendorId = 0x256f;
+    mouse.productId = 0xc62e;
+    mouse.product = "SpaceMouse Wireless (test)";
+    mouse.bus = input::Bus::Usb;
+    mouse.usagePage = 0x01;
+    mouse.usage = 0x08;
+    input::FakeHidBackend::plug(*ports, mouse);
+    LiveInput input(std::make_unique<input::FakeHidBackend>(ports), input::defaultMapping(), 40.0, 60.0);
+    LiveRecording recording(session, "scene.json", step.state(), input, 0.0);
+    input::DeviceState pushed;
+    pushed.axes[0] = 0.5f;   // tx
+    pushed.axes[4] = 0.3f;   // ry
+    std::vector<input::HoldRequest> requested;   // by the panel on the frame before
+    for (int f = 0; f < 10; ++f) {
+        input::FakeHidBackend::queue(*ports, mouse.path, input::encodeSpaceMouseCombined(pushed));
+        input::KeyboardMouseState keys;
+        if (f >= 5 && f <= 8) keys.keys |= 1u << static_cast<int>(input::Key::W);
+        double now = f / 10.0, dt = f == 0 ? 0.0 : 0.1;
+        InputFrame in = input.step(now, keys, dt, static_cast<int>(step.state().meshes.size()), std::move(requested));
+        step.apply(in.actions, step.frame().size.y);
+        recording.addFrame(now, dt, step.frame().size, step.frame().camera, step.state(), keys, in);
+        step.syncTo(renderer, loaded.tracts);
+        renderer.render(step.frame());
+        run.hashes.push_back(imageHash(toRgba8(renderer.readImage(), glm::vec4(loaded.scene.background))));
+        run.poses.push_back(step.state().sessionPoses());
+        requested.clear();
+        if (f == 2) requested = {{0, 1}};                        // the SpaceMouse's combo: mesh 1
+        if (f == 6) requested = {{input::kKeyboardBinding, 1}};  // the keyboard's combo: mesh 1
+    }
+    recording.finish();
+    return run;
+}
+
+// A hold change from the panel replays, following the recorded poses and re-deriving them from the
+// reports, to the live image hashes: the request is recorded with the frame whose input step applied it.
+TEST(PanelSessions, AHoldChangeReplaysFromPosesAndFromReports) {
+    auto dir = scratch("holds");
+    auto scene = writeBallScene(dir);
+    auto session = dir / "holds.jsonl";
+    HoldRun live = recordHoldSession(scene, session);
+    // Live, the change shows from the frame that applied it: mesh 0 stops (no key held on frames 3 and 4),
+    // mesh 1 moves; from frame 7 the keyboard's W moves mesh 1 and no longer mesh 0.
+    auto position = [&](std::size_t frame, std::size_t mesh) { return live.poses[frame][mesh].position; };
+    EXPECT_NE(position(2, 0), position(1, 0)) << "the SpaceMouse moves mesh 0 at first";
+    EXPECT_EQ(position(2, 1), position(1, 1));
+    EXPECT_EQ(position(3, 0), position(2, 0)) << "from frame 3 the SpaceMouse holds mesh 1";
+    EXPECT_NE(position(3, 1), position(2, 1));
+    EXPECT_NE(position(6, 0), position(5, 0)) << "the keyboard moves mesh 0 on frame 6";
+    EXPECT_EQ(position(7, 0), position(6, 0)) << "from frame 7 the keyboard holds mesh 1";
+    for (std::size_t f = 1; f < 10; ++f) EXPECT_NE(live.hashes[f], live.hashes[f - 1]) << "frame " << f << " moves a mesh";
+    Session s = readSession(session, false);
+    ASSERT_EQ(s.frames.size(), 10u);
+    EXPECT_EQ(s.header.version, kSessionVersion);
+    EXPECT_EQ(s.frames[3].holds, (std::vector<input::HoldRequest>{{0, 1}}));
+    EXPECT_EQ(s.frames[7].holds, (std::vector<input::HoldRequest>{{input::kKeyboardBinding, 1}}));
+    for (std::size_t f : {0u, 1u, 2u, 4u, 5u, 6u, 8u, 9u}) EXPECT_TRUE(s.frames[f].holds.empty()) << "frame " << f;
+    EXPECT_EQ(s.frames.back().meshes.size(), 2u);
+    for (std::size_t f = 0; f < 10; ++f) EXPECT_TRUE(samePoses(s.frames[f].meshes, live.poses[f])) << "frame " << f << " is recorded as it was live";
+    for (const char* mode : {"", " --from-reports"}) {
+        std::filesystem::path out = dir / (std::string("replay") + (*mode ? "-reports" : ""));
+        Invocation r = runCurette("replay " + session.string() + " --out " + out.string() + mode);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        std::vector<std::string> replayed;
+        for (std::size_t f = 0; f < 10; ++f) {
             char name[32];
             std::snprintf(name, sizeof name, "frame_%06zu.png", f);
             replayed.push_back(imageHash(readPng(out / name).rgba));

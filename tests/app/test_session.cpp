@@ -242,6 +242,44 @@ TEST(Session, ABadLightRecordNamesTheFileAndTheField) {
     }
 }
 
+// The mesh panel's hold requests (version 4) round-trip; a binding the header's mapping does not have, or
+// holds in a version 3 session, are InputErrors naming the line and the field.
+TEST(Session, HoldRequestsRoundTripAndNameABadBinding) {
+    std::mt19937 random(6);
+    SessionFrame f = exampleFrame(0, random);
+    f.holds = {{0, 1}, {input::kKeyboardBinding, 0}};
+    std::string header = sessionHeaderLine(exampleHeader()), frame = sessionFrameLine(f);
+    EXPECT_NE(frame.find(R"("holds":[{"binding":0,"mesh":1},{"binding":"keyboard","mesh":0}])"), std::string::npos) << frame;
+    Session s = parseSession(header + "\n" + frame + "\n", "holds.jsonl", false);
+    ASSERT_EQ(s.frames.size(), 1u);
+    EXPECT_EQ(s.frames[0].holds, f.holds);
+    struct Case {
+        const char* what;
+        std::string header, frame, field, expected;
+    };
+    const std::string v3 = replaced(header, "\"version\":" + std::to_string(kSessionVersion), "\"version\":3");
+    const Case cases[] = {
+        {"a binding the mapping does not have", header, replaced(frame, R"("binding":0)", R"("binding":1)"), "line 2: holds[0].binding",
+         "\"keyboard\" or the index of one of the 1 bindings of line 1's mapping"},
+        {"a device name instead of the keyboard", header, replaced(frame, R"("binding":"keyboard")", R"("binding":"mouse")"), "line 2: holds[1].binding",
+         "\"keyboard\""},
+        {"a mesh index beyond the clip-mesh limit", header, replaced(frame, R"("mesh":1})", R"("mesh":16})"), "line 2: holds[0].mesh", "0"},
+        {"holds in a version 3 session", v3, frame, "line 2: holds", "version 4"},
+    };
+    for (const Case& c : cases) {
+        try {
+            parseSession(c.header + "\n" + c.frame + "\n", "holds.jsonl", false);
+            ADD_FAILURE() << c.what << ": accepted";
+        } catch (const InputError& e) {
+            std::string message = e.what();
+            EXPECT_NE(message.find(c.field), std::string::npos) << c.what << ": " << message;
+            EXPECT_NE(message.find(c.expected), std::string::npos) << c.what << ": " << message;
+        }
+    }
+    f.holds.clear();
+    EXPECT_EQ(parseSession(v3 + "\n" + sessionFrameLine(f) + "\n", "v3.jsonl", false).frames.size(), 1u) << "version 3 sessions still load";
+}
+
 TEST(Session, CorruptSessionsAreNamedByLineAndTheLenientModeKeepsThePrefix) {
     struct Case {
         const char* what;

@@ -36,12 +36,13 @@ struct Gui {
         io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
     }
     ~Gui() { ImGui::DestroyContext(); }
+    input::InputPipeline input{input::defaultMapping(), 40.0, 60.0};   // no devices: the keyboard holds a mesh
     std::vector<SettingEdit> frame(ViewPanels& panels, const InteractionState& state, ImVec2 mouse, bool down) {
         ImGuiIO& io = ImGui::GetIO();
         io.MousePos = mouse;
         io.MouseDown[0] = down;
         ImGui::NewFrame();
-        std::vector<SettingEdit> edits = panels.draw(state, OrbitCamera{});
+        std::vector<SettingEdit> edits = panels.draw(state, OrbitCamera{}, input);
         ImGui::Render();
         return edits;
     }
