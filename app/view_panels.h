@@ -1,5 +1,6 @@
 #pragma once
-// The viewer's settings panels (Dear ImGui): the transfer function over the volume's histogram, shading and
+// The viewer's settings panels (Dear ImGui): the transfer function over the volume's histogram (and its
+// gradient opacity over the volume's gradient magnitudes), shading and
 // its settings, clip meshes, tubes and lights. A widget never changes the scene: it produces a SettingEdit
 // (app/setting_edit.h) whose value is the scene file's JSON of its key, and the frame loop hands the frame's
 // edits to the session step, which applies them as it applies device actions (and a recording records them).
@@ -40,6 +41,9 @@ public:
         double lo = 0, hi = 1;
     };
     const Canvas& transferFunctionCanvas() const { return canvas_; }
+    // The gradient-opacity canvas below the colour bar (drawn while the TF has gradient opacity): a point
+    // (|gradient|, factor) as above, over [0, the volume's largest gradient magnitude].
+    const Canvas& gradientOpacityCanvas() const { return gradientCanvas_; }
     // The TF presets found (file names), for the combo.
     const std::vector<std::filesystem::path>& presets() const { return presets_; }
 
@@ -55,14 +59,15 @@ private:
     std::vector<std::filesystem::path> presets_;
     std::vector<double> histogram_;        // log(1 + count) per bin, over [valueMin_, valueMax_]
     double valueMin_ = 0, valueMax_ = 1;
-    int draggedOpacity_ = -1, draggedColor_ = -1, selectedColor_ = -1;
+    double maxGradient_ = 0;               // the volume's largest gradient magnitude (value units per mm)
+    int draggedOpacity_ = -1, draggedGradient_ = -1, draggedColor_ = -1, selectedColor_ = -1;
     int addShape_ = 0;
     float addSizeMm_ = 15.0f;
     char tfPath_[512] = "transfer-function.json";
     char scenePath_[512] = "curette-scene.json";
     std::vector<std::string> messages_;
     std::vector<input::HoldRequest> holdRequests_;
-    Canvas canvas_;
+    Canvas canvas_, gradientCanvas_;
 };
 
 // The shipped presets, assets/tf of the source tree the binary was built from.
