@@ -67,6 +67,11 @@ void requireVersion4(const JsonReader& r, int version) {
     if (version < 4) r.fail("nothing: session version " + std::to_string(version) + " has no hold requests (they came with version 4)");
 }
 
+// Adding and removing lights came with version 4 too.
+void requireVersion4Lights(const JsonReader& r, int version) {
+    if (version < 4) r.fail("a setting of session version " + std::to_string(version) + " (adding and removing lights came with version 4)");
+}
+
 nlohmann::ordered_json editsJson(const std::vector<SettingEdit>& edits) {
     nlohmann::ordered_json j = nlohmann::ordered_json::array();
     for (const SettingEdit& e : edits) j.push_back(settingEditJson(e));
@@ -291,6 +296,7 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
                 SettingEdit edit = readSettingEdit(e, directory);
                 if (settingInfo(edit.setting).target == SettingTarget::Mesh)
                     e.at("setting").fail("a setting that is not a clip mesh's (the header's \"meshes\" hold those)");
+                if (edit.setting == Setting::LightAdd || edit.setting == Setting::LightRemove) requireVersion4Lights(e.at("setting"), version);
                 session.header.edits.push_back(std::move(edit));
             }
         }
@@ -309,6 +315,7 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
     }
 
     std::set<int> meshIds, deviceIds;
+    std::size_t lightCount = session.header.lights ? session.header.lights->size() : 0;   // after each frame's edits
     for (const SessionMeshStart& m : session.header.meshes) meshIds.insert(m.id);
     for (const SessionDevice& d : session.header.devices) deviceIds.insert(d.id);
     for (std::size_t n = 1; n < lines.size(); ++n) {
@@ -353,23 +360,29 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
                 m.finish();
                 f.meshes.push_back(mesh);
             }
-            if (auto lights = r.find("lights")) {
-                requireVersion2(*lights, session.header.version);
-                if (!session.header.lights) lights->fail("nothing (line 1 lists no lights)");
-                std::size_t count = session.header.lights->size();
-                if (!lights->isArray() || lights->size() != count)
-                    lights->fail("an array of " + std::to_string(count) + " light directions [x, y, z], one per light of line 1");
-                std::vector<glm::dvec3> directions;
-                for (const JsonReader& l : lights->elements(count, count)) directions.push_back(readLightDirection(l));
-                f.lights = std::move(directions);
-            }
             if (auto edits = r.find("edits")) {
                 requireVersion3(*edits, session.header.version);
                 for (const JsonReader& e : edits->elements(0, 1024)) {
                     f.edits.push_back(readSettingEdit(e, directory));
-                    if (f.edits.back().setting == Setting::MeshAdd && !meshIds.count(f.edits.back().target))
+                    Setting setting = f.edits.back().setting;
+                    if (setting == Setting::MeshAdd && !meshIds.count(f.edits.back().target))
                         e.at("mesh").fail("the id of a mesh in this frame's meshes_added (where an added mesh is listed too)");
+                    if (setting == Setting::LightAdd || setting == Setting::LightRemove) {
+                        requireVersion4Lights(e.at("setting"), session.header.version);
+                        lightCount = setting == Setting::LightAdd ? lightCount + 1 : std::max<std::size_t>(lightCount, 1) - 1;
+                    }
                 }
+            }
+            // Every light's direction after the frame's edits (which may add or remove lights).
+            if (auto lights = r.find("lights")) {
+                requireVersion2(*lights, session.header.version);
+                if (!session.header.lights) lights->fail("nothing (line 1 lists no lights)");
+                if (!lights->isArray() || lights->size() != lightCount)
+                    lights->fail("an array of " + std::to_string(lightCount) + " light directions [x, y, z], one per light of line 1" +
+                                 (lightCount != session.header.lights->size() ? " and the lights added and removed since" : ""));
+                std::vector<glm::dvec3> directions;
+                for (const JsonReader& l : lights->elements(lightCount, lightCount)) directions.push_back(readLightDirection(l));
+                f.lights = std::move(directions);
             }
             if (auto holds = r.find("holds")) {
                 requireVersion4(*holds, session.header.version);

@@ -20,7 +20,7 @@
 
 namespace curette {
 
-inline constexpr int kSessionVersion = 4;   // 3: setting edits (app/setting_edit.h); 4: hold requests
+inline constexpr int kSessionVersion = 4;   // 3: setting edits (app/setting_edit.h); 4: hold requests, lights added and removed
 inline constexpr int kOldestSessionVersion = 1;
 
 struct SessionDevice {
@@ -60,7 +60,9 @@ struct SessionFrame {
     OrbitCamera camera;
     ShadingMode shading = ShadingMode::Phong;
     std::vector<SessionMesh> meshes;
-    std::optional<std::vector<glm::dvec3>> lights;   // every light's direction (version 2; absent: unchanged)
+    // Every light's direction after the frame's actions and edits (version 2; absent: unchanged); as many as
+    // the header's lights and the lights.add/lights.remove edits since make (version 4).
+    std::optional<std::vector<glm::dvec3>> lights;
     std::uint32_t keys = 0;
     glm::dvec2 drag{0.0};
     glm::dvec2 lightDrag{0.0};   // Shift + left drag (input::KeyboardMouseState::lightDragPixels)

@@ -430,12 +430,19 @@ void ViewPanels::tubePanel(const InteractionState& state, std::vector<SettingEdi
 }
 
 void ViewPanels::lightPanel(const InteractionState& state, std::vector<SettingEdit>& edits) {
+    // Apart from the meshes' and the bundles' widgets, which are numbered too (mesh 1's "remove" is not light
+    // 1's).
+    ImGui::PushID("lights");
     for (std::size_t i = 0; i < state.lights.size(); ++i) {
         const Light& l = state.lights[i];
         ImGui::PushID(static_cast<int>(i));
         nlohmann::json entry = objectOf(state, loaded_.scene, "lights[" + std::to_string(i) + "]");
         bool changed = false;
         ImGui::Text("light %zu (%s space)%s", i, l.cameraSpace ? "camera" : "world", static_cast<int>(i) == state.selectedLight ? " (selected)" : "");
+        if (state.lights.size() > 1) {   // one light always stays
+            ImGui::SameLine();
+            if (ImGui::Button("remove")) edits.push_back(edit(Setting::LightRemove, nullptr, static_cast<int>(i)));
+        }
         float d[3] = {static_cast<float>(l.direction.x), static_cast<float>(l.direction.y), static_cast<float>(l.direction.z)};
         if (ImGui::DragFloat3("direction", d, 0.01f, -1.0f, 1.0f) && std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]) > 1e-3f)
             changed = true;
@@ -449,6 +456,10 @@ void ViewPanels::lightPanel(const InteractionState& state, std::vector<SettingEd
         if (changed) edits.push_back(edit(Setting::Light, entry, static_cast<int>(i)));
         ImGui::PopID();
     }
+    // A new light, camera space, from the upper left (the scene's default comes from the upper right).
+    if (state.lights.size() < kMaxSceneLights && ImGui::Button("add light"))
+        edits.push_back(edit(Setting::LightAdd, {{"direction", {-0.5, 0.5, 1.0}}, {"space", "camera"}}));
+    ImGui::PopID();
 }
 
 void ViewPanels::scenePanel(const InteractionState& state, const OrbitCamera& camera) {
