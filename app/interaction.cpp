@@ -46,12 +46,32 @@ void adoptSceneSettings(const Scene& scene, InteractionState& s) {
     s.ismos = scene.ismos;
     s.tubes = scene.tubes;
     s.tubeRendering = {scene.tubesAsLines, scene.tubeShading, scene.tubesBuiltOnGpu};
+    s.sceneLightKeys.clear();
+    const nlohmann::json* lights = scene.json.is_object() && scene.json.contains("lights") ? &scene.json.at("lights") : nullptr;
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        nlohmann::json key = lights && lights->is_array() && i < lights->size() ? (*lights)[i] : nlohmann::json::object();
+        if (!key.contains("direction")) key["direction"] = {scene.lights[i].direction.x, scene.lights[i].direction.y, scene.lights[i].direction.z};
+        s.sceneLightKeys.push_back(key);
+    }
     s.sceneDirectory = scene.file.parent_path().empty() ? std::filesystem::path(".") : scene.file.parent_path();
     s.fromSceneSettings = true;
 }
 
-// The scene-file name of the key an edit sets ("lights[1]"); empty for mesh settings.
+std::string lightKey(std::size_t index) { return "lights[" + std::to_string(index) + "]"; }
+
+// A light's scene JSON when no scene gave one (a state made without a scene, as tests and benches make):
+// its direction, space and colour (its intensity folded in by the largest channel above 1).
+nlohmann::json lightJson(const Light& light) {
+    double intensity = std::max({1.0, light.color.r, light.color.g, light.color.b});
+    glm::dvec3 c = light.color / intensity;
+    return {{"direction", {light.direction.x, light.direction.y, light.direction.z}}, {"color", {c.r, c.g, c.b}}, {"intensity", intensity},
+            {"space", light.cameraSpace ? "camera" : "world"}};
+}
+
+// The scene-file name of the key an edit sets ("lights[1]"); empty for mesh settings and for adding and
+// removing lights (which set the lights' keys themselves, InteractionState::editedKeys).
 std::string editedKeyName(const SettingEdit& edit) {
+    if (edit.setting == Setting::LightAdd || edit.setting == Setting::LightRemove) return {};
     const SettingInfo& info = settingInfo(edit.setting);
     switch (info.target) {
         case SettingTarget::None: return info.key;
@@ -94,8 +114,9 @@ InteractionState InteractionState::fromSessionStart(const SessionHeader& header,
     s.applyEdits(header.edits, source + " line 1: edits");
     s.appliedEdits.clear();
     if (header.lights) {
-        if (header.lights->size() != scene.lights.size())
-            throw InputError(source, "line 1: lights", "as many lights as the scene " + scene.file.string() + " has (" + std::to_string(scene.lights.size()) + ")",
+        if (header.lights->size() != s.lights.size())
+            throw InputError(source, "line 1: lights",
+                             "as many lights as the scene " + scene.file.string() + " and the header's edits make (" + std::to_string(s.lights.size()) + ")",
                              std::to_string(header.lights->size()));
         for (std::size_t i = 0; i < s.lights.size(); ++i) {
             const SessionLight& l = (*header.lights)[i];
@@ -205,6 +226,33 @@ void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const s
                 ismos.lightShapes[static_cast<std::size_t>(edit.target)] = v.shape;
                 break;
             }
+            case Setting::LightAdd: {
+                if (lights.size() >= kMaxSceneLights)
+                    throw InputError(source, where + ".setting", "at most " + std::to_string(kMaxSceneLights) + " lights (a scene's limit)",
+                                     "lights.add with " + std::to_string(lights.size()) + " lights");
+                const LightValue& v = std::get<LightValue>(value);
+                ismos.lightShapes.resize(lights.size());
+                ismos.lightShapes.push_back(v.shape);
+                editedKeys[lightKey(lights.size())] = edit.value;
+                lights.push_back(v.light);
+                break;
+            }
+            case Setting::LightRemove: {
+                if (edit.target < 0 || edit.target >= static_cast<int>(lights.size()))
+                    fail("a light index below " + std::to_string(lights.size()));
+                if (lights.size() <= 1) fail("a light other than the last one (a scene keeps at least one light)");
+                const std::size_t removed = static_cast<std::size_t>(edit.target);
+                for (std::size_t i = 0; i < lights.size(); ++i)
+                    if (!editedKeys.count(lightKey(i))) editedKeys[lightKey(i)] = i < sceneLightKeys.size() ? sceneLightKeys[i] : lightJson(lights[i]);
+                for (std::size_t i = removed; i + 1 < lights.size(); ++i) editedKeys[lightKey(i)] = editedKeys[lightKey(i + 1)];
+                editedKeys.erase(lightKey(lights.size() - 1));
+                lights.erase(lights.begin() + edit.target);
+                ismos.lightShapes.resize(lights.size() + 1);
+                ismos.lightShapes.erase(ismos.lightShapes.begin() + edit.target);
+                if (selectedLight > edit.target) --selectedLight;
+                selectedLight = std::clamp(selectedLight, 0, static_cast<int>(lights.size()) - 1);
+                break;
+            }
             case Setting::TubeRendering: {
                 const TubeRendering& v = std::get<TubeRendering>(value);
                 if (v.lines != tubeRendering.lines || v.builtOnGpu != tubeRendering.builtOnGpu)
@@ -259,6 +307,7 @@ void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const s
 std::vector<SettingEdit> InteractionState::settingEdits() const {
     std::vector<SettingEdit> out;
     for (const auto& [key, value] : editedKeys) {
+        if (key.rfind("lights[", 0) == 0) continue;   // below
         SettingEdit e;
         std::size_t bracket = key.find('[');
         e.setting = *settingFromKey(key.substr(0, bracket));
@@ -266,6 +315,13 @@ std::vector<SettingEdit> InteractionState::settingEdits() const {
         e.value = value;
         out.push_back(e);
     }
+    // The lights: the edited ones among the scene's, then the scene's beyond the current count removed (from
+    // the last), then the added ones: never more than the scene or the state has, never none.
+    const std::size_t sceneCount = sceneLightKeys.size(), count = lights.size();
+    for (std::size_t i = 0; i < std::min(sceneCount, count); ++i)
+        if (auto it = editedKeys.find(lightKey(i)); it != editedKeys.end()) out.push_back({Setting::Light, static_cast<int>(i), it->second});
+    for (std::size_t i = sceneCount; i-- > count;) out.push_back({Setting::LightRemove, static_cast<int>(i), nullptr});
+    for (std::size_t i = sceneCount; i < count; ++i) out.push_back({Setting::LightAdd, -1, editedKeys.at(lightKey(i))});
     return out;
 }
 

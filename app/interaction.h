@@ -54,7 +54,12 @@ struct InteractionState {
     // The value of every key an edit has set, latest first wins, by the key's name in the scene file
     // ("transfer_function", "lights[1]", "tubes[0]", ...; mesh settings live in the meshes): what the scene
     // writer (app/plan_scene.h) writes, what the panels start from and what a session header carries.
+    // Lights added and removed: an added light's key is set as an edit sets it; a removal first sets every
+    // light's key (the scene's own JSON where no edit set one), so the lights after it move down a key.
     std::map<std::string, nlohmann::json> editedKeys;
+    // The scene's "lights" entries as its file has them (an empty object for its default light): what a
+    // removal sets for a light no edit has set, and what settingEdits() compares the lights with.
+    std::vector<nlohmann::json> sceneLightKeys;
     std::filesystem::path sceneDirectory = ".";   // glTF paths of edited meshes are relative to it
     bool fromSceneSettings = false;   // the settings above are a scene's (else SessionStep adopts its frame's)
     // One-shot requests the frame loop handles (and clears).

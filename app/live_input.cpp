@@ -19,7 +19,8 @@ LiveInput::LiveInput(std::unique_ptr<input::HidBackend> backend, input::MappingC
       keyboardMm_(keyboardMmPerSecond),
       keyboardDeg_(keyboardDegPerSecond) {}
 
-InputFrame LiveInput::step(double nowSeconds, const input::KeyboardMouseState& keys, double dt, int meshCount) {
+InputFrame LiveInput::step(double nowSeconds, const input::KeyboardMouseState& keys, double dt, int meshCount,
+                           std::vector<input::HoldRequest> holds) {
     InputFrame frame;
     devices_.poll(nowSeconds);
     // Connections first (a replay applies them in the same order: added, removed, then the reports).
@@ -39,7 +40,8 @@ InputFrame LiveInput::step(double nowSeconds, const input::KeyboardMouseState& k
         frame.devicesRemoved.push_back(id);
     }
     frame.reports = devices_.takeReports();
-    frame.actions = pipeline_.step(frame.reports, keys, dt, meshCount);
+    frame.holds = std::move(holds);
+    frame.actions = pipeline_.step(frame.reports, keys, dt, meshCount, frame.holds);
     return frame;
 }
 
@@ -101,6 +103,7 @@ void LiveRecording::addFrame(double now, double dt, glm::ivec2 size, const Orbit
         if (!addedThisFrame) f.meshesRemoved.push_back(id);
     }
     f.edits = state.appliedEdits;
+    f.holds = input.holds;
     for (const input::RawReport& r : input.reports) f.reports.push_back({r.deviceId, std::max(0.0, r.timeSeconds - start_), r.bytes});
     recorder_.add(f);
 }

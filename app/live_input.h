@@ -20,6 +20,7 @@ struct InputFrame {
     std::vector<SessionDevice> devicesAdded;
     std::vector<int> devicesRemoved;
     std::vector<input::RawReport> reports;   // times in the device manager's clock
+    std::vector<input::HoldRequest> holds;   // the hold requests this frame's pipeline step applied
 };
 
 SessionDevice sessionDevice(const input::DeviceInfo& info);
@@ -28,8 +29,10 @@ class LiveInput {
 public:
     LiveInput(std::unique_ptr<input::HidBackend> backend, input::MappingConfig mapping, double keyboardMmPerSecond,
               double keyboardDegPerSecond);
-    // One frame: poll the devices (hot-plug, drain reports), follow connections, parse and map.
-    InputFrame step(double nowSeconds, const input::KeyboardMouseState& keys, double dt, int meshCount);
+    // One frame: poll the devices (hot-plug, drain reports), follow connections, parse and map, with the
+    // hold requests (the mesh panel's, from the frame before) applied first.
+    InputFrame step(double nowSeconds, const input::KeyboardMouseState& keys, double dt, int meshCount,
+                    std::vector<input::HoldRequest> holds = {});
     std::vector<SessionDevice> connectedDevices() const;
     std::vector<std::string> takeMessages() { return devices_.takeMessages(); }
     const input::DeviceManager& devices() const { return devices_; }

@@ -190,7 +190,7 @@ Scene parseScene(std::string_view text, const fs::path& path) {
     if (auto s = root.find("shading")) scene.shading = readShading(*s);
     if (auto lights = root.find("lights")) {
         scene.lights.clear();
-        for (const JsonReader& l : lights->elements(0, 4)) {
+        for (const JsonReader& l : lights->elements(0, kMaxSceneLights)) {
             IsmosLightShape shape;
             scene.lights.push_back(readLight(l, shape));
             lightShapes.push_back(shape);

@@ -42,6 +42,9 @@ struct TubeRendering {
     bool operator==(const TubeRendering&) const = default;
 };
 
+// A scene has at most this many lights (shaders/phong.glsl MAX_LIGHTS; the ISMOS model takes as many).
+inline constexpr std::size_t kMaxSceneLights = 4;
+
 // "shading": "solid" | "phong" | ...
 ShadingMode readShading(const JsonReader& r);
 // An inline transfer function (assets/tf/README.md), as "transfer_function": {...}.

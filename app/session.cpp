@@ -4,6 +4,7 @@
 #include "base/error.h"
 #include "base/json_reader.h"
 #include "base/log.h"
+#include "clip/limits.h"
 #include "input/mapping.h"
 #include "input/raw_reports.h"
 
@@ -59,6 +60,16 @@ void requireVersion2(const JsonReader& r, int version) {
 // Keys of version 3 (setting edits).
 void requireVersion3(const JsonReader& r, int version) {
     if (version < 3) r.fail("nothing: session version " + std::to_string(version) + " has no setting edits (they came with version 3)");
+}
+
+// Keys of version 4 (hold requests).
+void requireVersion4(const JsonReader& r, int version) {
+    if (version < 4) r.fail("nothing: session version " + std::to_string(version) + " has no hold requests (they came with version 4)");
+}
+
+// Adding and removing lights came with version 4 too.
+void requireVersion4Lights(const JsonReader& r, int version) {
+    if (version < 4) r.fail("a setting of session version " + std::to_string(version) + " (adding and removing lights came with version 4)");
 }
 
 nlohmann::ordered_json editsJson(const std::vector<SettingEdit>& edits) {
@@ -193,6 +204,12 @@ std::string sessionFrameLine(const SessionFrame& f) {
     }
     if (!f.meshesRemoved.empty()) j["meshes_removed"] = f.meshesRemoved;
     if (!f.edits.empty()) j["edits"] = editsJson(f.edits);
+    if (!f.holds.empty()) {
+        j["holds"] = nlohmann::ordered_json::array();
+        for (const input::HoldRequest& h : f.holds)
+            j["holds"].push_back({{"binding", h.binding == input::kKeyboardBinding ? nlohmann::ordered_json("keyboard") : nlohmann::ordered_json(h.binding)},
+                                  {"mesh", h.mesh}});
+    }
     j["reports"] = nlohmann::ordered_json::array();
     for (const SessionReport& r : f.reports) j["reports"].push_back({{"device", r.device}, {"time", r.time}, {"bytes", input::toHex(r.bytes)}});
     return j.dump();
@@ -216,6 +233,7 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
     if (lines.empty()) throw InputError(file, "line 1", "a session header", "an empty file");
 
     std::filesystem::path directory;
+    std::size_t bindings = 0;   // the mapping's, for the frames' hold requests
     // Header (always strict).
     {
         nlohmann::json json = parseLine(lines[0], file, 1);
@@ -237,7 +255,7 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
         if (auto c = r.find("created")) session.header.created = c->string();
         for (const JsonReader& d : r.at("devices").elements(0, 64)) session.header.devices.push_back(readDevice(d));
         session.header.mappingJson = r.at("mapping").json().dump();
-        std::size_t bindings = input::parseMapping(session.header.mappingJson, file + " line 1: mapping").bindings.size();
+        bindings = input::parseMapping(session.header.mappingJson, file + " line 1: mapping").bindings.size();
         auto mode = parseShadingMode(r.at("shading").string());
         if (!mode) r.at("shading").fail("one of " + shadingModeList());
         session.header.shading = *mode;
@@ -278,6 +296,7 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
                 SettingEdit edit = readSettingEdit(e, directory);
                 if (settingInfo(edit.setting).target == SettingTarget::Mesh)
                     e.at("setting").fail("a setting that is not a clip mesh's (the header's \"meshes\" hold those)");
+                if (edit.setting == Setting::LightAdd || edit.setting == Setting::LightRemove) requireVersion4Lights(e.at("setting"), version);
                 session.header.edits.push_back(std::move(edit));
             }
         }
@@ -296,6 +315,7 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
     }
 
     std::set<int> meshIds, deviceIds;
+    std::size_t lightCount = session.header.lights ? session.header.lights->size() : 0;   // after each frame's edits
     for (const SessionMeshStart& m : session.header.meshes) meshIds.insert(m.id);
     for (const SessionDevice& d : session.header.devices) deviceIds.insert(d.id);
     for (std::size_t n = 1; n < lines.size(); ++n) {
@@ -340,22 +360,43 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
                 m.finish();
                 f.meshes.push_back(mesh);
             }
-            if (auto lights = r.find("lights")) {
-                requireVersion2(*lights, session.header.version);
-                if (!session.header.lights) lights->fail("nothing (line 1 lists no lights)");
-                std::size_t count = session.header.lights->size();
-                if (!lights->isArray() || lights->size() != count)
-                    lights->fail("an array of " + std::to_string(count) + " light directions [x, y, z], one per light of line 1");
-                std::vector<glm::dvec3> directions;
-                for (const JsonReader& l : lights->elements(count, count)) directions.push_back(readLightDirection(l));
-                f.lights = std::move(directions);
-            }
             if (auto edits = r.find("edits")) {
                 requireVersion3(*edits, session.header.version);
                 for (const JsonReader& e : edits->elements(0, 1024)) {
                     f.edits.push_back(readSettingEdit(e, directory));
-                    if (f.edits.back().setting == Setting::MeshAdd && !meshIds.count(f.edits.back().target))
+                    Setting setting = f.edits.back().setting;
+                    if (setting == Setting::MeshAdd && !meshIds.count(f.edits.back().target))
                         e.at("mesh").fail("the id of a mesh in this frame's meshes_added (where an added mesh is listed too)");
+                    if (setting == Setting::LightAdd || setting == Setting::LightRemove) {
+                        requireVersion4Lights(e.at("setting"), session.header.version);
+                        lightCount = setting == Setting::LightAdd ? lightCount + 1 : std::max<std::size_t>(lightCount, 1) - 1;
+                    }
+                }
+            }
+            // Every light's direction after the frame's edits (which may add or remove lights).
+            if (auto lights = r.find("lights")) {
+                requireVersion2(*lights, session.header.version);
+                if (!session.header.lights) lights->fail("nothing (line 1 lists no lights)");
+                if (!lights->isArray() || lights->size() != lightCount)
+                    lights->fail("an array of " + std::to_string(lightCount) + " light directions [x, y, z], one per light of line 1" +
+                                 (lightCount != session.header.lights->size() ? " and the lights added and removed since" : ""));
+                std::vector<glm::dvec3> directions;
+                for (const JsonReader& l : lights->elements(lightCount, lightCount)) directions.push_back(readLightDirection(l));
+                f.lights = std::move(directions);
+            }
+            if (auto holds = r.find("holds")) {
+                requireVersion4(*holds, session.header.version);
+                for (const JsonReader& h : holds->elements(0, 64)) {
+                    input::HoldRequest hold;
+                    JsonReader binding = h.at("binding");
+                    const nlohmann::json& b = binding.json();
+                    if (b.is_number_integer() && b.get<std::int64_t>() >= 0 && b.get<std::int64_t>() < static_cast<std::int64_t>(bindings))
+                        hold.binding = b.get<int>();
+                    else if (!(b.is_string() && b.get<std::string>() == "keyboard"))
+                        binding.fail("\"keyboard\" or the index of one of the " + std::to_string(bindings) + " bindings of line 1's mapping");
+                    hold.mesh = h.at("mesh").integer(0, clip::kMaxClipMeshes - 1);
+                    h.finish();
+                    f.holds.push_back(hold);
                 }
             }
             f.keys = static_cast<std::uint32_t>(r.at("keys").unsignedInteger(0xFFFFFFFFu));

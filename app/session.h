@@ -2,7 +2,7 @@
 // Sessions: JSON Lines, written atomically. Line 1 is the header (format, version, scene, devices, mapping,
 // and the state at the start: shading, meshes, input pipeline, so a recording may start mid-run); every further line is one frame: time, dt, image size, camera, shading, every clip
 // mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, the panels' setting
-// edits (version 3, app/setting_edit.h), and the raw HID reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
+// edits (version 3, app/setting_edit.h), the mesh panel's hold requests (version 4), and the raw HID reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
 // back to the same doubles.
 
 #include "app/setting_edit.h"
@@ -20,7 +20,7 @@
 
 namespace curette {
 
-inline constexpr int kSessionVersion = 3;   // 3: setting edits (app/setting_edit.h)
+inline constexpr int kSessionVersion = 4;   // 3: setting edits (app/setting_edit.h); 4: hold requests, lights added and removed
 inline constexpr int kOldestSessionVersion = 1;
 
 struct SessionDevice {
@@ -60,7 +60,9 @@ struct SessionFrame {
     OrbitCamera camera;
     ShadingMode shading = ShadingMode::Phong;
     std::vector<SessionMesh> meshes;
-    std::optional<std::vector<glm::dvec3>> lights;   // every light's direction (version 2; absent: unchanged)
+    // Every light's direction after the frame's actions and edits (version 2; absent: unchanged); as many as
+    // the header's lights and the lights.add/lights.remove edits since make (version 4).
+    std::optional<std::vector<glm::dvec3>> lights;
     std::uint32_t keys = 0;
     glm::dvec2 drag{0.0};
     glm::dvec2 lightDrag{0.0};   // Shift + left drag (input::KeyboardMouseState::lightDragPixels)
@@ -69,6 +71,9 @@ struct SessionFrame {
     std::vector<SessionAddedMesh> meshesAdded;
     std::vector<int> meshesRemoved;
     std::vector<SettingEdit> edits;   // the frame's panel edits, as applied, after its actions (version 3)
+    // The hold requests the frame's input pipeline step applied, before its reports (version 4;
+    // input::HoldRequest): {"binding": N | "keyboard", "mesh": index}.
+    std::vector<input::HoldRequest> holds;
     std::vector<SessionReport> reports;
 };
 

@@ -82,12 +82,6 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
         if (e.setting == Setting::MeshAdd) addedByEdits.insert(e.target);
         if (e.setting == Setting::MeshRemove) removedByEdits.insert(e.target);
     }
-    if (f.lights) {
-        if (f.lights->size() != state_.lights.size())
-            throw InputError(where, "lights", "one direction per light of the session (" + std::to_string(state_.lights.size()) + ")",
-                             std::to_string(f.lights->size()));
-        for (std::size_t i = 0; i < f.lights->size(); ++i) state_.lights[i].direction = (*f.lights)[i];
-    }
     for (const SessionAddedMesh& a : f.meshesAdded) {
         if (addedByEdits.count(a.id)) continue;
         MeshState m;
@@ -100,6 +94,14 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     for (int id : f.meshesRemoved)
         if (int i = state_.indexOf(id); i >= 0 && !removedByEdits.count(id)) state_.meshes.erase(state_.meshes.begin() + i);
     state_.applyEdits(f.edits, where);
+    // The lights' directions as recorded, after the edits (which may add or remove lights; a light edit
+    // carries the direction the light had then).
+    if (f.lights) {
+        if (f.lights->size() != state_.lights.size())
+            throw InputError(where, "lights", "one direction per light of the session at that frame (" + std::to_string(state_.lights.size()) + ")",
+                             std::to_string(f.lights->size()));
+        for (std::size_t i = 0; i < f.lights->size(); ++i) state_.lights[i].direction = (*f.lights)[i];
+    }
     for (const SessionMesh& r : f.meshes) {
         int i = state_.indexOf(r.id);
         if (i < 0) throw InputError(where, "meshes", "ids of meshes present at that frame", std::to_string(r.id));

@@ -15,6 +15,8 @@ constexpr SettingInfo kSettings[] = {
     {Setting::Dos, "dos", SettingTarget::None, nullptr},
     {Setting::Ismos, "ismos", SettingTarget::None, nullptr},
     {Setting::Light, "lights", SettingTarget::Light, "light"},
+    {Setting::LightAdd, "lights.add", SettingTarget::None, nullptr},
+    {Setting::LightRemove, "lights.remove", SettingTarget::Light, "light"},
     {Setting::TubeRendering, "tube_rendering", SettingTarget::None, nullptr},
     {Setting::Tubes, "tubes", SettingTarget::Tubes, "tube"},
     {Setting::MeshAdd, "clip_meshes.add", SettingTarget::Mesh, "mesh"},
@@ -51,11 +53,15 @@ SettingValue readSettingValue(const SettingEdit& edit, const std::string& source
         case Setting::Raycast: return readRaycast(r);
         case Setting::Dos: return readDos(r);
         case Setting::Ismos: return readIsmos(r);
-        case Setting::Light: {
+        case Setting::Light:
+        case Setting::LightAdd: {
             LightValue v;
             v.light = readLight(r, v.shape);
             return v;
         }
+        case Setting::LightRemove:
+            if (!edit.value.is_null()) r.fail("null (removing a light takes no value)");
+            return std::monostate{};
         case Setting::TubeRendering: return readTubeRendering(r);
         case Setting::Tubes: {
             SceneTubes t = tubeDefaults;

@@ -13,6 +13,8 @@
 //   ambient_occlusion       {"rays": "26", "samples": 20, ...}       (the whole object, as in a scene)
 //   raycast, dos, ismos, tube_rendering                              (the whole object, as in a scene)
 //   lights                  light N's object {"direction", "color", "intensity", "space", "disk_radius", "spot"}
+//   lights.add              a new light's object (as above), after the others (at most kMaxSceneLights)
+//   lights.remove           null (light N; the lights after it move down one, and at least one light stays)
 //   tubes                   bundle N's object without "path" (radius_mm, color, sides, ...)
 //   clip_meshes.add         a "clip_meshes" entry {"name", "mesh", "position_mm", "rotation_deg", "scale",
 //                           "clips_tubes"}; recorded with the id it was given ("mesh")
@@ -42,6 +44,8 @@ enum class Setting {
     Dos,
     Ismos,
     Light,
+    LightAdd,
+    LightRemove,
     TubeRendering,
     Tubes,
     MeshAdd,

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 
 namespace curette {
 
@@ -45,6 +46,59 @@ ImU32 colour(glm::dvec3 c, float alpha = 1.0f) {
     return ImGui::ColorConvertFloat4ToU32(ImVec4(static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b), alpha));
 }
 
+// A curve of points (x: a value over [c.lo, c.hi], y in [0, 1]) drawn and edited on the canvas `c`, an invisible
+// button `id` at the cursor (the caller draws the background first): drag a point to move it (between its
+// neighbours), double-click away from the points to add one, right-click one to remove it (one always
+// stays). `dragged` is the point being dragged, kept by the caller between frames; `handle` colours a point
+// by its value. Returns whether `points` changed. The TF editor's opacity and gradient-opacity canvases.
+bool editPointCurve(const char* id, const ViewPanels::Canvas& c, std::vector<TransferFunction::ScalarPoint>& points, int& dragged,
+                    const std::function<ImU32(double)>& handle) {
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    auto toX = [&](double v) { return c.x + static_cast<float>((v - c.lo) / (c.hi - c.lo)) * c.w; };
+    auto toY = [&](double a) { return c.y + static_cast<float>(1.0 - a) * c.h; };
+    auto valueAt = [&](float x) { return c.lo + (c.hi - c.lo) * std::clamp((x - c.x) / c.w, 0.0f, 1.0f); };
+    auto yAt = [&](float y) { return std::clamp(1.0 - (y - c.y) / c.h, 0.0, 1.0); };
+    const std::vector<TransferFunction::ScalarPoint> shown = points;
+    for (std::size_t i = 0; i + 1 < shown.size(); ++i)
+        draw->AddLine(ImVec2(toX(shown[i].value), toY(shown[i].y)), ImVec2(toX(shown[i + 1].value), toY(shown[i + 1].y)), IM_COL32(240, 240, 240, 255), 1.5f);
+    ImGui::InvisibleButton(id, ImVec2(c.w, c.h));
+    bool hovered = ImGui::IsItemHovered();
+    ImVec2 mouse = ImGui::GetIO().MousePos;
+    int nearest = -1;
+    float best = 8.0f * 8.0f;
+    for (std::size_t i = 0; i < shown.size(); ++i) {
+        ImVec2 at(toX(shown[i].value), toY(shown[i].y));
+        float dx = at.x - mouse.x, dy = at.y - mouse.y;
+        if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, nearest = static_cast<int>(i);
+        draw->AddCircleFilled(at, 4.5f, handle(shown[i].value));
+        draw->AddCircle(at, 4.5f, IM_COL32(255, 255, 255, 255));
+    }
+    bool changed = false;
+    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && nearest >= 0) dragged = nearest;
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) dragged = -1;
+    const int count = static_cast<int>(points.size());
+    if (dragged >= 0 && dragged < count && (ImGui::GetIO().MouseDelta.x != 0 || ImGui::GetIO().MouseDelta.y != 0)) {
+        auto& p = points[static_cast<std::size_t>(dragged)];
+        double left = dragged > 0 ? points[static_cast<std::size_t>(dragged - 1)].value : c.lo;
+        double right = dragged + 1 < count ? points[static_cast<std::size_t>(dragged + 1)].value : c.hi;
+        p.value = std::clamp(valueAt(mouse.x), left, right);
+        p.y = yAt(mouse.y);
+        changed = true;
+    }
+    if (hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && nearest < 0) {
+        double v = valueAt(mouse.x);
+        auto at = std::lower_bound(points.begin(), points.end(), v, [](const auto& p, double x) { return p.value < x; });
+        points.insert(at, {v, yAt(mouse.y)});
+        changed = true;
+    }
+    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && nearest >= 0 && points.size() > 1) {
+        points.erase(points.begin() + nearest);
+        dragged = -1;
+        changed = true;
+    }
+    return changed;
+}
+
 }  // namespace
 
 ViewPanels::ViewPanels(const LoadedScene& loaded, std::filesystem::path presetDirectory) : loaded_(loaded) {
@@ -60,9 +114,10 @@ ViewPanels::ViewPanels(const LoadedScene& loaded, std::filesystem::path presetDi
     double top = 0;
     for (std::uint64_t n : stats.histogram) top = std::max(top, std::log1p(static_cast<double>(n)));
     for (std::uint64_t n : stats.histogram) histogram_.push_back(top > 0 ? std::log1p(static_cast<double>(n)) / top : 0);
+    maxGradient_ = maxGradientMagnitude(loaded.volume);
 }
 
-std::vector<SettingEdit> ViewPanels::draw(const InteractionState& state, const OrbitCamera& camera) {
+std::vector<SettingEdit> ViewPanels::draw(const InteractionState& state, const OrbitCamera& camera, const input::InputPipeline& input) {
     std::vector<SettingEdit> edits;
     ImGuiIO& io = ImGui::GetIO();
     ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 8, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
@@ -70,7 +125,7 @@ std::vector<SettingEdit> ViewPanels::draw(const InteractionState& state, const O
     ImGui::Begin("settings");
     if (ImGui::CollapsingHeader("transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(state, edits);
     if (ImGui::CollapsingHeader("shading", ImGuiTreeNodeFlags_DefaultOpen)) shadingPanel(state, edits);
-    if (ImGui::CollapsingHeader("clip meshes", ImGuiTreeNodeFlags_DefaultOpen)) meshPanel(state, camera, edits);
+    if (ImGui::CollapsingHeader("clip meshes", ImGuiTreeNodeFlags_DefaultOpen)) meshPanel(state, camera, input, edits);
     if (!state.tubes.empty() && ImGui::CollapsingHeader("tubes")) tubePanel(state, edits);
     if (ImGui::CollapsingHeader("lights")) lightPanel(state, edits);
     if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(state, camera);
@@ -78,9 +133,10 @@ std::vector<SettingEdit> ViewPanels::draw(const InteractionState& state, const O
     return edits;
 }
 
-// The opacity curve over the histogram (x: data value, y: alpha), the colour points on a bar below it.
-// Drag a point to move it (between its neighbours), double-click to add one, right-click to remove one;
-// click a colour point to pick its colour.
+// The opacity curve over the histogram (x: data value, y: alpha), the colour points on a bar below it, and
+// the gradient-opacity curve below that (x: |gradient|, y: the opacity factor). Drag a point to move it
+// (between its neighbours), double-click to add one, right-click to remove one; click a colour point to pick
+// its colour.
 void ViewPanels::transferFunctionPanel(const InteractionState& state, std::vector<SettingEdit>& edits) {
     const TransferFunction& tf = state.transferFunction;
     TransferFunction changed = tf;
@@ -90,12 +146,11 @@ void ViewPanels::transferFunctionPanel(const InteractionState& state, std::vecto
 
     ImDrawList* draw = ImGui::GetWindowDrawList();
     ImVec2 origin = ImGui::GetCursorScreenPos();
-    float width = std::max(200.0f, ImGui::GetContentRegionAvail().x), height = 120.0f, barHeight = 16.0f;
+    float width = std::max(200.0f, ImGui::GetContentRegionAvail().x), height = 120.0f, barHeight = 16.0f, gradientHeight = 60.0f;
     canvas_ = {origin.x, origin.y, width, height, lo, hi};
     auto toX = [&](double v) { return origin.x + static_cast<float>((v - lo) / (hi - lo)) * width; };
     auto toY = [&](double a) { return origin.y + static_cast<float>(1.0 - a) * height; };
     auto valueAt = [&](float x) { return lo + (hi - lo) * std::clamp((x - origin.x) / width, 0.0f, 1.0f); };
-    auto alphaAt = [&](float y) { return std::clamp(1.0 - (y - origin.y) / height, 0.0, 1.0); };
 
     draw->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + height), IM_COL32(30, 30, 34, 255));
     // The histogram (log counts) over the volume's value range.
@@ -105,43 +160,9 @@ void ViewPanels::transferFunctionPanel(const InteractionState& state, std::vecto
         double v1 = valueMin_ + (valueMax_ - valueMin_) * static_cast<double>(b + 1) / bins;
         draw->AddRectFilled(ImVec2(toX(v0), toY(histogram_[b])), ImVec2(toX(v1), origin.y + height), IM_COL32(90, 90, 100, 255));
     }
-    // The opacity curve, coloured by the TF.
-    for (std::size_t i = 0; i + 1 < tf.opacity.size(); ++i)
-        draw->AddLine(ImVec2(toX(tf.opacity[i].value), toY(tf.opacity[i].y)), ImVec2(toX(tf.opacity[i + 1].value), toY(tf.opacity[i + 1].y)),
-                      IM_COL32(240, 240, 240, 255), 1.5f);
-    ImGui::InvisibleButton("opacity", ImVec2(width, height));
-    bool hovered = ImGui::IsItemHovered();
+    // The opacity curve, its points coloured by the TF.
+    dirty |= editPointCurve("opacity", canvas_, changed.opacity, draggedOpacity_, [&](double v) { return colour(tf.evaluateColor(v)); });
     ImVec2 mouse = ImGui::GetIO().MousePos;
-    int nearest = -1;
-    float best = 8.0f * 8.0f;
-    for (std::size_t i = 0; i < tf.opacity.size(); ++i) {
-        float dx = toX(tf.opacity[i].value) - mouse.x, dy = toY(tf.opacity[i].y) - mouse.y;
-        if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, nearest = static_cast<int>(i);
-        glm::dvec3 c = tf.evaluateColor(tf.opacity[i].value);
-        draw->AddCircleFilled(ImVec2(toX(tf.opacity[i].value), toY(tf.opacity[i].y)), 4.5f, colour(c));
-        draw->AddCircle(ImVec2(toX(tf.opacity[i].value), toY(tf.opacity[i].y)), 4.5f, IM_COL32(255, 255, 255, 255));
-    }
-    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && nearest >= 0) draggedOpacity_ = nearest;
-    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) draggedOpacity_ = -1;
-    if (draggedOpacity_ >= 0 && draggedOpacity_ < static_cast<int>(changed.opacity.size()) && (ImGui::GetIO().MouseDelta.x != 0 || ImGui::GetIO().MouseDelta.y != 0)) {
-        auto& p = changed.opacity[static_cast<std::size_t>(draggedOpacity_)];
-        double left = draggedOpacity_ > 0 ? changed.opacity[static_cast<std::size_t>(draggedOpacity_ - 1)].value : lo;
-        double right = draggedOpacity_ + 1 < static_cast<int>(changed.opacity.size()) ? changed.opacity[static_cast<std::size_t>(draggedOpacity_ + 1)].value : hi;
-        p.value = std::clamp(valueAt(mouse.x), left, right);
-        p.y = alphaAt(mouse.y);
-        dirty = true;
-    }
-    if (hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && nearest < 0) {
-        double v = valueAt(mouse.x);
-        auto at = std::lower_bound(changed.opacity.begin(), changed.opacity.end(), v, [](const auto& p, double x) { return p.value < x; });
-        changed.opacity.insert(at, {v, alphaAt(mouse.y)});
-        dirty = true;
-    }
-    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && nearest >= 0 && changed.opacity.size() > 1) {
-        changed.opacity.erase(changed.opacity.begin() + nearest);
-        draggedOpacity_ = -1;
-        dirty = true;
-    }
 
     // The colour bar and its points.
     ImVec2 bar = ImGui::GetCursorScreenPos();
@@ -191,6 +212,26 @@ void ViewPanels::transferFunctionPanel(const InteractionState& state, std::vecto
         }
     }
     ImGui::TextDisabled("drag: move  double-click: add  right-click: remove  (values %.4g .. %.4g)", lo, hi);
+
+    // The gradient-opacity curve: the opacity factor over |gradient| (value units per mm) from 0 to the
+    // volume's largest (or the last point, when beyond). Off: no points (a factor of 1 everywhere); turned on,
+    // a flat 1 to shape from.
+    bool gradientOn = !changed.gradientOpacity.empty();
+    const double gradientHi = std::max({maxGradient_, gradientOn ? changed.gradientOpacity.back().value : 0.0, 1e-6});
+    if (ImGui::Checkbox("gradient opacity", &gradientOn)) {
+        changed.gradientOpacity.clear();
+        if (gradientOn) changed.gradientOpacity = {{0.0, 1.0}, {gradientHi, 1.0}};
+        draggedGradient_ = -1;
+        dirty = true;
+    }
+    if (!changed.gradientOpacity.empty()) {
+        ImVec2 g = ImGui::GetCursorScreenPos();
+        gradientCanvas_ = {g.x, g.y, width, gradientHeight, 0.0, gradientHi};
+        draw->AddRectFilled(g, ImVec2(g.x + width, g.y + gradientHeight), IM_COL32(30, 30, 34, 255));
+        dirty |= editPointCurve("gradient opacity curve", gradientCanvas_, changed.gradientOpacity, draggedGradient_,
+                                [](double) { return IM_COL32(200, 200, 210, 255); });
+        ImGui::TextDisabled("|gradient| 0 .. %.4g per mm (the volume's largest: %.4g)", gradientHi, maxGradient_);
+    }
     if (dirty) edits.push_back(edit(Setting::TransferFunction, tfJson(changed)));
 
     // Presets, load and save (JSON or .vp by the extension).
@@ -289,10 +330,47 @@ void ViewPanels::shadingPanel(const InteractionState& state, std::vector<Setting
     if (changed) edits.push_back(edit(Setting::Raycast, rc));
 }
 
-void ViewPanels::meshPanel(const InteractionState& state, const OrbitCamera& camera, std::vector<SettingEdit>& edits) {
-    for (const MeshState& m : state.meshes) {
+void ViewPanels::meshPanel(const InteractionState& state, const OrbitCamera& camera, const input::InputPipeline& input,
+                           std::vector<SettingEdit>& edits) {
+    // Who holds which mesh: the keyboard and every binding whose device is connected, each with the mesh index
+    // it moves (the mapper's and the keyboard's own state).
+    struct Holder {
+        int binding;
+        std::string name;
+        int mesh;
+    };
+    std::vector<Holder> holders{{input::kKeyboardBinding, "keyboard", input.keyboardSelection()}};
+    const input::Mapper& mapper = input.mapper();
+    for (std::size_t b = 0; b < mapper.config().bindings.size(); ++b) {
+        int binding = static_cast<int>(b), device = mapper.boundDevice(binding);
+        if (device < 0) continue;
+        const input::DeviceBinding& config = mapper.config().bindings[b];
+        holders.push_back({binding, config.family + " #" + std::to_string(config.index) + " (device " + std::to_string(device) + ")",
+                           mapper.heldMesh(binding)});
+    }
+    const int meshCount = static_cast<int>(state.meshes.size());
+    auto meshLabel = [&](int index) {
+        return index >= 0 && index < meshCount ? state.meshes[static_cast<std::size_t>(index)].name + " (id " + std::to_string(state.meshes[static_cast<std::size_t>(index)].id) + ")"
+                                               : std::string("no mesh");
+    };
+    ImGui::PushID("holders");   // apart from the meshes' ids below
+    for (const Holder& h : holders) {
+        ImGui::PushID(h.binding);
+        if (ImGui::BeginCombo(h.name.c_str(), meshLabel(std::min(h.mesh, meshCount - 1)).c_str())) {
+            for (int i = 0; i < meshCount; ++i)
+                if (ImGui::Selectable(meshLabel(i).c_str(), i == h.mesh) && i != h.mesh) holdRequests_.push_back({h.binding, i});
+            ImGui::EndCombo();
+        }
+        ImGui::PopID();
+    }
+    ImGui::PopID();
+    for (std::size_t index = 0; index < state.meshes.size(); ++index) {
+        const MeshState& m = state.meshes[index];
         ImGui::PushID(m.id);
-        ImGui::Text("%s (id %d)", m.name.c_str(), m.id);
+        std::string heldBy;
+        for (const Holder& h : holders)
+            if (std::min(h.mesh, meshCount - 1) == static_cast<int>(index)) heldBy += (heldBy.empty() ? "" : ", ") + h.name;
+        ImGui::Text("%s (id %d)%s%s", m.name.c_str(), m.id, heldBy.empty() ? "" : ", held by ", heldBy.c_str());
         float scale = static_cast<float>(m.scale.x);
         if (ImGui::SliderFloat("scale", &scale, 0.1f, 5.0f, "%.3f", ImGuiSliderFlags_Logarithmic))
             edits.push_back(edit(Setting::MeshScale, scale, m.id));
@@ -352,12 +430,19 @@ void ViewPanels::tubePanel(const InteractionState& state, std::vector<SettingEdi
 }
 
 void ViewPanels::lightPanel(const InteractionState& state, std::vector<SettingEdit>& edits) {
+    // Apart from the meshes' and the bundles' widgets, which are numbered too (mesh 1's "remove" is not light
+    // 1's).
+    ImGui::PushID("lights");
     for (std::size_t i = 0; i < state.lights.size(); ++i) {
         const Light& l = state.lights[i];
         ImGui::PushID(static_cast<int>(i));
         nlohmann::json entry = objectOf(state, loaded_.scene, "lights[" + std::to_string(i) + "]");
         bool changed = false;
         ImGui::Text("light %zu (%s space)%s", i, l.cameraSpace ? "camera" : "world", static_cast<int>(i) == state.selectedLight ? " (selected)" : "");
+        if (state.lights.size() > 1) {   // one light always stays
+            ImGui::SameLine();
+            if (ImGui::Button("remove")) edits.push_back(edit(Setting::LightRemove, nullptr, static_cast<int>(i)));
+        }
         float d[3] = {static_cast<float>(l.direction.x), static_cast<float>(l.direction.y), static_cast<float>(l.direction.z)};
         if (ImGui::DragFloat3("direction", d, 0.01f, -1.0f, 1.0f) && std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]) > 1e-3f)
             changed = true;
@@ -371,6 +456,10 @@ void ViewPanels::lightPanel(const InteractionState& state, std::vector<SettingEd
         if (changed) edits.push_back(edit(Setting::Light, entry, static_cast<int>(i)));
         ImGui::PopID();
     }
+    // A new light, camera space, from the upper left (the scene's default comes from the upper right).
+    if (state.lights.size() < kMaxSceneLights && ImGui::Button("add light"))
+        edits.push_back(edit(Setting::LightAdd, {{"direction", {-0.5, 0.5, 1.0}}, {"space", "camera"}}));
+    ImGui::PopID();
 }
 
 void ViewPanels::scenePanel(const InteractionState& state, const OrbitCamera& camera) {

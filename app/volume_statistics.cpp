@@ -1,5 +1,7 @@
 #include "app/volume_statistics.h"
 
+#include "render/volume_geometry.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -43,6 +45,27 @@ VolumeStatistics computeStatistics(const VolumeData& volume, int bins) {
         s.percentiles[k] = values[rank];
     }
     return s;
+}
+
+double maxGradientMagnitude(const VolumeData& volume) {
+    const glm::ivec3 dims = volume.dims;
+    const glm::dmat3 toWorld = VolumeGeometry{dims, volume.indexToWorld}.gradientIndexToWorld() * volume.valueScale;
+    double largest = 0;
+    for (int k = 0; k < dims.z; ++k)
+        for (int j = 0; j < dims.y; ++j)
+            for (int i = 0; i < dims.x; ++i) {
+                bool noData = volume.isNoData(volume.linearIndex(i, j, k));
+                auto difference = [&](glm::ivec3 step) {
+                    glm::ivec3 a = glm::clamp(glm::ivec3(i, j, k) + step, glm::ivec3(0), dims - 1);
+                    glm::ivec3 b = glm::clamp(glm::ivec3(i, j, k) - step, glm::ivec3(0), dims - 1);
+                    std::size_t ia = volume.linearIndex(a.x, a.y, a.z), ib = volume.linearIndex(b.x, b.y, b.z);
+                    noData = noData || volume.isNoData(ia) || volume.isNoData(ib);
+                    return volume.normalized(ia) - volume.normalized(ib);
+                };
+                glm::dvec3 d(difference({1, 0, 0}), difference({0, 1, 0}), difference({0, 0, 1}));
+                if (!noData) largest = std::max(largest, glm::length(toWorld * (0.5 * d)));
+            }
+    return largest;
 }
 
 }  // namespace curette

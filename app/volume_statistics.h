@@ -18,4 +18,11 @@ struct VolumeStatistics {
 
 VolumeStatistics computeStatistics(const VolumeData& volume, int bins = 16);
 
+// The largest gradient magnitude (physical value per mm) over the voxels, by the ray caster's own central
+// differences (render/reference/raycast_reference.cpp at a voxel centre: the neighbours along i, j and k,
+// clamped at the edges, through VolumeGeometry::gradientIndexToWorld): the range of the TF editor's
+// gradient-opacity curve. Voxels without data, and differences that reach one, are left out; 0 for a
+// constant volume.
+double maxGradientMagnitude(const VolumeData& volume);
+
 }  // namespace curette

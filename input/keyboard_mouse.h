@@ -47,6 +47,7 @@ public:
         : translationSpeed_(translationMmPerSecond), rotationSpeed_(rotationDegPerSecond) {}
     std::vector<Action> update(const KeyboardMouseState& state, double dt, int meshCount);
     int selectedMesh() const { return selected_; }
+    void select(int mesh) { selected_ = mesh; }   // as Tab would (clamped to the meshes at the next update)
     KeyboardMapperState state() const { return {previous_, selected_}; }
     void restore(const KeyboardMapperState& state) { previous_ = state.previousKeys, selected_ = state.selectedMesh; }
 

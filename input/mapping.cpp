@@ -179,6 +179,13 @@ void Mapper::restore(const MapperState& state) {
     previousButtons_ = state.previousButtons;
 }
 
+void Mapper::hold(int binding, int mesh) {
+    if (binding < 0 || binding >= static_cast<int>(config_.bindings.size()) || mesh < 0)
+        throw std::invalid_argument("hold: binding " + std::to_string(binding) + " of " + std::to_string(config_.bindings.size()) + ", mesh " +
+                                    std::to_string(mesh));
+    held_[static_cast<std::size_t>(binding)] = mesh;
+}
+
 std::vector<Action> Mapper::update(const std::vector<DeviceSnapshot>& devices, double dt, int meshCount) {
     std::vector<Action> actions;
     for (std::size_t b = 0; b < config_.bindings.size(); ++b) {

@@ -81,6 +81,9 @@ public:
     std::vector<Action> update(const std::vector<DeviceSnapshot>& devices, double dt, int meshCount);
     const MappingConfig& config() const { return config_; }
     int heldMesh(int binding) const { return held_[static_cast<std::size_t>(binding)]; }
+    // Makes `binding` hold mesh `mesh` (the viewer's mesh panel, through InputPipeline::step); throws
+    // std::invalid_argument for a binding the config does not have or a negative mesh.
+    void hold(int binding, int mesh);
     // The device id bound to each binding in the last update (-1: none connected).
     int boundDevice(int binding) const { return bound_[static_cast<std::size_t>(binding)]; }
     MapperState state() const { return {held_, bound_, previousButtons_}; }

@@ -1,5 +1,7 @@
 #include "input/pipeline.h"
 
+#include <algorithm>
+
 namespace curette::input {
 
 InputPipeline::InputPipeline(MappingConfig mapping, double keyboardMmPerSecond, double keyboardDegPerSecond)
@@ -14,7 +16,16 @@ void InputPipeline::restore(const InputPipelineState& state) {
     devices_ = state.devices;
 }
 
-std::vector<Action> InputPipeline::step(const std::vector<RawReport>& reports, const KeyboardMouseState& keys, double dt, int meshCount) {
+std::vector<Action> InputPipeline::step(const std::vector<RawReport>& reports, const KeyboardMouseState& keys, double dt, int meshCount,
+                                        const std::vector<HoldRequest>& holds) {
+    std::vector<Action> actions;
+    for (const HoldRequest& h : holds) {
+        if (meshCount <= 0) break;
+        int mesh = std::clamp(h.mesh, 0, meshCount - 1);
+        if (h.binding == kKeyboardBinding) keyboard_.select(mesh);
+        else mapper_.hold(h.binding, mesh);
+        actions.push_back(SelectMesh{h.binding, mesh});
+    }
     for (const RawReport& r : reports) {
         auto it = devices_.find(r.deviceId);
         if (it == devices_.end()) continue;
@@ -22,7 +33,8 @@ std::vector<Action> InputPipeline::step(const std::vector<RawReport>& reports, c
     }
     std::vector<DeviceSnapshot> snapshot;
     for (const auto& [id, d] : devices_) snapshot.push_back(d);
-    std::vector<Action> actions = mapper_.update(snapshot, dt, meshCount);
+    std::vector<Action> fromDevices = mapper_.update(snapshot, dt, meshCount);
+    actions.insert(actions.end(), fromDevices.begin(), fromDevices.end());
     std::vector<Action> fromKeys = keyboard_.update(keys, dt, meshCount);
     actions.insert(actions.end(), fromKeys.begin(), fromKeys.end());
     return actions;

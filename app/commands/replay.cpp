@@ -142,7 +142,7 @@ int replay(const Arguments& args) {
             input::KeyboardMouseState keys{f.keys, f.drag, f.lightDrag};
             step.frame().camera = f.camera;
             step.frame().size = f.size;
-            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size())), f.size.y, f.edits, where);
+            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size()), f.holds), f.size.y, f.edits, where);
             // The re-derived poses, lights (version 2) and shading must be the recorded ones, bit for bit.
             bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights);
             if (!same && poseMismatches++ == 0)

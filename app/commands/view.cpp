@@ -212,12 +212,13 @@ int view(const Arguments& args) {
         orbiting = left;
         dragging = right;
 
-        // Devices and keys -> actions -> the scene (the session step every command runs).
-        InputFrame input = live.step(now, keys, dt, static_cast<int>(state.meshes.size()));
+        // Devices and keys -> actions -> the scene (the session step every command runs). The mesh panel's
+        // hold requests of the frame before go in with this frame's input (and its recorded frame).
+        InputFrame input = live.step(now, keys, dt, static_cast<int>(state.meshes.size()), panels.takeHoldRequests());
         StepChanges changes;
         if (!play) {
             try {
-                changes = step.apply(input.actions, framebuffer.y, panels.draw(state, frame.camera));
+                changes = step.apply(input.actions, framebuffer.y, panels.draw(state, frame.camera, live.pipeline()));
             } catch (const InputError& e) {   // a panel value the scene reader refuses: said, not applied
                 messages.push_back(e.what());
             }

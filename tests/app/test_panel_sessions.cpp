@@ -10,6 +10,7 @@
 #include "app/session.h"
 #include "app/session_step.h"
 #include "base/atomic_file.h"
+#include "input/devices/encoders.h"
 #include "input/hid/fake_backend.h"
 #include "render/renderer.h"
 
@@ -32,8 +33,10 @@
 #pragma GCC diagnostic pop
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <sstream>
 
@@ -125,8 +128,16 @@ struct LiveRun {
     int settingChanges = 0;
 };
 
+// What a user does on frame f: panel edits (given the state and the scene), keys held, a camera move.
+struct Script {
+    int frames = 0;
+    std::function<std::vector<SettingEdit>(int, const InteractionState&, const Scene&)> edits;
+    std::function<input::KeyboardMouseState(int)> keys = [](int) { return input::KeyboardMouseState{}; };
+    std::function<void(int, OrbitCamera&)> camera = [](int, OrbitCamera&) {};
+};
+
 // The viewer's loop, headless: live (no) devices and keys, panel edits, the step, the recording, the renderer.
-LiveRun recordEditSession(const std::filesystem::path& scene, const std::filesystem::path& session) {
+LiveRun recordPanelSession(const std::filesystem::path& scene, const std::filesystem::path& session, const Script& script) {
     LiveRun run;
     LoadedScene loaded = loadSceneWithVolume(scene);
     auto context = gl::createHeadlessContext();
@@ -135,13 +146,12 @@ LiveRun recordEditSession(const std::filesystem::path& scene, const std::filesys
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
     LiveInput input(std::make_unique<input::FakeHidBackend>(std::make_shared<input::FakeHidBackend::Ports>()), input::defaultMapping(), 40.0, 60.0);
     LiveRecording recording(session, "scene.json", step.state(), input, 0.0);
-    for (int f = 0; f < 12; ++f) {
-        input::KeyboardMouseState keys;
-        if (f == 3) step.frame().camera.orbit(15, -5), step.frame().camera.zoom(0.9);
-        if (f == 9 || f == 10) keys.keys |= 1u << static_cast<int>(input::Key::W);   // the keyboard moves mesh 0 as well
+    for (int f = 0; f < script.frames; ++f) {
+        input::KeyboardMouseState keys = script.keys(f);
+        script.camera(f, step.frame().camera);
         double now = f / 10.0, dt = f == 0 ? 0.0 : 0.1;
         InputFrame in = input.step(now, keys, dt, static_cast<int>(step.state().meshes.size()));
-        StepChanges changes = step.apply(in.actions, step.frame().size.y, panelEdits(f, step.state(), loaded.scene));
+        StepChanges changes = step.apply(in.actions, step.frame().size.y, script.edits(f, step.state(), loaded.scene));
         run.settingChanges += changes.settings;
         recording.addFrame(now, dt, step.frame().size, step.frame().camera, step.state(), keys, in);
         step.syncTo(renderer, loaded.tracts);
@@ -152,6 +162,23 @@ LiveRun recordEditSession(const std::filesystem::path& scene, const std::filesys
     run.state = step.state();
     run.camera = step.frame().camera;
     return run;
+}
+
+// The edit session of (a), (b) and (c): panelEdits, the camera moved on frame 3, W held on frames 9 and 10
+// (the keyboard moves mesh 0 as well).
+LiveRun recordEditSession(const std::filesystem::path& scene, const std::filesystem::path& session) {
+    Script script;
+    script.frames = 12;
+    script.edits = panelEdits;
+    script.keys = [](int f) {
+        input::KeyboardMouseState keys;
+        if (f == 9 || f == 10) keys.keys |= 1u << static_cast<int>(input::Key::W);
+        return keys;
+    };
+    script.camera = [](int f, OrbitCamera& camera) {
+        if (f == 3) camera.orbit(15, -5), camera.zoom(0.9);
+    };
+    return recordPanelSession(scene, session, script);
 }
 
 struct Png {
@@ -169,6 +196,26 @@ Png readPng(const std::filesystem::path& path) {
     return png;
 }
 
+// `curette replay` of `session`, following the recorded poses and re-deriving them from the reports, writes
+// frames with the live run's image hashes (and the re-derived poses equal the recorded ones).
+void expectReplaysToTheLiveHashes(const std::filesystem::path& session, const std::vector<std::string>& live) {
+    for (const char* mode : {"", " --from-reports"}) {
+        std::filesystem::path out = session.parent_path() / (session.stem().string() + "-replay" + (*mode ? "-reports" : ""));
+        Invocation r = runCurette("replay " + session.string() + " --out " + out.string() + mode);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        std::vector<std::string> replayed;
+        for (std::size_t f = 0; f < live.size(); ++f) {
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%06zu.png", f);
+            replayed.push_back(imageHash(readPng(out / name).rgba));
+        }
+        EXPECT_EQ(replayed, live) << "replay" << mode << " differs from the live frames";
+        if (*mode) {
+            EXPECT_NE(r.output.find("identical to the recorded ones"), std::string::npos) << r.output;
+        }
+    }
+}
+
 // (a) The recorded session with TF and mesh-size edits replays to the live image hashes.
 TEST(PanelSessions, EditsReplayToTheLiveImageHashes) {
     auto dir = scratch("replay");
@@ -180,25 +227,90 @@ TEST(PanelSessions, EditsReplayToTheLiveImageHashes) {
         EXPECT_NE(live.hashes[f], live.hashes[f - 1]) << "frame " << f << "'s edit shows in the image";
     Session s = readSession(session, false);
     ASSERT_EQ(s.frames.size(), 12u);
-    EXPECT_EQ(s.header.version, 3);
+    EXPECT_EQ(s.header.version, kSessionVersion);
     ASSERT_EQ(s.frames[5].edits.size(), 1u);
     EXPECT_EQ(s.frames[5].edits[0].target, 2) << "the added mesh's edit is recorded with its id";
     EXPECT_EQ(s.frames[9].edits.size(), 2u);
-    for (const char* mode : {"", " --from-reports"}) {
-        std::filesystem::path out = dir / (std::string("replay") + (*mode ? "-reports" : ""));
-        Invocation r = runCurette("replay " + session.string() + " --out " + out.string() + mode);
-        ASSERT_EQ(r.exitCode, 0) << r.output;
-        std::vector<std::string> replayed;
-        for (std::size_t f = 0; f < 12; ++f) {
-            char name[32];
-            std::snprintf(name, sizeof name, "frame_%06zu.png", f);
-            replayed.push_back(imageHash(readPng(out / name).rgba));
-        }
-        EXPECT_EQ(replayed, live.hashes) << "replay" << mode << " differs from the live frames";
-        if (*mode) {
-            EXPECT_NE(r.output.find("identical to the recorded ones"), std::string::npos) << r.output;
-        }
+    expectReplaysToTheLiveHashes(session, live.hashes);
+}
+
+// The mesh panel's "which device holds it": a SpaceMouse (binding 0 of the default mapping, holding mesh 0)
+// pushes all the time; on frame 3 the panel makes it hold mesh 1, on frame 7 the keyboard (W held on frames
+// 5-8) too. The requests go to the next input step, as the viewer's loop hands them on.
+struct HoldRun {
+    std::vector<std::string> hashes;
+    std::vector<std::vector<SessionMesh>> poses;
+};
+
+HoldRun recordHoldSession(const std::filesystem::path& scene, const std::filesystem::path& session) {
+    HoldRun run;
+    LoadedScene loaded = loadSceneWithVolume(scene);
+    auto context = gl::createHeadlessContext();
+    Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, renderer);
+    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+    auto ports = std::make_shared<input::FakeHidBackend::Ports>();
+    input::HidDeviceDescription mouse;
+    mouse.path = "/dev/hidraw-test-spacemouse";
+    mouse.vendorId = 0x256f;
+    mouse.productId = 0xc62e;
+    mouse.product = "SpaceMouse Wireless (test)";
+    mouse.bus = input::Bus::Usb;
+    mouse.usagePage = 0x01;
+    mouse.usage = 0x08;
+    input::FakeHidBackend::plug(*ports, mouse);
+    LiveInput input(std::make_unique<input::FakeHidBackend>(ports), input::defaultMapping(), 40.0, 60.0);
+    LiveRecording recording(session, "scene.json", step.state(), input, 0.0);
+    input::DeviceState pushed;
+    pushed.axes[0] = 0.5f;   // tx
+    pushed.axes[4] = 0.3f;   // ry
+    std::vector<input::HoldRequest> requested;   // by the panel on the frame before
+    for (int f = 0; f < 10; ++f) {
+        input::FakeHidBackend::queue(*ports, mouse.path, input::encodeSpaceMouseCombined(pushed));
+        input::KeyboardMouseState keys;
+        if (f >= 5 && f <= 8) keys.keys |= 1u << static_cast<int>(input::Key::W);
+        double now = f / 10.0, dt = f == 0 ? 0.0 : 0.1;
+        InputFrame in = input.step(now, keys, dt, static_cast<int>(step.state().meshes.size()), std::move(requested));
+        step.apply(in.actions, step.frame().size.y);
+        recording.addFrame(now, dt, step.frame().size, step.frame().camera, step.state(), keys, in);
+        step.syncTo(renderer, loaded.tracts);
+        renderer.render(step.frame());
+        run.hashes.push_back(imageHash(toRgba8(renderer.readImage(), glm::vec4(loaded.scene.background))));
+        run.poses.push_back(step.state().sessionPoses());
+        requested.clear();
+        if (f == 2) requested = {{0, 1}};                        // the SpaceMouse's combo: mesh 1
+        if (f == 6) requested = {{input::kKeyboardBinding, 1}};  // the keyboard's combo: mesh 1
     }
+    recording.finish();
+    return run;
+}
+
+// A hold change from the panel replays, following the recorded poses and re-deriving them from the
+// reports, to the live image hashes: the request is recorded with the frame whose input step applied it.
+TEST(PanelSessions, AHoldChangeReplaysFromPosesAndFromReports) {
+    auto dir = scratch("holds");
+    auto scene = writeBallScene(dir);
+    auto session = dir / "holds.jsonl";
+    HoldRun live = recordHoldSession(scene, session);
+    // Live, the change shows from the frame that applied it: mesh 0 stops (no key held on frames 3 and 4),
+    // mesh 1 moves; from frame 7 the keyboard's W moves mesh 1 and no longer mesh 0.
+    auto position = [&](std::size_t frame, std::size_t mesh) { return live.poses[frame][mesh].position; };
+    EXPECT_NE(position(2, 0), position(1, 0)) << "the SpaceMouse moves mesh 0 at first";
+    EXPECT_EQ(position(2, 1), position(1, 1));
+    EXPECT_EQ(position(3, 0), position(2, 0)) << "from frame 3 the SpaceMouse holds mesh 1";
+    EXPECT_NE(position(3, 1), position(2, 1));
+    EXPECT_NE(position(6, 0), position(5, 0)) << "the keyboard moves mesh 0 on frame 6";
+    EXPECT_EQ(position(7, 0), position(6, 0)) << "from frame 7 the keyboard holds mesh 1";
+    for (std::size_t f = 1; f < 10; ++f) EXPECT_NE(live.hashes[f], live.hashes[f - 1]) << "frame " << f << " moves a mesh";
+    Session s = readSession(session, false);
+    ASSERT_EQ(s.frames.size(), 10u);
+    EXPECT_EQ(s.header.version, kSessionVersion);
+    EXPECT_EQ(s.frames[3].holds, (std::vector<input::HoldRequest>{{0, 1}}));
+    EXPECT_EQ(s.frames[7].holds, (std::vector<input::HoldRequest>{{input::kKeyboardBinding, 1}}));
+    for (std::size_t f : {0u, 1u, 2u, 4u, 5u, 6u, 8u, 9u}) EXPECT_TRUE(s.frames[f].holds.empty()) << "frame " << f;
+    EXPECT_EQ(s.frames.back().meshes.size(), 2u);
+    for (std::size_t f = 0; f < 10; ++f) EXPECT_TRUE(samePoses(s.frames[f].meshes, live.poses[f])) << "frame " << f << " is recorded as it was live";
+    expectReplaysToTheLiveHashes(session, live.hashes);
 }
 
 // A recording started after edits carries them in its header: it replays from the edited state.
@@ -220,6 +332,88 @@ TEST(PanelSessions, ARecordingStartedAfterEditsStartsFromTheEditedState) {
     InteractionState replayed = InteractionState::fromSessionStart(s.header, loaded.scene, dir, "late.jsonl");
     EXPECT_EQ(replayed.lao.samples, 5);
     EXPECT_TRUE(replayed.meshes[1].clipsTubes);
+}
+
+// Lights added and removed in the light panel, in phong (and one frame in ismos, whose light shapes follow
+// the lights), on a scene with two lights L0 and L1 (L1 coloured, with its own ISMOS disk): frame 1 adds a
+// blue light A, O selects L1 (2) and J turns it (3), A's colour is edited (4), ismos (5), L0 is removed, so
+// L1 (never edited) becomes light 0 and A light 1 (6), J turns L1 (7), a light B is added (8) and A removed
+// (9). The session replays to the live image hashes (following the poses and re-deriving from the keys);
+// the saved scene renders the last image (L1 written as light 0 with its own colour and disk); a recording
+// started at the end starts from the same lights.
+TEST(PanelSessions, LightsAddedAndRemovedReplayAndSaveToTheSameImages) {
+    auto dir = scratch("lights");
+    auto scene = writeBallScene(dir);
+    std::string text = readText(scene);
+    auto replace = [&](const std::string& from, const std::string& to) {
+        ASSERT_NE(text.find(from), std::string::npos) << from;
+        text.replace(text.find(from), from.size(), to);
+    };
+    replace("\"shading\": \"lao\"", "\"shading\": \"phong\"");
+    replace(R"("lights": [{"direction": [0.3, 0.5, 1.0]}])",
+            R"("lights": [{"direction": [0.3, 0.5, 1.0]}, {"direction": [0.6, -0.2, 0.8], "color": [1, 0.8, 0.5], "disk_radius": 0.15}])");
+    writeFileAtomically(scene, text);
+    auto session = dir / "lights.jsonl";
+    Script script;
+    script.frames = 10;
+    script.edits = [](int f, const InteractionState& state, const Scene& scene) -> std::vector<SettingEdit> {
+        switch (f) {
+            case 1: return {{Setting::LightAdd, -1, json(R"({"direction": [-1, 0.2, 0.6], "color": [0.3, 0.5, 1], "intensity": 1.5})")}};
+            case 4: {
+                nlohmann::json light = state.keyJson(scene, "lights[2]");
+                light["color"] = {0.2, 1, 0.4};
+                return {{Setting::Light, 2, light}};
+            }
+            case 5: return {{Setting::Shading, -1, "ismos"}};
+            case 6: return {{Setting::Shading, -1, "phong"}, {Setting::LightRemove, 0, nullptr}};
+            case 8: return {{Setting::LightAdd, -1, json(R"({"direction": [0, 1, 0.3], "color": [1, 0.2, 0.2]})")}};
+            case 9: return {{Setting::LightRemove, 1, nullptr}};
+            default: return {};
+        }
+    };
+    script.keys = [](int f) {
+        input::KeyboardMouseState keys;
+        if (f == 2) keys.keys |= 1u << static_cast<int>(input::Key::O);
+        if (f == 3 || f == 7) keys.keys |= 1u << static_cast<int>(input::Key::J);
+        return keys;
+    };
+    LiveRun live = recordPanelSession(scene, session, script);
+    for (std::size_t f : {1u, 3u, 4u, 5u, 6u, 7u, 8u, 9u}) EXPECT_NE(live.hashes[f], live.hashes[f - 1]) << "frame " << f << " changes a light";
+    LoadedScene loaded = loadSceneWithVolume(scene);
+    ASSERT_EQ(live.state.lights.size(), 2u);
+    EXPECT_EQ(live.state.lights[0].color, glm::dvec3(1, 0.8, 0.5)) << "L1 is light 0";
+    EXPECT_NE(live.state.lights[0].direction, loaded.scene.lights[1].direction) << "turned by J";
+    EXPECT_EQ(live.state.lights[1].color, glm::dvec3(1, 0.2, 0.2)) << "B is light 1";
+    ASSERT_EQ(live.state.ismos.lightShapes.size(), 2u);
+    EXPECT_EQ(live.state.ismos.lightShapes[0].diskRadius, 0.15) << "L1's ISMOS disk moved down with it";
+    EXPECT_EQ(live.state.keyJson(loaded.scene, "lights[0]").at("color"), json("[1, 0.8, 0.5]")) << "and its scene key";
+    EXPECT_EQ(live.state.selectedLight, 0) << "the selected L1 moved down too";
+
+    Session s = readSession(session, false);
+    ASSERT_EQ(s.frames.size(), 10u);
+    std::vector<std::size_t> counts;
+    for (const SessionFrame& f : s.frames) counts.push_back(f.lights ? f.lights->size() : 0);
+    EXPECT_EQ(counts, (std::vector<std::size_t>{2, 3, 3, 3, 3, 3, 2, 2, 3, 2})) << "each frame records its lights after its edits";
+    expectReplaysToTheLiveHashes(session, live.hashes);
+
+    // Saved as a scene: the lights as they are (their JSON, turned), rendering the last image.
+    std::filesystem::create_directories(dir / "saved");
+    writeFileAtomically(dir / "saved" / "scene.json", planSceneJson(loaded.scene, readText(scene), live.state, &live.camera));
+    Invocation r = runCurette("render --scene " + (dir / "saved" / "scene.json").string() + " --out " + (dir / "saved.png").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(imageHash(readPng(dir / "saved.png").rgba), live.hashes.back()) << readText(dir / "saved" / "scene.json");
+
+    // A recording started now carries the light changes as header edits and starts from the same lights.
+    LiveInput input(std::make_unique<input::FakeHidBackend>(std::make_shared<input::FakeHidBackend::Ports>()), input::defaultMapping(), 40.0, 60.0);
+    {
+        LiveRecording late(dir / "late.jsonl", "scene.json", live.state, input, 0.0);
+        late.finish();
+    }
+    Session lateSession = readSession(dir / "late.jsonl", false);
+    InteractionState started = InteractionState::fromSessionStart(lateSession.header, loaded.scene, dir, "late.jsonl");
+    EXPECT_EQ(started.lights, live.state.lights);
+    EXPECT_EQ(started.ismos.lightShapes, live.state.ismos.lightShapes);
+    EXPECT_EQ(started.keyJson(loaded.scene, "lights[0]"), live.state.keyJson(loaded.scene, "lights[0]"));
 }
 
 // (b) "Save scene": the state written as a scene renders to the live run's last image.

@@ -242,6 +242,82 @@ TEST(Session, ABadLightRecordNamesTheFileAndTheField) {
     }
 }
 
+// The mesh panel's hold requests (version 4) round-trip; a binding the header's mapping does not have, or
+// holds in a version 3 session, are InputErrors naming the line and the field.
+TEST(Session, HoldRequestsRoundTripAndNameABadBinding) {
+    std::mt19937 random(6);
+    SessionFrame f = exampleFrame(0, random);
+    f.holds = {{0, 1}, {input::kKeyboardBinding, 0}};
+    std::string header = sessionHeaderLine(exampleHeader()), frame = sessionFrameLine(f);
+    EXPECT_NE(frame.find(R"("holds":[{"binding":0,"mesh":1},{"binding":"keyboard","mesh":0}])"), std::string::npos) << frame;
+    Session s = parseSession(header + "\n" + frame + "\n", "holds.jsonl", false);
+    ASSERT_EQ(s.frames.size(), 1u);
+    EXPECT_EQ(s.frames[0].holds, f.holds);
+    struct Case {
+        const char* what;
+        std::string header, frame, field, expected;
+    };
+    const std::string v3 = replaced(header, "\"version\":" + std::to_string(kSessionVersion), "\"version\":3");
+    const Case cases[] = {
+        {"a binding the mapping does not have", header, replaced(frame, R"("binding":0)", R"("binding":1)"), "line 2: holds[0].binding",
+         "\"keyboard\" or the index of one of the 1 bindings of line 1's mapping"},
+        {"a device name instead of the keyboard", header, replaced(frame, R"("binding":"keyboard")", R"("binding":"mouse")"), "line 2: holds[1].binding",
+         "\"keyboard\""},
+        {"a mesh index beyond the clip-mesh limit", header, replaced(frame, R"("mesh":1})", R"("mesh":16})"), "line 2: holds[0].mesh", "0"},
+        {"holds in a version 3 session", v3, frame, "line 2: holds", "version 4"},
+    };
+    for (const Case& c : cases) {
+        try {
+            parseSession(c.header + "\n" + c.frame + "\n", "holds.jsonl", false);
+            ADD_FAILURE() << c.what << ": accepted";
+        } catch (const InputError& e) {
+            std::string message = e.what();
+            EXPECT_NE(message.find(c.field), std::string::npos) << c.what << ": " << message;
+            EXPECT_NE(message.find(c.expected), std::string::npos) << c.what << ": " << message;
+        }
+    }
+    f.holds.clear();
+    EXPECT_EQ(parseSession(v3 + "\n" + sessionFrameLine(f) + "\n", "v3.jsonl", false).frames.size(), 1u) << "version 3 sessions still load";
+}
+
+// A frame that adds or removes a light (version 4) records one direction per light after its edits; the
+// next frames keep that count; a version 3 session cannot add lights.
+TEST(Session, LightsAddedAndRemovedChangeTheFramesLightCount) {
+    SessionHeader header = exampleHeader();
+    header.lights = std::vector<SessionLight>{{{0.1, 0.2, 0.9}, true}};
+    std::mt19937 random(7);
+    std::vector<std::string> v = {sessionHeaderLine(header)};
+    SessionFrame added = exampleFrame(0, random), same = exampleFrame(1, random), removed = exampleFrame(2, random);
+    added.edits = {{Setting::LightAdd, -1, nlohmann::json::parse(R"({"direction": [0, 1, 0]})")}};
+    added.lights = same.lights = std::vector<glm::dvec3>{{0.1, 0.2, 0.9}, {0, 1, 0}};
+    removed.edits = {{Setting::LightRemove, 0, nullptr}};
+    removed.lights = std::vector<glm::dvec3>{{0, 1, 0}};
+    for (const SessionFrame& f : {added, same, removed}) v.push_back(sessionFrameLine(f));
+    Session s = parseSession(joined(v), "lights.jsonl", false);
+    ASSERT_EQ(s.frames.size(), 3u);
+    EXPECT_EQ(s.frames[1].lights->size(), 2u);
+    EXPECT_EQ(s.frames[2].edits, removed.edits);
+    auto message = [](const std::string& text) {
+        try {
+            parseSession(text, "lights.jsonl", false);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    std::vector<std::string> t = v;
+    t[2] = replaced(t[2], "\"lights\":[[0.1,0.2,0.9],", "\"lights\":[");   // the second frame with one light
+    std::string m = message(joined(t));
+    EXPECT_NE(m.find("line 3: lights"), std::string::npos) << m;
+    EXPECT_NE(m.find("an array of 2 light directions"), std::string::npos) << m;
+    EXPECT_NE(m.find("added and removed"), std::string::npos) << m;
+    t = v;
+    t[0] = replaced(t[0], "\"version\":" + std::to_string(kSessionVersion), "\"version\":3");
+    m = message(joined(t));
+    EXPECT_NE(m.find("line 2: edits[0].setting"), std::string::npos) << m;
+    EXPECT_NE(m.find("version 4"), std::string::npos) << m;
+}
+
 TEST(Session, CorruptSessionsAreNamedByLineAndTheLenientModeKeepsThePrefix) {
     struct Case {
         const char* what;

@@ -3,6 +3,7 @@
 // and a malformed one is an InputError naming the line and the key; a session of version 2 has none.
 #include "app/interaction.h"
 #include "app/io/transfer_function_file.h"
+#include "app/plan_scene.h"
 #include "app/session.h"
 #include "app/setting_edit.h"
 #include "base/error.h"
@@ -61,6 +62,32 @@ TEST(SettingEdit, AnEditedSceneEqualsTheSceneWithThoseKeys) {
     EXPECT_TRUE(again.lao == expected.lao);
     EXPECT_EQ(again.ismos, expected.ismos);
     EXPECT_EQ(again.lights, expected.lights);
+}
+
+// The TF editor's gradient-opacity curve is part of the TF edit: written back by the scene writer, the
+// scene reads back to the same transfer function, every point bit for bit; turned off (no points), the
+// written scene has none either.
+TEST(SettingEdit, AnEditedGradientOpacityRoundTripsThroughTheSceneWriter) {
+    Scene scene = sceneWith("");
+    InteractionState state = InteractionState::fromScene(scene);
+    nlohmann::json tf = state.keyJson(scene, "transfer_function");
+    tf["gradient_opacity"] = {{0, 0.1}, {12.345678901234567, 0.75}, {40, 1}};
+    state.applyEdits({{Setting::TransferFunction, -1, tf}}, "<panel>");
+    ASSERT_EQ(state.transferFunction.gradientOpacity.size(), 3u);
+    EXPECT_TRUE(state.transferFunction.hasGradientOpacity());
+    auto readBack = [&](const InteractionState& s) {
+        return InteractionState::fromScene(parseScene(planSceneJson(scene, scene.json.dump(), s), "written.json")).transferFunction;
+    };
+    TransferFunction written = readBack(state);
+    ASSERT_EQ(written.gradientOpacity.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(written.gradientOpacity[i].value, state.transferFunction.gradientOpacity[i].value) << i;
+        EXPECT_EQ(written.gradientOpacity[i].y, state.transferFunction.gradientOpacity[i].y) << i;
+    }
+    EXPECT_EQ(io::writeTransferFunctionJson(written), io::writeTransferFunctionJson(state.transferFunction));
+    tf.erase("gradient_opacity");   // the checkbox off
+    state.applyEdits({{Setting::TransferFunction, -1, tf}}, "<panel>");
+    EXPECT_TRUE(readBack(state).gradientOpacity.empty());
 }
 
 // Mesh edits: add (given the next id, or the recorded one), shape, scale, clips_tubes, remove.

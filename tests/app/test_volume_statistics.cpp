@@ -38,5 +38,24 @@ TEST(VolumeStatistics, PercentilesAreNearestRankOfTheSortedValues) {
     EXPECT_DOUBLE_EQ(s.percentiles[4], 199.0);
 }
 
+// The TF editor's gradient-opacity range: the largest central difference in value per mm, through the affine
+// (here 2 mm voxels along x, 1 mm along y and z), as the ray caster computes the gradient at a voxel centre.
+TEST(VolumeStatistics, TheLargestGradientMagnitudeIsTheRayCastersCentralDifference) {
+    glm::ivec3 dims(6, 3, 3);
+    std::vector<float> samples(54);
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 6; ++i) samples[static_cast<std::size_t>((k * 3 + j) * 6 + i)] = static_cast<float>(i * i);   // x^2 along x
+    glm::dmat4 affine(1.0);
+    affine[0][0] = 2.0;
+    VolumeData v = buildVolume("ramp", dims, ScalarType::Float32, reinterpret_cast<const std::uint8_t*>(samples.data()), false, 3.0, 1.0, affine);
+    // Physical 3 i^2 + 1; the largest central difference is at i = 4: 3 (25 - 9) / 2 = 24 per voxel, 12 per mm
+    // (at i = 5 the edge clamps: 3 (25 - 16) / 2 = 13.5 per voxel).
+    EXPECT_DOUBLE_EQ(maxGradientMagnitude(v), 12.0);
+    std::vector<float> flat(54, 7.0f);
+    VolumeData constant = buildVolume("flat", dims, ScalarType::Float32, reinterpret_cast<const std::uint8_t*>(flat.data()), false, 1.0, 0.0, affine);
+    EXPECT_EQ(maxGradientMagnitude(constant), 0.0);
+}
+
 }  // namespace
 }  // namespace curette

@@ -91,6 +91,36 @@ TEST(Pipeline, RestoringAStateForAnotherMappingIsRefused) {
     EXPECT_THROW(p.restore(s), std::invalid_argument);
 }
 
+// A hold request (the viewer's mesh panel) takes effect in the step that applies it: that step's motion
+// already moves the newly held mesh, for a device binding and for the keyboard, and it is a SelectMesh.
+TEST(Pipeline, AHoldRequestMovesTheNewMeshFromThatStepOn) {
+    InputPipeline p(defaultMapping(), 40.0, 60.0);
+    p.addDevice(1, DeviceFamily::SpaceMouse);   // binding 0 of the default mapping, holding mesh 0
+    DeviceState pushed;
+    pushed.axes[0] = 0.8f;   // tx
+    KeyboardMouseState w;
+    w.keys = 1u << static_cast<int>(Key::W);
+    auto movedMeshes = [](const std::vector<Action>& actions) {
+        std::vector<int> meshes;
+        for (const Action& a : actions)
+            if (auto* m = std::get_if<MoveMesh>(&a)) meshes.push_back(m->mesh);
+        return meshes;
+    };
+    EXPECT_EQ(movedMeshes(p.step({{1, 0, encodeSpaceMouseCombined(pushed)}}, w, 0.1, 3)), (std::vector<int>{0, 0}));
+    std::vector<Action> a = p.step({}, w, 0.1, 3, {{0, 2}, {kKeyboardBinding, 1}});
+    ASSERT_GE(a.size(), 2u);
+    EXPECT_EQ(describe({a[0], a[1]}), describe({SelectMesh{0, 2}, SelectMesh{kKeyboardBinding, 1}}));
+    EXPECT_EQ(movedMeshes(a), (std::vector<int>{2, 1})) << "the SpaceMouse moves mesh 2, the keyboard mesh 1, in the same step";
+    EXPECT_EQ(p.mapper().heldMesh(0), 2);
+    EXPECT_EQ(p.keyboardSelection(), 1);
+    EXPECT_EQ(p.state().mapper.heldMeshes[0], 2) << "a recording started now starts from it";
+    // A mesh beyond the meshes there are is the last one (as the mapper clamps); a binding the mapping does
+    // not have is refused.
+    p.step({}, {}, 0.1, 2, {{0, 7}});
+    EXPECT_EQ(p.mapper().heldMesh(0), 1);
+    EXPECT_THROW(p.step({}, {}, 0.1, 2, {{9, 0}}), std::invalid_argument);
+}
+
 TEST(Pipeline, TheBuiltInDefaultMappingIsTheShippedFile) {
     std::vector<std::uint8_t> bytes = readFileBytes(std::string(CURETTE_SOURCE_DIR) + "/assets/input/default_mapping.json");
     MappingConfig shipped = parseMapping(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), "file");
