@@ -529,8 +529,10 @@ int Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers, int fi
             sampleCounter_ = gl::createBuffer();
             glNamedBufferStorage(sampleCounter_.name(), 16, nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
         }
-        const std::uint32_t zero[4] = {0, 0, 0, 0};   // samples taken, loop steps, steps per half of the dispatch
-        glNamedBufferSubData(sampleCounter_.name(), 0, 16, zero);
+        // Samples taken, loop steps, steps per half of the dispatch: zeroed at the frame's first band, so an
+        // exact frame in slices counts all of its bands.
+        const std::uint32_t zero[4] = {0, 0, 0, 0};
+        if (firstBand == 0) glNamedBufferSubData(sampleCounter_.name(), 0, 16, zero);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboSampleCounter, sampleCounter_.name());
     }
     TileOrderPiece tiles{frame.size, tileRowsPerBand_};

@@ -33,6 +33,8 @@ TEST(ExactInSlices, EqualsOneRenderBitForBitAndShowsTheLastImageUntilDone) {
     for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Lao, ShadingMode::Phong}) {
         SCOPED_TRACE(shadingModeName(mode));
         MovingSphereScene sliced(mode), whole(mode);
+        sliced.renderer->setCountSamples(true);   // the counters add up over the bands
+        whole.renderer->setCountSamples(true);
         sliced.renderer->render(sliced.frame);   // step I and a first exact frame at pose 0
         whole.renderer->render(whole.frame);
         sliced.moveTo(3);
@@ -65,6 +67,8 @@ TEST(ExactInSlices, EqualsOneRenderBitForBitAndShowsTheLastImageUntilDone) {
         EXPECT_TRUE(sliced.renderer->lastFrameExact());
         EXPECT_DOUBLE_EQ(sliced.renderer->exactProgress(), 0.0) << "no exact frame under way after it is done";
         EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "the exact frame in slices differs from render()";
+        EXPECT_EQ(sliced.renderer->samplesLastFrame(), whole.renderer->samplesLastFrame()) << "samples counted over every band";
+        EXPECT_EQ(sliced.renderer->rayStepsLastFrame(), whole.renderer->rayStepsLastFrame());
         EXPECT_FALSE(sameImage(preview, whole.renderer->readImage())) << "the preview must differ for the test to mean something";
         Image exact = whole.renderer->readImage();
         int coveredInLastRows = 0;
