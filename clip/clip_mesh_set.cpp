@@ -432,6 +432,7 @@ void ClipMeshSet::uploadCameras() {
 
 void ClipMeshSet::apply(gl::Program& program) const {
     program.set("clipMeshCount", count());
+    program.set("clipDepthBoxTests", depthBoxTests_ ? 1 : 0);
     glBindBufferBase(GL_UNIFORM_BUFFER, binding::uboClipMeshes, cameraBuffer_.name());
     glBindTextureUnit(binding::clipDepth, depthMaps_.name());
     glBindTextureUnit(binding::clipDilated, dilatedAllocated_ ? dilatedMaps_.name() : depthMaps_.name());

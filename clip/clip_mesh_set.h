@@ -91,6 +91,12 @@ public:
     // For the rounding between a point the ray caster computes from its ray parameter and the same point
     // transformed into the map: far above it, and small beside a mesh.
     static constexpr double rayClipSpanMarginMm = 0.5;
+    // Whether the passes use the depth boxes to skip the clip tests no depth map can answer "inside": the ray
+    // caster tests only the stretch of each ray that meets one (clip_test.glsl rayClipSpan), step IV a voxel's
+    // samples only against the meshes whose depth box lies within their reach (nearDepthBox). On by default;
+    // off tests every sample against every mesh, with the same answers (the tests' and `bench cao`'s
+    // reference).
+    void setDepthBoxTests(bool on) { depthBoxTests_ = on; }
 
     // Changes whenever the clipped region may have changed (a pose, a scale, a mesh added or removed).
     std::uint64_t version() const { return version_; }
@@ -145,6 +151,7 @@ private:
     int allocatedLayers_ = 0;
     bool dilatedAllocated_ = false;
     std::uint64_t version_ = 1, mapRenders_ = 0;
+    bool depthBoxTests_ = true;
     gl::Texture depthMaps_, dilatedMaps_, scratchArray_, scratch_;
     gl::Renderbuffer depthBuffer_;
     gl::Framebuffer framebuffer_;

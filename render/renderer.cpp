@@ -521,7 +521,6 @@ int Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers, int fi
     p.set("volumeSize", volume_.geometry().dims);
     p.set("brickSize", GpuVolume::brickSize);
     p.set("maxSkipBricks", emptySpaceJumpLimit_);
-    p.set("clipSpans", clipSpans_ ? 1 : 0);
     glBindTextureUnit(binding::occupancy, occupancy_.name());
     glBindImageTexture(binding::imageOutput, targetTexture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (countSamples_) {

@@ -135,10 +135,6 @@ public:
     // The most bricks (Chebyshev radius) one empty-space jump may cross: 255 (the distance map's cap) by
     // default; 1 jumps one empty brick at a time (as before the distance map; for `bench` and tests).
     void setEmptySpaceJumpLimit(int bricks) { emptySpaceJumpLimit_ = bricks; }
-    // Whether the ray caster tests samples against the clip maps only where the ray meets a mesh's map box
-    // (shaders/clip_test.glsl, rayClipSpan): on by default; off tests every sample against every mesh (for
-    // `bench` and tests: the image is the same).
-    void setClipSpans(bool on) { clipSpans_ = on; }
     // ... and of the groups in the first and the second half of the ray caster's dispatch, which is how two
     // llvmpipe worker threads share it (shaders/tile_order.glsl): their ratio is the frame's thread balance.
     glm::dvec2 rayStepsByDispatchHalf() const;
@@ -231,7 +227,6 @@ private:
     gl::Buffer sampleCounter_;
     bool countSamples_ = false;
     int emptySpaceJumpLimit_ = 255;
-    bool clipSpans_ = true;
     int tileRowsPerBand_ = TileOrderPiece::defaultRowsPerBand();
     gl::ComputeVariants raycastPrograms_{"raycast.comp"};
     gl::TimerSet timers_;

@@ -26,6 +26,10 @@ layout(std140, binding = UBO_CLIP_MESHES) uniform ClipMeshes { ClipMeshGpu clipM
 layout(binding = BINDING_CLIP_DEPTH) uniform sampler2DArray clipDepthMaps;
 layout(binding = BINDING_CLIP_DILATED) uniform sampler2DArray clipDilatedMaps;
 uniform int clipMeshCount;
+// Whether the passes skip the clip tests no depth map can answer "inside" by the meshes' depth boxes (the ray
+// caster's span, step IV's nearDepthBox): on, except for the tests' and `bench cao`'s reference
+// (ClipMeshSet::setDepthBoxTests); the answers are the same either way.
+uniform bool clipDepthBoxTests;
 
 // Point `world` inside the interval(s) of mesh `i` in maps `maps` (depth or dilated).
 bool insideMeshMaps(int i, vec3 world, bool dilated) {
@@ -89,6 +93,15 @@ ClipSpan rayClipSpan(vec3 origin, vec3 direction) {
         }
     }
     return span;
+}
+
+// Whether mesh i's depth box comes within `margin` (mm) of `world`: if not, no point within `margin` of `world`
+// is inside its depth maps. Measured in the map's frame with x and y scaled to mm (rigid).
+bool nearDepthBox(int i, vec3 world, float margin) {
+    ClipMeshGpu mesh = clipMeshes[i];
+    vec3 m = (mesh.worldToMap * vec4(world, 1.0)).xyz;
+    vec3 outside = max(max(mesh.depthBoxLo.xyz - m, m - mesh.depthBoxHi.xyz), 0.0) * vec3(mesh.mapBox.x, mesh.mapBox.x, 1.0);
+    return dot(outside, outside) <= margin * margin;
 }
 
 bool insideSpan(ClipSpan span, float t) { return t >= span.near && t <= span.far; }

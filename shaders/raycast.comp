@@ -25,8 +25,6 @@ uniform bool skipEmptySpace;
 uniform ivec3 volumeSize;
 uniform int brickSize;
 uniform int maxSkipBricks;           // the most bricks one jump crosses (Renderer::setEmptySpaceJumpLimit)
-uniform bool clipSpans;              // clip tests only in the ray's span (clip_test.glsl); off: every sample
-                                     // against every mesh (Renderer::setClipSpans, the tests' reference)
 #ifdef COUNT_SAMPLES
 // `curette bench` only: samples, loop steps, and the steps of the groups in each half of the dispatch.
 layout(std430, binding = 0) buffer SampleCounter { uint samplesTaken; uint raySteps; uint halfSteps[2]; };
@@ -73,7 +71,7 @@ void main() {
         int k = int(ceil(max(tNear, 0.0) / stepMm - jitter));
         int kLast = int(floor(tFar / stepMm - jitter));
         ClipSpan span = ClipSpan(-1e30, 1e30, 0xffffffffu);
-        if (clipSpans) span = rayClipSpan(eyeWorld, direction);
+        if (clipDepthBoxTests) span = rayClipSpan(eyeWorld, direction);
 #ifdef ISMOS_TUBES
         // The ray stops in front of the tube surface (G-buffer view depth; 0: none).
         float tubeView = texelFetch(ismosTubeDepth, pixel, 0).r;

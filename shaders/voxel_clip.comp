@@ -59,8 +59,15 @@ void main() {
     } else if (clipMeshCount > 0 && nearAnyClipMesh(centreWorld, sampleReachMm)) {
         meshes = allClipMeshes();
     }
+    // Of those, the meshes a clip sample can lie inside: every sample lies within sampleReachMm of the centre,
+    // so a mesh whose depth box is farther away holds none of them (its dilated shape reaches much farther
+    // than its depth box: most of the voxels it holds are out here, in the dilation's shell).
+    uint sampled = meshes;
+    if (clipDepthBoxTests)
+        for (int i = 0; i < clipMeshCount; ++i)
+            if ((sampled & (1u << uint(i))) != 0u && !nearDepthBox(i, centreWorld, sampleReachMm)) sampled &= ~(1u << uint(i));
     int samples = 9 + antiAliasingSamples;
-    int visible = samples - (meshes != 0u ? insideSampleCount(centre, meshes) : 0);
+    int visible = samples - (sampled != 0u ? insideSampleCount(centre, sampled) : 0);
     float unclipped = voxelOpacity(v);
     float opacity = unclipped;
     if (visible == 0) {

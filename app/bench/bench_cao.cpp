@@ -119,10 +119,11 @@ int benchCao(const CommandLine& cl) {
     int groundTruthVoxels = CommandLine::parseInt("ground-truth-voxels", cl.valueOr("ground-truth-voxels", "400"), 0, 1000000);
     glm::ivec2 size = CommandLine::parseSize("size", cl.valueOr("size", "512x512"));
     std::string jsonPath = cl.valueOr("json", "bench-cao.json");
-    // off: the ray caster tests every sample against every mesh (the image is the same; Renderer::setClipSpans)
-    std::string clipSpans = cl.valueOr("clip-spans", "on");
-    if (clipSpans != "on" && clipSpans != "off")
-        throw InputError("<command line>", "--clip-spans", "on or off", clipSpans);
+    // off: the ray caster and step IV test every sample against every mesh (the same results;
+    // ClipMeshSet::setDepthBoxTests)
+    std::string depthBoxTests = cl.valueOr("depth-box-tests", "on");
+    if (depthBoxTests != "on" && depthBoxTests != "off")
+        throw InputError("<command line>", "--depth-box-tests", "on or off", depthBoxTests);
     const std::uint32_t seed = 20231101;
 
     auto context = gl::createHeadlessContext(gpuChoice(cl));
@@ -135,7 +136,7 @@ int benchCao(const CommandLine& cl) {
             auto& r = renderers[{mode, meshes}];
             r = std::make_unique<Renderer>(*context, loaded.volume, loaded.scene.transferFunction);
             configureRenderer(loaded, *r);
-            r->setClipSpans(clipSpans == "on");
+            r->clipMeshes().setDepthBoxTests(depthBoxTests == "on");
         }
     auto rendererFor = [&](ShadingMode mode, int meshes) -> Renderer& {
         return *renderers.at({mode == ShadingMode::Lao ? ShadingMode::Lao : ShadingMode::Cao, meshes});
@@ -349,7 +350,7 @@ int benchCao(const CommandLine& cl) {
     std::vector<nlohmann::json> tables{fraction.toJson(), speed.toJson(), perStep.toJson(), slowdown.toJson(), dispatch.toJson()};
     writeJson(jsonPath, {{"bench", "cao"}, {"scene", cl.required("scene")}, {"volume", loaded.scene.volumePath.string()},
                          {"frames", frames}, {"size", {size.x, size.y}}, {"renderer", context->info().renderer},
-                         {"sphere_radius_mm", sphereRadius}, {"clip_spans", clipSpans == "on"}, {"identical_every_frame", allIdentical},
+                         {"sphere_radius_mm", sphereRadius}, {"depth_box_tests", depthBoxTests == "on"}, {"identical_every_frame", allIdentical},
                          {"tables", tables}, {"runs", raw}});
     return allIdentical ? 0 : 1;
 }

@@ -38,7 +38,7 @@ int bench(const Arguments& args) {
                               {"size", true, "image size (default 512x512)"},
                               {"ground-truth-voxels", true, "voxels checked against 512-ray LAO (default 400)"},
                               {"compare-dispatch", false, "compare step V variants at every K (default: K = 26 only)"},
-                              {"clip-spans", true, "on (default) or off: the ray caster tests every sample against every mesh"},
+                              {"depth-box-tests", true, "on (default) or off: the ray caster and step IV test every sample against every mesh"},
                               {"json", true, "JSON output file (default bench-cao.json)"}}));
         return bench::benchCao(cl);
     }

@@ -608,6 +608,48 @@ TEST(Cao, VoxelsNextToTheCutHoldTheirTrueAmbientOcclusion) {
     EXPECT_GT(deep, 50);
 }
 
+// Step IV tests a voxel's clip samples only against the meshes whose depth box lies within their reach
+// (clip_test.glsl nearDepthBox), the ray caster only the stretch of each ray that meets one: V_o, V_m, V_AO
+// and the image are those of testing every sample against every mesh, bit for bit, in cao (the dilated
+// meshes) and lao (every mesh near the voxel), with three meshes that overlap, one of them turned and one a
+// torus with two intervals.
+TEST(Cao, DepthBoxTestsChangeNoVoxelAndNoPixel) {
+    auto mesh = [](clip::TriangleMesh m) { return std::make_shared<const clip::TriangleMesh>(std::move(m)); };
+    auto addMeshes = [&](CaoScene& scene) {
+        clip::ClipMeshSet& set = scene.renderer->clipMeshes();
+        set.add(mesh(clip::makeSphere(6.5, 3)), glm::dvec3(1.0), clip::RigidPose{glm::dvec3(3.3, -2.1, 1.7), {}}, "sphere");
+        set.add(mesh(clip::makeBox({7, 5, 9})), glm::dvec3(1.0),
+                clip::RigidPose{glm::dvec3(-2.4, 3.1, -1.2), glm::angleAxis(glm::radians(33.0), glm::normalize(glm::dvec3(1, 2, 0.5)))}, "turned box");
+        set.add(mesh(clip::makeTorus(6, 2, 48, 16)), glm::dvec3(1.0),
+                clip::RigidPose{glm::dvec3(1.1, 1.9, -4.3), glm::angleAxis(glm::radians(67.0), glm::normalize(glm::dvec3(0.3, -1, 1)))}, "torus");
+    };
+    for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Lao}) {
+        SCOPED_TRACE(shadingModeName(mode));
+        CaoScene every, near;
+        addMeshes(every);
+        addMeshes(near);
+        every.renderer->clipMeshes().setDepthBoxTests(false);
+        CaoScene::Result a = every.render(mode), b = near.render(mode);
+        const AmbientOcclusion& aoA = *every.renderer->ambientOcclusion();
+        const AmbientOcclusion& aoB = *near.renderer->ambientOcclusion();
+        std::vector<std::uint16_t> opacity = aoA.readOpacity();
+        EXPECT_EQ(opacity, aoB.readOpacity()) << "V_o";
+        EXPECT_EQ(aoA.readMask(), aoB.readMask()) << "V_m";
+        EXPECT_EQ(a.ambient, b.ambient) << "V_AO";
+        EXPECT_EQ(0, std::memcmp(a.image.pixels.data(), b.image.pixels.data(), a.image.pixels.size() * sizeof(glm::vec4))) << "image";
+        // The carve is there: some voxels are partly clipped (their samples disagree).
+        std::vector<std::uint16_t> unclipped;
+        {
+            CaoScene plain;
+            plain.render(mode);
+            unclipped = plain.renderer->ambientOcclusion()->readOpacity();
+        }
+        int partly = 0;
+        for (std::size_t v = 0; v < opacity.size(); ++v) partly += opacity[v] != 0 && opacity[v] < unclipped[v];
+        EXPECT_GT(partly, 200) << "the meshes must cut through tissue for the test to mean something";
+    }
+}
+
 // Moving or rotating a mesh changes only its camera matrix; scaling it redraws its maps.
 TEST(Cao, RigidMotionDoesNotRedrawMaps) {
     CaoScene scene;

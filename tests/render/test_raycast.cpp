@@ -250,7 +250,7 @@ TEST(Raycast, ClipTestsOnlyInTheRaysSpanChangeNoPixel) {
                 frame.raycast.jitterSeed = 3;
                 frame.raycast.cutFace.enabled = cutFaces;
                 auto run = [&](bool spans) {
-                    renderer.setClipSpans(spans);
+                    renderer.clipMeshes().setDepthBoxTests(spans);
                     renderer.render(frame);
                     return std::pair{renderer.readImage(), renderer.samplesLastFrame()};
                 };
