@@ -42,3 +42,14 @@ int insideSampleCount(vec3 centre, uint meshes) {
 
 // ... inside any mesh.
 int insideSampleCount(vec3 centre) { return insideSampleCount(centre, allClipMeshes()); }
+
+// Of the meshes `meshes`, those a clip sample of the voxel centred at `centreWorld` can lie in: every sample
+// lies within `sampleReachMm` of the centre, so a mesh whose depth box (clip_test.glsl nearDepthBox) is
+// farther away holds none of them and leaving it out changes no count. All of `meshes` when the depth-box
+// tests are off.
+uint meshesWithinSampleReach(vec3 centreWorld, uint meshes, float sampleReachMm) {
+    if (!clipDepthBoxTests) return meshes;
+    for (int i = 0; i < clipMeshCount; ++i)
+        if ((meshes & (1u << uint(i))) != 0u && !nearDepthBox(i, centreWorld, sampleReachMm)) meshes &= ~(1u << uint(i));
+    return meshes;
+}

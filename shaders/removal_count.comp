@@ -15,7 +15,8 @@ void main() {
     ivec3 local = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(local, regionSize))) return;
     vec3 centre = vec3(regionOrigin + local);
-    bool near = clipMeshCount > 0 && nearAnyClipMesh((indexToWorld * vec4(centre, 1.0)).xyz, sampleReachMm);
+    vec3 world = (indexToWorld * vec4(centre, 1.0)).xyz;
+    uint meshes = clipMeshCount > 0 && nearAnyClipMesh(world, sampleReachMm) ? meshesWithinSampleReach(world, allClipMeshes(), sampleReachMm) : 0u;
     uint index = (uint(local.z) * uint(regionSize.y) + uint(local.y)) * uint(regionSize.x) + uint(local.x);
-    insideCounts[index] = near ? uint(insideSampleCount(centre)) : 0u;
+    insideCounts[index] = meshes != 0u ? uint(insideSampleCount(centre, meshes)) : 0u;
 }

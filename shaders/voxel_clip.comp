@@ -59,13 +59,9 @@ void main() {
     } else if (clipMeshCount > 0 && nearAnyClipMesh(centreWorld, sampleReachMm)) {
         meshes = allClipMeshes();
     }
-    // Of those, the meshes a clip sample can lie inside: every sample lies within sampleReachMm of the centre,
-    // so a mesh whose depth box is farther away holds none of them (its dilated shape reaches much farther
-    // than its depth box: most of the voxels it holds are out here, in the dilation's shell).
-    uint sampled = meshes;
-    if (clipDepthBoxTests)
-        for (int i = 0; i < clipMeshCount; ++i)
-            if ((sampled & (1u << uint(i))) != 0u && !nearDepthBox(i, centreWorld, sampleReachMm)) sampled &= ~(1u << uint(i));
+    // Of those, the meshes a clip sample can lie inside (a dilated shape reaches much farther than its mesh's
+    // depth box: most of the voxels it holds lie in the dilation's shell, where no sample is inside).
+    uint sampled = meshesWithinSampleReach(centreWorld, meshes, sampleReachMm);
     int samples = 9 + antiAliasingSamples;
     int visible = samples - (sampled != 0u ? insideSampleCount(centre, sampled) : 0);
     float unclipped = voxelOpacity(v);
