@@ -371,11 +371,11 @@ void ClipMeshSet::dilatedBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) con
 void ClipMeshSet::depthBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const {
     // As dilatedBoxLocal without the dilation: a finite depth pixel's centre lies in the mesh's local x, y
     // bounds and its values in its z bounds, and a point is looked up in the pixel holding it. A whole pixel
-    // (of the coarser of the camera's and the maps' resolutions) instead of half, the float slack and the
-    // ray caster's margin on top.
+    // (of the coarser of the camera's and the maps' resolutions) instead of half, the float slack and
+    // depthBoxMarginMm on top.
     const ClippingCamera& c = camera(index);
     double pixel = c.mapSizeMm / std::max(std::min(c.resolution, mapResolution_), 1);
-    double slack = mapBoxSlackMm(index) + rayClipSpanMarginMm;
+    double slack = mapBoxSlackMm(index) + depthBoxMarginMm;
     glm::dvec3 grow(pixel + slack, pixel + slack, slack);
     lo = c.localMin - grow;
     hi = c.localMax + grow;

@@ -85,12 +85,13 @@ public:
     // and V visit the bricks these boxes reach (render/mesh_voxel_box.h). Valid after update().
     void dilatedBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
     // The depth box of mesh `index`, in its pose's local frame: the box outside which its depth maps (not the
-    // dilated ones) call no point inside, grown by rayClipSpanMarginMm. The ray caster tests a sample against
-    // the maps only where its ray meets this box (clip_test.glsl rayClipSpan). Valid after update().
+    // dilated ones) call no point inside, grown by depthBoxMarginMm. The ray caster tests a sample against the
+    // maps only where its ray meets this box (clip_test.glsl rayClipSpan), step IV and the removal field only
+    // the meshes whose box is within a voxel's sample reach (nearDepthBox). Valid after update().
     void depthBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
-    // For the rounding between a point the ray caster computes from its ray parameter and the same point
-    // transformed into the map: far above it, and small beside a mesh.
-    static constexpr double rayClipSpanMarginMm = 0.5;
+    // For the rounding between a point computed one way where the box is tested (from a ray parameter, or a
+    // voxel centre rather than its sample) and another where the maps are: far above it, small beside a mesh.
+    static constexpr double depthBoxMarginMm = 0.5;
     // Whether the passes use the depth boxes to skip the clip tests no depth map can answer "inside": the ray
     // caster tests only the stretch of each ray that meets one (clip_test.glsl rayClipSpan), step IV a voxel's
     // samples only against the meshes whose depth box lies within their reach (nearDepthBox). On by default;
