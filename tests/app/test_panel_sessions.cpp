@@ -123,17 +123,24 @@ std::vector<SettingEdit> panelEdits(int f, const InteractionState& state, const 
 
 struct LiveRun {
     std::vector<std::string> hashes;
+    std::vector<std::vector<SessionMesh>> poses;   // per frame
     InteractionState state;
     OrbitCamera camera;
     int settingChanges = 0;
 };
 
-// What a user does on frame f: panel edits (given the state and the scene), keys held, a camera move.
+// What a user does on frame f: panel edits (given the state and the scene), keys held, a camera move, the
+// hold requests the mesh panel made on the frame before (handed to frame f's input step, as the viewer's loop
+// does), and the reports of the devices plugged in at the start.
 struct Script {
     int frames = 0;
-    std::function<std::vector<SettingEdit>(int, const InteractionState&, const Scene&)> edits;
+    std::function<std::vector<SettingEdit>(int, const InteractionState&, const Scene&)> edits =
+        [](int, const InteractionState&, const Scene&) { return std::vector<SettingEdit>{}; };
     std::function<input::KeyboardMouseState(int)> keys = [](int) { return input::KeyboardMouseState{}; };
     std::function<void(int, OrbitCamera&)> camera = [](int, OrbitCamera&) {};
+    std::function<std::vector<input::HoldRequest>(int)> holds = [](int) { return std::vector<input::HoldRequest>{}; };
+    std::vector<input::HidDeviceDescription> devices;
+    std::function<void(int, input::FakeHidBackend::Ports&)> reports = [](int, input::FakeHidBackend::Ports&) {};
 };
 
 // The viewer's loop, headless: live (no) devices and keys, panel edits, the step, the recording, the renderer.
@@ -144,19 +151,23 @@ LiveRun recordPanelSession(const std::filesystem::path& scene, const std::filesy
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
-    LiveInput input(std::make_unique<input::FakeHidBackend>(std::make_shared<input::FakeHidBackend::Ports>()), input::defaultMapping(), 40.0, 60.0);
+    auto ports = std::make_shared<input::FakeHidBackend::Ports>();
+    for (const input::HidDeviceDescription& d : script.devices) input::FakeHidBackend::plug(*ports, d);
+    LiveInput input(std::make_unique<input::FakeHidBackend>(ports), input::defaultMapping(), 40.0, 60.0);
     LiveRecording recording(session, "scene.json", step.state(), input, 0.0);
     for (int f = 0; f < script.frames; ++f) {
+        script.reports(f, *ports);
         input::KeyboardMouseState keys = script.keys(f);
         script.camera(f, step.frame().camera);
         double now = f / 10.0, dt = f == 0 ? 0.0 : 0.1;
-        InputFrame in = input.step(now, keys, dt, static_cast<int>(step.state().meshes.size()));
+        InputFrame in = input.step(now, keys, dt, static_cast<int>(step.state().meshes.size()), script.holds(f));
         StepChanges changes = step.apply(in.actions, step.frame().size.y, script.edits(f, step.state(), loaded.scene));
         run.settingChanges += changes.settings;
         recording.addFrame(now, dt, step.frame().size, step.frame().camera, step.state(), keys, in);
         step.syncTo(renderer, loaded.tracts);
         renderer.render(step.frame());
         run.hashes.push_back(imageHash(toRgba8(renderer.readImage(), glm::vec4(loaded.scene.background))));
+        run.poses.push_back(step.state().sessionPoses());
     }
     recording.finish();
     run.state = step.state();
@@ -237,19 +248,7 @@ TEST(PanelSessions, EditsReplayToTheLiveImageHashes) {
 // The mesh panel's "which device holds it": a SpaceMouse (binding 0 of the default mapping, holding mesh 0)
 // pushes all the time; on frame 3 the panel makes it hold mesh 1, on frame 7 the keyboard (W held on frames
 // 5-8) too. The requests go to the next input step, as the viewer's loop hands them on.
-struct HoldRun {
-    std::vector<std::string> hashes;
-    std::vector<std::vector<SessionMesh>> poses;
-};
-
-HoldRun recordHoldSession(const std::filesystem::path& scene, const std::filesystem::path& session) {
-    HoldRun run;
-    LoadedScene loaded = loadSceneWithVolume(scene);
-    auto context = gl::createHeadlessContext();
-    Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
-    configureRenderer(loaded, renderer);
-    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
-    auto ports = std::make_shared<input::FakeHidBackend::Ports>();
+LiveRun recordHoldSession(const std::filesystem::path& scene, const std::filesystem::path& session) {
     input::HidDeviceDescription mouse;
     mouse.path = "/dev/hidraw-test-spacemouse";
     mouse.vendorId = 0x256f;
@@ -258,31 +257,26 @@ HoldRun recordHoldSession(const std::filesystem::path& scene, const std::filesys
     mouse.bus = input::Bus::Usb;
     mouse.usagePage = 0x01;
     mouse.usage = 0x08;
-    input::FakeHidBackend::plug(*ports, mouse);
-    LiveInput input(std::make_unique<input::FakeHidBackend>(ports), input::defaultMapping(), 40.0, 60.0);
-    LiveRecording recording(session, "scene.json", step.state(), input, 0.0);
-    input::DeviceState pushed;
-    pushed.axes[0] = 0.5f;   // tx
-    pushed.axes[4] = 0.3f;   // ry
-    std::vector<input::HoldRequest> requested;   // by the panel on the frame before
-    for (int f = 0; f < 10; ++f) {
-        input::FakeHidBackend::queue(*ports, mouse.path, input::encodeSpaceMouseCombined(pushed));
+    Script script;
+    script.frames = 10;
+    script.devices = {mouse};
+    script.reports = [path = mouse.path](int, input::FakeHidBackend::Ports& ports) {
+        input::DeviceState pushed;
+        pushed.axes[0] = 0.5f;   // tx
+        pushed.axes[4] = 0.3f;   // ry
+        input::FakeHidBackend::queue(ports, path, input::encodeSpaceMouseCombined(pushed));
+    };
+    script.keys = [](int f) {
         input::KeyboardMouseState keys;
         if (f >= 5 && f <= 8) keys.keys |= 1u << static_cast<int>(input::Key::W);
-        double now = f / 10.0, dt = f == 0 ? 0.0 : 0.1;
-        InputFrame in = input.step(now, keys, dt, static_cast<int>(step.state().meshes.size()), std::move(requested));
-        step.apply(in.actions, step.frame().size.y);
-        recording.addFrame(now, dt, step.frame().size, step.frame().camera, step.state(), keys, in);
-        step.syncTo(renderer, loaded.tracts);
-        renderer.render(step.frame());
-        run.hashes.push_back(imageHash(toRgba8(renderer.readImage(), glm::vec4(loaded.scene.background))));
-        run.poses.push_back(step.state().sessionPoses());
-        requested.clear();
-        if (f == 2) requested = {{0, 1}};                        // the SpaceMouse's combo: mesh 1
-        if (f == 6) requested = {{input::kKeyboardBinding, 1}};  // the keyboard's combo: mesh 1
-    }
-    recording.finish();
-    return run;
+        return keys;
+    };
+    script.holds = [](int f) {
+        if (f == 3) return std::vector<input::HoldRequest>{{0, 1}};                        // the SpaceMouse's combo (frame 2): mesh 1
+        if (f == 7) return std::vector<input::HoldRequest>{{input::kKeyboardBinding, 1}};  // the keyboard's combo (frame 6): mesh 1
+        return std::vector<input::HoldRequest>{};
+    };
+    return recordPanelSession(scene, session, script);
 }
 
 // A hold change from the panel replays, following the recorded poses and re-deriving them from the
@@ -291,7 +285,7 @@ TEST(PanelSessions, AHoldChangeReplaysFromPosesAndFromReports) {
     auto dir = scratch("holds");
     auto scene = writeBallScene(dir);
     auto session = dir / "holds.jsonl";
-    HoldRun live = recordHoldSession(scene, session);
+    LiveRun live = recordHoldSession(scene, session);
     // Live, the change shows from the frame that applied it: mesh 0 stops (no key held on frames 3 and 4),
     // mesh 1 moves; from frame 7 the keyboard's W moves mesh 1 and no longer mesh 0.
     auto position = [&](std::size_t frame, std::size_t mesh) { return live.poses[frame][mesh].position; };
