@@ -17,12 +17,7 @@ uniform int antiAliasingSamples;   // N
 uint allClipMeshes() { return (1u << uint(clipMeshCount)) - 1u; }
 
 // Inside one of the meshes of the set `meshes` (bit i: mesh i); with allClipMeshes(), insideAnyClipMesh.
-bool clippedAtIndex(vec3 index, uint meshes) {
-    vec3 world = (indexToWorld * vec4(index, 1.0)).xyz;
-    for (int i = 0; i < clipMeshCount; ++i)
-        if ((meshes & (1u << uint(i))) != 0u && insideMeshMaps(i, world, false)) return true;
-    return false;
-}
+bool clippedAtIndex(vec3 index, uint meshes) { return clipMeshHoldingAmong(meshes, (indexToWorld * vec4(index, 1.0)).xyz) >= 0; }
 
 // Of the 9 + N samples of voxel `centre` (index coordinates), how many lie inside a mesh of `meshes`. The
 // N extra samples are taken only when the first nine disagree, so the result is 0 or 9 + N wherever they

@@ -106,26 +106,16 @@ bool nearDepthBox(int i, vec3 world, float margin) {
 
 bool insideSpan(ClipSpan span, float t) { return t >= span.near && t <= span.far; }
 
-// insideAnyClipMesh of the ray's point at t, testing only the meshes of its span.
-bool insideAnyClipMeshOnRay(ClipSpan span, vec3 world) {
+// The first mesh of the set `meshes` (bit i: mesh i) whose interval holds `world` (-1: none): the one loop
+// behind every "inside a clip mesh" test (all meshes, a ray's span, the meshes near a voxel).
+int clipMeshHoldingAmong(uint meshes, vec3 world) {
     for (int i = 0; i < clipMeshCount; ++i)
-        if ((span.meshes & (1u << uint(i))) != 0u && insideMeshMaps(i, world, false)) return true;
-    return false;
-}
-
-// clipMeshHolding of the ray's point, testing only the meshes of its span.
-int clipMeshHoldingOnRay(ClipSpan span, vec3 world) {
-    for (int i = 0; i < clipMeshCount; ++i)
-        if ((span.meshes & (1u << uint(i))) != 0u && insideMeshMaps(i, world, false)) return i;
+        if ((meshes & (1u << uint(i))) != 0u && insideMeshMaps(i, world, false)) return i;
     return -1;
 }
 
 // Clipped: inside at least one mesh (section 3.6: union of clipped regions).
-bool insideAnyClipMesh(vec3 world) {
-    for (int i = 0; i < clipMeshCount; ++i)
-        if (insideMeshMaps(i, world, false)) return true;
-    return false;
-}
+bool insideAnyClipMesh(vec3 world) { return clipMeshHoldingAmong(0xffffffffu, world) >= 0; }
 
 // Tubes are clipped only by the meshes set to clip them.
 bool insideAnyTubeClippingMesh(vec3 world) {
@@ -147,11 +137,7 @@ bool insideAnyDilatedMesh(vec3 world) {
 // mask, so these run for every sample of a pass that calls them: each is a few fetches, no loop.
 
 // The first mesh whose interval holds `world` (-1: none): insideAnyClipMesh that also says which.
-int clipMeshHolding(vec3 world) {
-    for (int i = 0; i < clipMeshCount; ++i)
-        if (insideMeshMaps(i, world, false)) return i;
-    return -1;
-}
+int clipMeshHolding(vec3 world) { return clipMeshHoldingAmong(0xffffffffu, world); }
 
 // Where the segment from `inside` (held by mesh i) to `outside` (held by no mesh) leaves mesh i, as the
 // fraction s in [0, 1] along it, and the mesh's outward unit world normal there. The layer it leaves through

@@ -121,7 +121,7 @@ void main() {
             // Step VI's shadow-test clipping: a sample inside any clip mesh is not there.
 #ifdef CUT_FACES
             int holding = -1;
-            if (insideSpan(span, t)) holding = clipMeshHoldingOnRay(span, eyeWorld + t * direction);
+            if (insideSpan(span, t)) holding = clipMeshHoldingAmong(span.meshes, eyeWorld + t * direction);
             if (holding >= 0) {
                 // Through the mesh to the first visible lattice sample, then the face between the two.
                 int mesh = holding;
@@ -129,7 +129,7 @@ void main() {
                 while (k < kLast) {
                     float tNext = (float(k + 1) + jitter) * stepMm;
                     int next = -1;
-                    if (insideSpan(span, tNext)) next = clipMeshHoldingOnRay(span, eyeWorld + tNext * direction);
+                    if (insideSpan(span, tNext)) next = clipMeshHoldingAmong(span.meshes, eyeWorld + tNext * direction);
                     ++k;
                     if (next < 0) {
                         leaves = true;
@@ -153,7 +153,7 @@ void main() {
                 tex = originTex + t * directionTex;
             }
 #else
-            if (clipMeshCount > 0 && insideSpan(span, t) && insideAnyClipMeshOnRay(span, eyeWorld + t * direction)) {
+            if (clipMeshCount > 0 && insideSpan(span, t) && clipMeshHoldingAmong(span.meshes, eyeWorld + t * direction) >= 0) {
 #ifdef ISMOS_LAYERS
                 ismosGap(layers);
 #endif
