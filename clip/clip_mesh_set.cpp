@@ -417,9 +417,8 @@ void ClipMeshSet::uploadCameras() {
         cameras[i].mapBox[3] = static_cast<float>(mapBoxSlackMm(static_cast<int>(i)));
         // The depth box in map coordinates (x, y over the map side, z the local depth).
         depthBoxLocal(static_cast<int>(i), lo, hi);
-        const ClippingCamera& c = meshes_[i].camera;
-        glm::dvec3 mapLo((lo.x - c.mapOrigin.x) / c.mapSizeMm, (lo.y - c.mapOrigin.y) / c.mapSizeMm, lo.z);
-        glm::dvec3 mapHi((hi.x - c.mapOrigin.x) / c.mapSizeMm, (hi.y - c.mapOrigin.y) / c.mapSizeMm, hi.z);
+        glm::dmat4 localToMap = meshes_[i].camera.localToMap();
+        glm::dvec3 mapLo(localToMap * glm::dvec4(lo, 1.0)), mapHi(localToMap * glm::dvec4(hi, 1.0));
         for (int k = 0; k < 3; ++k) {
             cameras[i].depthBoxLo[k] = static_cast<float>(mapLo[k]);
             cameras[i].depthBoxHi[k] = static_cast<float>(mapHi[k]);
