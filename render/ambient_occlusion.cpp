@@ -29,8 +29,8 @@ gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label,
 
 }  // namespace
 
-AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings)
-    : volume_(volume), settings_(settings), laoReach_(volume.geometry(), reachMm(settings)) {
+AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings, const gl::Texture* occupancy)
+    : volume_(volume), settings_(settings), occupancy_(settings.onlyWhereSeen ? occupancy : nullptr), laoReach_(volume.geometry(), reachMm(settings)) {
     if (settings.samples < 1 || settings.samples > 1024)
         throw InputError("<lao settings>", "samples", "an integer in [1, 1024]", std::to_string(settings.samples));
     if (!(settings.stepMm > 0.0))
@@ -78,8 +78,10 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     }
     visitBricks_ = gl::createBuffer();
     glNamedBufferStorage(visitBricks_.name(), static_cast<GLsizeiptr>(4 * bricks), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    laoProgram_ = gl::Program::compute("lao.comp");
-    compactProgram_ = gl::Program::compute("lao_compact.comp");
+    gl::Defines defines;
+    if (occupancy_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
+    laoProgram_ = gl::Program::compute("lao.comp", defines);
+    compactProgram_ = gl::Program::compute("lao_compact.comp", defines);
 }
 
 AmbientOcclusion::~AmbientOcclusion() = default;
@@ -159,6 +161,13 @@ void AmbientOcclusion::setVisitUniforms(gl::Program& p) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboVisitBricks, visitBricks_.name());
 }
 
+void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
+    // lao_common.glsl's: the voxels no visible sample reads (ambientSeen).
+    if (!occupancy_) return;
+    p.set("occupancyBrickSize", GpuVolume::brickSize);
+    glBindTextureUnit(binding::occupancy, occupancy_->name());
+}
+
 void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation) {
     gl::Defines defines;
     tf.addDefines(defines);
@@ -195,6 +204,7 @@ void AmbientOcclusion::bindLao(GLuint target, float opacityExponent) {
     laoProgram_.set("volumeSize", volume_.geometry().dims);
     laoProgram_.set("listOffset", 0u);
     setVisitUniforms(laoProgram_);
+    setDecisionUniforms(laoProgram_);
 }
 
 void AmbientOcclusion::buildRecomputeList() {
@@ -202,6 +212,7 @@ void AmbientOcclusion::buildRecomputeList() {
     compactProgram_.set("volumeSize", volume_.geometry().dims);
     compactProgram_.set("maxGroupsX", 32768u);
     setVisitUniforms(compactProgram_);
+    setDecisionUniforms(compactProgram_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
     compactProgram_.set("prepareDispatch", 0);
     compactProgram_.use();

@@ -52,7 +52,10 @@ inline constexpr double kLaoShareOfPrecompute = 0.98;
 
 class AmbientOcclusion {
 public:
-    AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings);
+    // `occupancy`: the ray caster's occupancy bricks (Renderer::updateOccupancy), which must outlive this object;
+    // with settings.onlyWhereSeen, voxels no visible sample can read get V_AO = 1 without a ray. Null: every
+    // voxel's LAO is computed.
+    AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings, const gl::Texture* occupancy = nullptr);
     ~AmbientOcclusion();
 
     const LaoSettings& settings() const { return settings_; }
@@ -118,6 +121,7 @@ private:
     // step IV changed (render/lao_reach.h).
     void markLaoBricks();
     void setVisitUniforms(gl::Program& program) const;
+    void setDecisionUniforms(gl::Program& program) const;
     void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation);
     void runLao(GLuint target, bool compacted, float opacityExponent);
     void bindLao(GLuint target, float opacityExponent);
@@ -127,6 +131,7 @@ private:
 
     const GpuVolume& volume_;
     LaoSettings settings_;
+    const gl::Texture* occupancy_;   // null, or when settings_.onlyWhereSeen is off: LAO everywhere
     gl::Texture opacity_, mask_, precomputed_, ambient_;
     gl::Buffer directions_, antiAliasing_, list_, dispatch_, visitBricks_;
     gl::ComputeVariants clipPrograms_{"voxel_clip.comp"};

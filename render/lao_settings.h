@@ -19,12 +19,17 @@ struct LaoSettings {
     // table): on the head at K = 26 the compacted list took 710 ms against 982 ms for the grid (both over the
     // CAO dispatch region), 803 against 1645 ms when both still visited the whole volume.
     enum class Dispatch { Compacted, FullGrid } dispatch = Dispatch::Compacted;
+    // Steps I and V cast LAO rays only from voxels a visible sample can read (shaders/lao_common.glsl,
+    // ambientSeen: voxels in an occupancy brick a visible sample can lie in); elsewhere V_AO is 1, which no pixel
+    // reads. The image is the same either way, bit for bit; off is the paper's LAO of every voxel, for
+    // comparison (`curette bench cao --unseen-voxels compute`).
+    bool onlyWhereSeen = true;
 
     bool operator==(const LaoSettings& o) const {
         return directions.pattern == o.directions.pattern && directions.count == o.directions.count &&
                directions.jitter == o.directions.jitter && directions.seed == o.directions.seed &&
                directions.skyWeighting == o.directions.skyWeighting && samples == o.samples && stepMm == o.stepMm &&
-               antiAliasingSamples == o.antiAliasingSamples && dispatch == o.dispatch && ambientScale == o.ambientScale;
+               antiAliasingSamples == o.antiAliasingSamples && dispatch == o.dispatch && onlyWhereSeen == o.onlyWhereSeen && ambientScale == o.ambientScale;
     }
 };
 

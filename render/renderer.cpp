@@ -412,7 +412,7 @@ double Renderer::precomputeProgress() const {
 double Renderer::advancePrecompute(double budgetMs, std::uint32_t sliceBricks) {
     InputVersions now = currentVersions();
     if (ao_ && freshness_.precomputedCurrent(now)) return 1.0;
-    if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_);
+    if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &occupancy_);
     if (!slicingFor_ || !Freshness::samePrecomputeInputs(*slicingFor_, now) || !ao_->precomputeStarted()) {
         ao_->beginPrecompute();
         ambientWritten_ = false;
@@ -455,7 +455,7 @@ void Renderer::run(Pass pass, const FrameDescription& frame) {
             clip_.update();
             return;
         case Pass::LaoPrecompute:
-            if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_);
+            if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &occupancy_);
             // A step I in slices for these inputs is finished where it is; anything else starts over.
             if (slicingFor_ && Freshness::samePrecomputeInputs(*slicingFor_, currentVersions()) && ao_->precomputeStarted()) {
                 while (!ao_->precomputeDone()) ao_->advancePrecompute(*tf_, ao_->totalBricks());

@@ -2,7 +2,8 @@
 // neighbours is not a (trilinear sampling of V_AO at a visible point near the cut reaches it: the seam rule)
 // and is 1 otherwise (no visible sample can reach it). A recompute in a brick whose LAO cannot change (no V_o
 // its rays read differs from step I's; visit_bricks.glsl) copies V_PAO instead: the same inputs give the
-// same LAO, bit for bit. Shared by the full-grid and compacted variants.
+// same LAO, bit for bit. With AO_ONLY_WHERE_SEEN, a voxel no visible sample can read is 1 as well (below).
+// Shared by the full-grid and compacted variants, and by step I, so V_PAO, V_AO and full LAO agree.
 #include "bindings.glsl"
 #include "visit_bricks.glsl"
 
@@ -12,9 +13,26 @@
 
 layout(binding = BINDING_MASK) uniform usampler3D categoryMask;
 
+#ifdef AO_ONLY_WHERE_SEEN
+// Whether a sample the ray caster shades can read voxel v's V_AO. V_AO is read only at samples with opacity
+// (shade_sample.glsl, after raycast.comp's opacity test), trilinearly, at the 8 corners of the sample's cell.
+// Those corners lie, along every axis, within one voxel of each other, so all 8 lie inside the apron of the
+// occupancy brick that holds any one of them (render/gpu_volume.h: a brick's value range covers the brick
+// and a one-voxel apron, and a shown label marks every brick whose apron holds it). If v's own brick is
+// empty (occupancy distance not 0, Renderer::updateOccupancy), the TF gives no opacity anywhere in that range,
+// so no sample that reads v has opacity: no pixel depends on v's LAO, and steps I and V write 1 without a ray.
+layout(binding = BINDING_OCCUPANCY) uniform sampler3D occupancy;
+uniform int occupancyBrickSize;
+
+bool ambientSeen(ivec3 v) { return texelFetch(occupancy, v / occupancyBrickSize, 0).r == 0.0; }
+#endif
+
 uint stepVDecision(ivec3 v, ivec3 size, uint brickEntry) {
     uint category = texelFetch(categoryMask, v, 0).r;
-    if (category == CATEGORY_UNAFFECTED) return DECISION_COPY;
+    if (category == CATEGORY_UNAFFECTED) return DECISION_COPY;   // (an unseen voxel's V_PAO is 1 too)
+#ifdef AO_ONLY_WHERE_SEEN
+    if (!ambientSeen(v)) return DECISION_UNREACHABLE;
+#endif
     bool lao = (brickEntry & VISIT_LAO_CAN_CHANGE) != 0u;
     if (category == CATEGORY_AFFECTED) return lao ? DECISION_COMPUTE : DECISION_COPY;
     for (int z = -1; z <= 1; ++z)

@@ -4,6 +4,7 @@
 // step, Table 4 second-mesh slowdown) beside ours, with the error against a 512-ray ground truth next to
 // the timings and whether CAO was bit-identical to LAO on every frame.
 #include "app/bench/bench_cao.h"
+#include "app/bench/lao_options.h"
 
 #include "app/bench/report.h"
 #include "app/loaded_scene.h"
@@ -124,6 +125,7 @@ int benchCao(const CommandLine& cl) {
     std::string depthBoxTests = cl.valueOr("depth-box-tests", "on");
     if (depthBoxTests != "on" && depthBoxTests != "off")
         throw InputError("<command line>", "--depth-box-tests", "on or off", depthBoxTests);
+    applyUnseenVoxelsOption(cl, loaded.scene.lao);
     const std::uint32_t seed = 20231101;
 
     auto context = gl::createHeadlessContext(gpuChoice(cl));
@@ -350,7 +352,7 @@ int benchCao(const CommandLine& cl) {
     std::vector<nlohmann::json> tables{fraction.toJson(), speed.toJson(), perStep.toJson(), slowdown.toJson(), dispatch.toJson()};
     writeJson(jsonPath, {{"bench", "cao"}, {"scene", cl.required("scene")}, {"volume", loaded.scene.volumePath.string()},
                          {"frames", frames}, {"size", {size.x, size.y}}, {"renderer", context->info().renderer},
-                         {"sphere_radius_mm", sphereRadius}, {"depth_box_tests", depthBoxTests == "on"}, {"identical_every_frame", allIdentical},
+                         {"sphere_radius_mm", sphereRadius}, {"depth_box_tests", depthBoxTests == "on"}, {"unseen_voxels_skipped", loaded.scene.lao.onlyWhereSeen}, {"identical_every_frame", allIdentical},
                          {"tables", tables}, {"runs", raw}});
     return allIdentical ? 0 : 1;
 }

@@ -10,6 +10,7 @@
 // --check renders the last state once more in a fresh renderer (what `curette render` gives) and compares the
 // image hashes.
 #include "app/bench/bench_view.h"
+#include "app/bench/lao_options.h"
 
 #include "app/bench/report.h"
 #include "app/interaction.h"
@@ -94,6 +95,7 @@ int benchView(const CommandLine& cl) {
         std::string k = std::to_string(CommandLine::parseInt("rays", *rays, 1, 1024));
         if (!parseLaoPattern(k, loaded.scene.lao.directions)) parseLaoPattern("fibonacci:" + k, loaded.scene.lao.directions);
     }
+    applyUnseenVoxelsOption(cl, loaded.scene.lao);
 
     auto context = gl::createHeadlessContext(gpuChoice(cl));
     FrameLoopSettings settings;

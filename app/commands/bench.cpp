@@ -10,6 +10,7 @@
 #include "app/bench/bench_stereo.h"
 #include "app/bench/bench_view.h"
 #include "app/bench/bench_tracts.h"
+#include "app/bench/lao_options.h"
 #include "app/command_line.h"
 #include "app/commands/commands.h"
 #include "base/error.h"
@@ -39,6 +40,7 @@ int bench(const Arguments& args) {
                               {"ground-truth-voxels", true, "voxels checked against 512-ray LAO (default 400)"},
                               {"compare-dispatch", false, "compare step V variants at every K (default: K = 26 only)"},
                               {"depth-box-tests", true, "on (default) or off: the ray caster and step IV test every sample against every mesh"},
+                              bench::unseenVoxelsOption(),
                               {"json", true, "JSON output file (default bench-cao.json)"}}));
         return bench::benchCao(cl);
     }
@@ -103,6 +105,7 @@ int bench(const Arguments& args) {
                                             {"preview-target", true, "ms a motion preview is steered to (default 70)"},
                                             {"check", false, "also render the last state in a fresh renderer and compare image hashes"},
                                             {"rays", true, "LAO ray count K instead of the scene's (6, 14, 26, 54 or any fibonacci count)"},
+                                            bench::unseenVoxelsOption(),
                                             {"json", true, "JSON output file (default bench-view.json)"}}));
         return bench::benchView(cl);
     }
