@@ -418,8 +418,8 @@ double Renderer::advancePrecompute(double budgetMs, std::uint32_t sliceBricks) {
         ambientWritten_ = false;
         slicingFor_ = now;
     }
-    // Slices sized from the last slice's rate to fill the budget; the first of each phase is a small probe
-    // (1/512 of the grid), so a budget is overrun at most by a probe.
+    // Slices sized from the slowest rate measured so far to fill the budget; the first of each phase is a small
+    // probe (1/512 of the grid), so a budget is overrun at most by a probe or by bricks slower than any before.
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
     auto elapsedMs = [&] { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); };
@@ -436,7 +436,9 @@ double Renderer::advancePrecompute(double budgetMs, std::uint32_t sliceBricks) {
         std::uint32_t ran = ao_->advancePrecompute(*tf_, bricks);
         glFinish();
         double ms = std::chrono::duration<double, std::milli>(Clock::now() - sliceStart).count();
-        if (ms > 0.5) precomputeBricksPerMs_[phase] = ran / ms;
+        double measured = ran / ms;
+        double& slowest = precomputeBricksPerMs_[phase];
+        if (ms > 0.5) slowest = slowest > 0 ? std::min(slowest, measured) : measured;
         first = false;
     }
     timers_.end();

@@ -213,7 +213,10 @@ private:
     std::optional<PreviewAmbient> previewing_;   // set while renderPreview runs its passes
     bool ambientWritten_ = false;                // V_AO written (step V) since the current V_PAO's step I
     std::optional<InputVersions> slicingFor_;    // the inputs the step I in slices is computing V_PAO for
-    double precomputeBricksPerMs_[2] = {0, 0};   // the last slice's rate per phase (0: not measured yet)
+    // The slowest rate a slice of each phase ran at (0: not measured yet). Not the last slice's: bricks no
+    // visible sample reads cost a fraction of the others (LaoSettings::onlyWhereSeen), so a rate measured in
+    // the air around a head would size the first slice in tissue many times over the budget.
+    double precomputeBricksPerMs_[2] = {0, 0};
     gl::Texture occupancy_;
     struct OutputImage {
         gl::Texture texture;
