@@ -29,8 +29,8 @@ gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label,
 
 }  // namespace
 
-AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings, const gl::Texture* occupancy)
-    : volume_(volume), settings_(settings), occupancy_(settings.onlyWhereSeen ? occupancy : nullptr), laoReach_(volume.geometry(), reachMm(settings)) {
+AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings, const gl::Texture* seenBricks)
+    : volume_(volume), settings_(settings), occupancy_(settings.onlyWhereSeen ? seenBricks : nullptr), laoReach_(volume.geometry(), reachMm(settings)) {
     if (settings.samples < 1 || settings.samples > 1024)
         throw InputError("<lao settings>", "samples", "an integer in [1, 1024]", std::to_string(settings.samples));
     if (!(settings.stepMm > 0.0))
@@ -164,7 +164,7 @@ void AmbientOcclusion::setVisitUniforms(gl::Program& p) const {
 void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
     // lao_common.glsl's: the voxels no visible sample reads (ambientSeen).
     if (!occupancy_) return;
-    p.set("occupancyBrickSize", GpuVolume::brickSize);
+    p.set("occupancyBrickSize", GpuVolume::seenBrickSize);
     glBindTextureUnit(binding::occupancy, occupancy_->name());
 }
 

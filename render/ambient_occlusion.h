@@ -52,10 +52,10 @@ inline constexpr double kLaoShareOfPrecompute = 0.98;
 
 class AmbientOcclusion {
 public:
-    // `occupancy`: the ray caster's occupancy bricks (Renderer::updateOccupancy), which must outlive this object;
-    // with settings.onlyWhereSeen, voxels no visible sample can read get V_AO = 1 without a ray. Null: every
-    // voxel's LAO is computed.
-    AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings, const gl::Texture* occupancy = nullptr);
+    // `seenBricks`: per brick of GpuVolume::seenBrickSize voxels, 0 where a sample may have opacity
+    // (Renderer::updateOccupancy); it must outlive this object. With settings.onlyWhereSeen, the voxels of the
+    // other bricks, which no visible sample reads, get V_AO = 1 without a ray. Null: every voxel's LAO is computed.
+    AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings, const gl::Texture* seenBricks = nullptr);
     ~AmbientOcclusion();
 
     const LaoSettings& settings() const { return settings_; }
@@ -131,7 +131,7 @@ private:
 
     const GpuVolume& volume_;
     LaoSettings settings_;
-    const gl::Texture* occupancy_;   // null, or when settings_.onlyWhereSeen is off: LAO everywhere
+    const gl::Texture* occupancy_;   // the seen bricks; null, or when settings_.onlyWhereSeen is off: LAO everywhere
     gl::Texture opacity_, mask_, precomputed_, ambient_;
     gl::Buffer directions_, antiAliasing_, list_, dispatch_, visitBricks_;
     gl::ComputeVariants clipPrograms_{"voxel_clip.comp"};

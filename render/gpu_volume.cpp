@@ -22,6 +22,34 @@ TextureFormat textureFormat(StorageFormat f) {
     return {GL_R8, GL_RED, GL_UNSIGNED_BYTE};
 }
 
+// Brick ranges with a one-voxel apron: a sample in brick b interpolates voxels b*B-1 .. (b+1)*B. One pass
+// over the voxels: each voxel updates the (up to 8) bricks whose apron holds it.
+std::vector<glm::vec2> brickRangesOf(const VolumeData& data, int size, glm::ivec3 grid) {
+    std::vector<glm::vec2> ranges(static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y) * static_cast<std::size_t>(grid.z),
+                                  glm::vec2(1e30f, -1e30f));
+    for (int k = 0; k < data.dims.z; ++k) {
+        glm::ivec2 bzRange = GpuVolume::bricksHoldingVoxel(k, grid.z, size);
+        for (int j = 0; j < data.dims.y; ++j) {
+            glm::ivec2 byRange = GpuVolume::bricksHoldingVoxel(j, grid.y, size);
+            std::size_t row = data.linearIndex(0, j, k);
+            for (int i = 0; i < data.dims.x; ++i) {
+                glm::ivec2 bxRange = GpuVolume::bricksHoldingVoxel(i, grid.x, size);
+                float v = static_cast<float>(data.normalized(row + static_cast<std::size_t>(i)));
+                for (int bz = bzRange.x; bz <= bzRange.y; ++bz)
+                    for (int by = byRange.x; by <= byRange.y; ++by)
+                        for (int bx = bxRange.x; bx <= bxRange.y; ++bx) {
+                            glm::vec2& r = ranges[(static_cast<std::size_t>(bz) * static_cast<std::size_t>(grid.y) + static_cast<std::size_t>(by)) *
+                                                      static_cast<std::size_t>(grid.x) +
+                                                  static_cast<std::size_t>(bx)];
+                            r.x = std::min(r.x, v);
+                            r.y = std::max(r.y, v);
+                        }
+            }
+        }
+    }
+    return ranges;
+}
+
 }  // namespace
 
 GpuVolume::GpuVolume(const gl::ContextInfo& info, const VolumeData& data)
@@ -51,33 +79,10 @@ GpuVolume::GpuVolume(const gl::ContextInfo& info, const VolumeData& data)
                           "-byte volume texture");
     gpuBytes_ = data.voxels.size();
 
-    // Brick ranges with a one-voxel apron: a sample in brick b interpolates voxels b*B-1 .. (b+1)*B.
     brickGrid_ = (data.dims + brickSize - 1) / brickSize;
-    brickRanges_.assign(static_cast<std::size_t>(brickGrid_.x) * static_cast<std::size_t>(brickGrid_.y) *
-                            static_cast<std::size_t>(brickGrid_.z),
-                        glm::vec2(1e30f, -1e30f));
-    // One pass over the voxels: each voxel updates the (up to 8) bricks whose apron holds it.
-    for (int k = 0; k < data.dims.z; ++k) {
-        glm::ivec2 bzRange = bricksHoldingVoxel(k, brickGrid_.z);
-        for (int j = 0; j < data.dims.y; ++j) {
-            glm::ivec2 byRange = bricksHoldingVoxel(j, brickGrid_.y);
-            std::size_t row = data.linearIndex(0, j, k);
-            for (int i = 0; i < data.dims.x; ++i) {
-                glm::ivec2 bxRange = bricksHoldingVoxel(i, brickGrid_.x);
-                float v = static_cast<float>(data.normalized(row + static_cast<std::size_t>(i)));
-                for (int bz = bzRange.x; bz <= bzRange.y; ++bz)
-                    for (int by = byRange.x; by <= byRange.y; ++by)
-                        for (int bx = bxRange.x; bx <= bxRange.y; ++bx) {
-                            glm::vec2& r = brickRanges_[(static_cast<std::size_t>(bz) * static_cast<std::size_t>(brickGrid_.y) +
-                                                         static_cast<std::size_t>(by)) *
-                                                            static_cast<std::size_t>(brickGrid_.x) +
-                                                        static_cast<std::size_t>(bx)];
-                            r.x = std::min(r.x, v);
-                            r.y = std::max(r.y, v);
-                        }
-            }
-        }
-    }
+    brickRanges_ = brickRangesOf(data, brickSize, brickGrid_);
+    seenBrickGrid_ = (data.dims + seenBrickSize - 1) / seenBrickSize;
+    seenBrickRanges_ = brickRangesOf(data, seenBrickSize, seenBrickGrid_);
 }
 
 }  // namespace curette

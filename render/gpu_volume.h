@@ -29,15 +29,20 @@ public:
     // Whether some voxels hold no data (NaN/Inf in the file, stored below the minimum: base/volume.h).
     bool hasNoData() const { return hasNoData_; }
 
-    // Bricks of brickSize^3 voxels; for each, the lowest and highest stored texel value that trilinear
-    // sampling anywhere inside the brick can see (the brick plus a one-voxel apron).
+    // Bricks of B^3 voxels; for each, the lowest and highest stored texel value that trilinear sampling
+    // anywhere inside the brick can see (the brick plus a one-voxel apron). B = brickSize for the ray caster's
+    // empty-space skipping, B = seenBrickSize for the voxels whose LAO a visible sample can read
+    // (LaoSettings::onlyWhereSeen: finer, as a brick that holds tissue is computed whole).
+    static constexpr int seenBrickSize = 4;
     glm::ivec3 brickGrid() const { return brickGrid_; }
-    // Along one axis, the first and last brick whose apron holds voxel `i` (a sample in brick b interpolates
-    // voxels b*B-1 .. (b+1)*B), of `bricks` bricks: the bricks a voxel's value can reach.
-    static glm::ivec2 bricksHoldingVoxel(int i, int bricks) {
-        return {std::max(0, (i - 1) / brickSize), std::min(bricks - 1, (i + 1) / brickSize)};
-    }
     const std::vector<glm::vec2>& brickRanges() const { return brickRanges_; }
+    glm::ivec3 seenBrickGrid() const { return seenBrickGrid_; }
+    const std::vector<glm::vec2>& seenBrickRanges() const { return seenBrickRanges_; }
+    // Along one axis, the first and last brick of B voxels whose apron holds voxel `i` (a sample in brick b
+    // interpolates voxels b*B-1 .. (b+1)*B), of `bricks` bricks: the bricks a voxel's value can reach.
+    static glm::ivec2 bricksHoldingVoxel(int i, int bricks, int size = brickSize) {
+        return {std::max(0, (i - 1) / size), std::min(bricks - 1, (i + 1) / size)};
+    }
 
 private:
     VolumeGeometry geometry_;
@@ -46,8 +51,8 @@ private:
     double valueScale_, valueOffset_;
     std::size_t gpuBytes_ = 0;
     bool hasNoData_ = false;
-    glm::ivec3 brickGrid_{0};
-    std::vector<glm::vec2> brickRanges_;
+    glm::ivec3 brickGrid_{0}, seenBrickGrid_{0};
+    std::vector<glm::vec2> brickRanges_, seenBrickRanges_;
 };
 
 }  // namespace curette

@@ -47,7 +47,7 @@ void LabelOverlay::apply(gl::Program&) const {
     glBindTextureUnit(binding::labelStyles, stylesTexture_.name());
 }
 
-std::vector<std::uint8_t> LabelOverlay::occupiedBricks(glm::ivec3 grid) const {
+std::vector<std::uint8_t> LabelOverlay::occupiedBricks(glm::ivec3 grid, int brickSize) const {
     std::vector<std::uint8_t> flags(std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z), 0);
     std::size_t v = 0;
     for (int k = 0; k < dims_.z; ++k)
@@ -56,8 +56,8 @@ std::vector<std::uint8_t> LabelOverlay::occupiedBricks(glm::ivec3 grid) const {
                 std::uint16_t id = ids_[v];
                 if (id == 0 || styles_[id].a <= 0.0f) continue;
                 // Every brick whose samples can land in this voxel.
-                glm::ivec2 bx = GpuVolume::bricksHoldingVoxel(i, grid.x), by = GpuVolume::bricksHoldingVoxel(j, grid.y),
-                           bz = GpuVolume::bricksHoldingVoxel(k, grid.z);
+                glm::ivec2 bx = GpuVolume::bricksHoldingVoxel(i, grid.x, brickSize), by = GpuVolume::bricksHoldingVoxel(j, grid.y, brickSize),
+                           bz = GpuVolume::bricksHoldingVoxel(k, grid.z, brickSize);
                 for (int b2 = bz.x; b2 <= bz.y; ++b2)
                     for (int b1 = by.x; b1 <= by.y; ++b1)
                         for (int b0 = bx.x; b0 <= bx.y; ++b0)

@@ -27,9 +27,9 @@ public:
     void addDefines(gl::Defines& defines) const;
     void apply(gl::Program& program) const;
 
-    // For empty-space skipping: per brick of render/gpu_volume.h (grid `brickGrid`), whether a shown label lies
-    // in the brick or its one-voxel apron.
-    std::vector<std::uint8_t> occupiedBricks(glm::ivec3 brickGrid) const;
+    // For empty-space skipping: per brick of `brickSize` voxels (render/gpu_volume.h, grid `brickGrid`),
+    // whether a shown label lies in the brick or its one-voxel apron.
+    std::vector<std::uint8_t> occupiedBricks(glm::ivec3 brickGrid, int brickSize) const;
     std::size_t gpuBytes() const;
 
 private:

@@ -69,27 +69,43 @@ double Renderer::resolveStepMm(const RaycastSettings& settings) const {
     return settings.stepMm > 0 ? settings.stepMm : 0.5 * volume_.geometry().minSpacing();
 }
 
-void Renderer::updateOccupancy() {
-    // A brick may be skipped only if no texel value its samples can see has any opacity.
-    glm::ivec3 grid = volume_.brickGrid();
-    const std::vector<glm::vec2>& ranges = volume_.brickRanges();
-    std::vector<bool> occupied(ranges.size());
-    for (std::size_t i = 0; i < ranges.size(); ++i) occupied[i] = tf_->maxOpacity(ranges[i].x, ranges[i].y) > 0.0f;
-    // ... and no shown label lies in it (a label raises the opacity of transparent tissue).
-    if (labels_) {
-        std::vector<std::uint8_t> labelled = labels_->occupiedBricks(grid);
+namespace {
+// Whether a sample in each brick may have opacity: a brick may be skipped only if no texel value its samples
+// can see has any opacity, and no shown label lies in it (a label raises the opacity of transparent tissue).
+std::vector<std::uint8_t> occupiedBricks(const TransferFunctionTexture& tf, const LabelOverlay* labels,
+                                         const std::vector<glm::vec2>& ranges, glm::ivec3 grid, int brickSize) {
+    std::vector<std::uint8_t> occupied(ranges.size());
+    for (std::size_t i = 0; i < ranges.size(); ++i) occupied[i] = tf.maxOpacity(ranges[i].x, ranges[i].y) > 0.0f;
+    if (labels) {
+        std::vector<std::uint8_t> labelled = labels->occupiedBricks(grid, brickSize);
         for (std::size_t i = 0; i < occupied.size(); ++i) occupied[i] = occupied[i] || labelled[i] != 0;
     }
-    // Stored as the distance to the nearest occupied brick (render/brick_distance.h), so a ray jumps over
-    // every empty brick around it at once.
-    std::vector<std::uint8_t> flags = chebyshevBrickDistance(occupied, grid, 255);
-    if (!occupancy_) {
-        occupancy_ = gl::createTexture(GL_TEXTURE_3D);
-        glTextureStorage3D(occupancy_.name(), 1, GL_R8, grid.x, grid.y, grid.z);
-        glObjectLabel(GL_TEXTURE, occupancy_.name(), -1, "occupancy (empty-space skipping)");
+    return occupied;
+}
+
+void uploadBricks(gl::Texture& texture, glm::ivec3 grid, const std::vector<std::uint8_t>& values, const char* label) {
+    if (!texture) {
+        texture = gl::createTexture(GL_TEXTURE_3D);
+        glTextureStorage3D(texture.name(), 1, GL_R8, grid.x, grid.y, grid.z);
+        glObjectLabel(GL_TEXTURE, texture.name(), -1, label);
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(occupancy_.name(), 0, 0, 0, 0, grid.x, grid.y, grid.z, GL_RED, GL_UNSIGNED_BYTE, flags.data());
+    glTextureSubImage3D(texture.name(), 0, 0, 0, 0, grid.x, grid.y, grid.z, GL_RED, GL_UNSIGNED_BYTE, values.data());
+}
+}  // namespace
+
+void Renderer::updateOccupancy() {
+    glm::ivec3 grid = volume_.brickGrid();
+    std::vector<std::uint8_t> occupied = occupiedBricks(*tf_, labels_.get(), volume_.brickRanges(), grid, GpuVolume::brickSize);
+    // Stored as the distance to the nearest occupied brick (render/brick_distance.h), so a ray jumps over
+    // every empty brick around it at once.
+    std::vector<bool> flags(occupied.begin(), occupied.end());
+    uploadBricks(occupancy_, grid, chebyshevBrickDistance(flags, grid, 255), "occupancy (empty-space skipping)");
+    // The same on finer bricks for the voxels whose LAO a visible sample can read.
+    glm::ivec3 seenGrid = volume_.seenBrickGrid();
+    std::vector<std::uint8_t> seen = occupiedBricks(*tf_, labels_.get(), volume_.seenBrickRanges(), seenGrid, GpuVolume::seenBrickSize);
+    for (std::uint8_t& s : seen) s = s ? 0 : 255;
+    uploadBricks(seenBricks_, seenGrid, seen, "seen bricks (LAO where a visible sample reads it)");
 }
 
 void Renderer::ensureOutput(glm::ivec2 size) {
@@ -412,7 +428,7 @@ double Renderer::precomputeProgress() const {
 double Renderer::advancePrecompute(double budgetMs, std::uint32_t sliceBricks) {
     InputVersions now = currentVersions();
     if (ao_ && freshness_.precomputedCurrent(now)) return 1.0;
-    if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &occupancy_);
+    if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &seenBricks_);
     if (!slicingFor_ || !Freshness::samePrecomputeInputs(*slicingFor_, now) || !ao_->precomputeStarted()) {
         ao_->beginPrecompute();
         ambientWritten_ = false;
@@ -457,7 +473,7 @@ void Renderer::run(Pass pass, const FrameDescription& frame) {
             clip_.update();
             return;
         case Pass::LaoPrecompute:
-            if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &occupancy_);
+            if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &seenBricks_);
             // A step I in slices for these inputs is finished where it is; anything else starts over.
             if (slicingFor_ && Freshness::samePrecomputeInputs(*slicingFor_, currentVersions()) && ao_->precomputeStarted()) {
                 while (!ao_->precomputeDone()) ao_->advancePrecompute(*tf_, ao_->totalBricks());

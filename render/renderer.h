@@ -218,6 +218,9 @@ private:
     // the air around a head would size the first slice in tissue many times over the budget.
     double precomputeBricksPerMs_[2] = {0, 0};
     gl::Texture occupancy_;
+    // Per brick of GpuVolume::seenBrickSize: 0 where a sample may have opacity, else 255; steps I and V cast
+    // LAO rays only in bricks marked 0 (LaoSettings::onlyWhereSeen).
+    gl::Texture seenBricks_;
     struct OutputImage {
         gl::Texture texture;
         glm::ivec2 size{0};

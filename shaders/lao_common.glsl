@@ -17,11 +17,11 @@ layout(binding = BINDING_MASK) uniform usampler3D categoryMask;
 // Whether a sample the ray caster shades can read voxel v's V_AO. V_AO is read only at samples with opacity
 // (shade_sample.glsl, after raycast.comp's opacity test), trilinearly, at the 8 corners of the sample's cell.
 // Those corners lie, along every axis, within one voxel of each other, so all 8 lie inside the apron of the
-// occupancy brick that holds any one of them (render/gpu_volume.h: a brick's value range covers the brick
-// and a one-voxel apron, and a shown label marks every brick whose apron holds it). If v's own brick is
-// empty (occupancy distance not 0, Renderer::updateOccupancy), the TF gives no opacity anywhere in that range,
-// so no sample that reads v has opacity: no pixel depends on v's LAO, and steps I and V write 1 without a ray.
-layout(binding = BINDING_OCCUPANCY) uniform sampler3D occupancy;
+// brick that holds any one of them (render/gpu_volume.h, bricks of seenBrickSize: a brick's value range covers
+// the brick and a one-voxel apron, and a shown label marks every brick whose apron holds it). If v's own brick
+// is empty (not 0 here, Renderer::updateOccupancy), the TF gives no opacity anywhere in that range, so no
+// sample that reads v has opacity: no pixel depends on v's LAO, and steps I and V write 1 without a ray.
+layout(binding = BINDING_OCCUPANCY) uniform sampler3D occupancy;   // the seen bricks
 uniform int occupancyBrickSize;
 
 bool ambientSeen(ivec3 v) { return texelFetch(occupancy, v / occupancyBrickSize, 0).r == 0.0; }
