@@ -4,6 +4,7 @@
 #include "base/error.h"
 #include "clip/primitives.h"
 #include "gl/bindings.h"
+#include "render/label_overlay.h"
 #include "render/mesh_voxel_box.h"
 #include "render/reference/lao_reference.h"
 #include "render/renderer.h"
@@ -655,8 +656,9 @@ TEST(Cao, DepthBoxTestsChangeNoVoxelAndNoPixel) {
 // and lao, from several sides, with a mesh carving the tissue. Two volumes of 40^3: blobs under a ramp TF
 // (empty bricks around them), and the hard case, a ball whose values fall from 230 to 0 within 1.5 voxels
 // under a TF that is opaque only around 110: a shell of tissue one or two voxels thick, samples interpolated
-// across the fall, and bricks inside the ball as empty as those outside. Taking a voxel's neighbour's brick
-// instead of its own changes pixels.
+// across the fall, and bricks inside the ball as empty as those outside; and that ball with a shown label on
+// a cube of its transparent inside (a label raises opacity where the TF gives none). Taking a voxel's
+// neighbour's brick instead of its own changes pixels.
 TEST(Cao, LaoOnlyWhereASampleSeesItChangesNoPixel) {
     CaoSpec blobsSpec;
     blobsSpec.dims = glm::ivec3(40);
@@ -665,14 +667,28 @@ TEST(Cao, LaoOnlyWhereASampleSeesItChangesNoPixel) {
         return 230.0 * std::clamp((11.3 - glm::length(p - glm::dvec3(3.0, -2.0, 1.0))) / 1.5 + 0.5, 0.0, 1.0);
     };
     ballSpec.tf.opacity = {{0.0, 0.0}, {90.0, 0.0}, {110.0, 0.8}, {130.0, 0.0}, {255.0, 0.0}};
-  for (const auto& [name, spec] : {std::pair<const char*, CaoSpec>{"blobs", blobsSpec}, {"ball", ballSpec}}) {
-    SCOPED_TRACE(name);
+  struct Case {
+    const char* name;
+    CaoSpec spec;
+    bool labelled;   // a shown label on a cube of the ball's transparent inside, which the sphere opens
+  };
+  for (const Case& c : {Case{"blobs", blobsSpec, false}, Case{"ball", ballSpec, false}, Case{"ball with a label", ballSpec, true}}) {
+    SCOPED_TRACE(c.name);
+    const CaoSpec& spec = c.spec;
     auto carve = [](CaoScene& scene) {
         scene.renderer->clipMeshes().add(std::make_shared<const clip::TriangleMesh>(clip::makeSphere(6.0, 3)), glm::dvec3(1.0),
                                          clip::RigidPose{glm::dvec3(4.5, -2.0, 5.0), {}}, "sphere");
         scene.frame.size = {64, 64};
     };
     CaoScene seen(spec), every(spec);
+    if (c.labelled) {
+        std::vector<std::uint16_t> ids(std::size_t(spec.dims.x) * spec.dims.y * spec.dims.z, 0);
+        for (int k = 17; k <= 24; ++k)
+            for (int j = 14; j <= 21; ++j)
+                for (int i = 19; i <= 26; ++i) ids[(std::size_t(k) * spec.dims.y + j) * spec.dims.x + i] = 1;
+        std::vector<glm::vec4> styles{glm::vec4(0.0f), glm::vec4(0.9f, 0.2f, 0.2f, 0.5f)};
+        for (CaoScene* scene : {&seen, &every}) scene->renderer->setLabels(std::make_unique<LabelOverlay>(spec.dims, ids, styles));
+    }
     LaoSettings all = every.renderer->laoSettings();
     all.onlyWhereSeen = false;
     every.renderer->setLaoSettings(all);
