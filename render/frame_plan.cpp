@@ -8,12 +8,12 @@ namespace {
 using R = Resource;
 const PassInfo kPasses[] = {
     {Pass::ClipMaps, "II-III clip maps", "CAO steps II-III: depth peeling, 2-D Minkowski dilation", {R::ClipMeshGeometry}, {R::ClipMaps}, false},
-    {Pass::LaoPrecompute, "I LAO precompute", "CAO step I: LAO of every voxel, eq. 2-3", {R::Volume, R::TransferFunction, R::GradientOpacity, R::LaoDirections},
+    {Pass::LaoPrecompute, "I LAO precompute", "CAO step I: LAO of every voxel, eq. 2-3", {R::Volume, R::TransferFunction, R::GradientOpacity, R::LaoDirections, R::SeenBricks},
      {R::ClippedOpacity, R::CategoryMask, R::PrecomputedAo}, true},
     {Pass::VoxelClipping, "IV voxel clipping", "CAO step IV: anti-aliased shadow-test clipping, Algorithm 2",
      {R::Volume, R::TransferFunction, R::GradientOpacity, R::ClipMaps}, {R::ClippedOpacity, R::CategoryMask}, true},
     {Pass::LaoRecompute, "V LAO recompute", "CAO step V: LAO of category-b voxels",
-     {R::ClippedOpacity, R::CategoryMask, R::PrecomputedAo, R::LaoDirections}, {R::RecomputeList, R::Ambient}, true},
+     {R::ClippedOpacity, R::CategoryMask, R::PrecomputedAo, R::LaoDirections, R::SeenBricks}, {R::RecomputeList, R::Ambient}, true},
     {Pass::TubeGBuffer, "tubes G-buffer", "DOS+geometry section 3.1.1", {R::TubeGeometry, R::ClipMaps}, {R::GBuffer}, false},
     {Pass::RayCast, "VI ray casting", "CAO step VI: ray casting with shadow-test clipping",
      {R::Volume, R::TransferFunction, R::GradientOpacity, R::Occupancy, R::ClipMaps, R::Ambient}, {R::OutputImage}, false},

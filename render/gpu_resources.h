@@ -14,6 +14,7 @@ enum class Resource {
     TransferFunction,  // colour and opacity table
     GradientOpacity,   // gradient-opacity table
     Occupancy,         // empty-space-skipping bricks
+    SeenBricks,        // the bricks whose voxels' LAO a visible sample can read (steps I and V)
     LabelVolume,       // label ids on the scan grid and their styles (scenes with labels only)
     ClipMeshGeometry,  // clip-mesh vertex and index buffers
     ClipMaps,          // steps II-III: depth maps and dilated maps of every mesh

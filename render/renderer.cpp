@@ -101,11 +101,21 @@ void Renderer::updateOccupancy() {
     // every empty brick around it at once.
     std::vector<bool> flags(occupied.begin(), occupied.end());
     uploadBricks(occupancy_, grid, chebyshevBrickDistance(flags, grid, 255), "occupancy (empty-space skipping)");
-    // The same on finer bricks for the voxels whose LAO a visible sample can read.
-    glm::ivec3 seenGrid = volume_.seenBrickGrid();
-    std::vector<std::uint8_t> seen = occupiedBricks(*tf_, labels_.get(), volume_.seenBrickRanges(), seenGrid, GpuVolume::seenBrickSize);
+    if (seenBricks_) updateSeenBricks();
+}
+
+void Renderer::updateSeenBricks() {
+    // The same on finer bricks, for the voxels whose LAO a visible sample can read (steps I and V only: made
+    // with the first AO volume).
+    glm::ivec3 grid = volume_.seenBrickGrid();
+    std::vector<std::uint8_t> seen = occupiedBricks(*tf_, labels_.get(), volume_.seenBrickRanges(), grid, GpuVolume::seenBrickSize);
     for (std::uint8_t& s : seen) s = s ? 0 : 255;
-    uploadBricks(seenBricks_, seenGrid, seen, "seen bricks (LAO where a visible sample reads it)");
+    uploadBricks(seenBricks_, grid, seen, "seen bricks (LAO where a visible sample reads it)");
+}
+
+std::unique_ptr<AmbientOcclusion> Renderer::makeAmbientOcclusion() {
+    if (!seenBricks_) updateSeenBricks();
+    return std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &seenBricks_);
 }
 
 void Renderer::ensureOutput(glm::ivec2 size) {
@@ -428,7 +438,7 @@ double Renderer::precomputeProgress() const {
 double Renderer::advancePrecompute(double budgetMs, std::uint32_t sliceBricks) {
     InputVersions now = currentVersions();
     if (ao_ && freshness_.precomputedCurrent(now)) return 1.0;
-    if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &seenBricks_);
+    if (!ao_) ao_ = makeAmbientOcclusion();
     if (!slicingFor_ || !Freshness::samePrecomputeInputs(*slicingFor_, now) || !ao_->precomputeStarted()) {
         ao_->beginPrecompute();
         ambientWritten_ = false;
@@ -473,7 +483,7 @@ void Renderer::run(Pass pass, const FrameDescription& frame) {
             clip_.update();
             return;
         case Pass::LaoPrecompute:
-            if (!ao_) ao_ = std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &seenBricks_);
+            if (!ao_) ao_ = makeAmbientOcclusion();
             // A step I in slices for these inputs is finished where it is; anything else starts over.
             if (slicingFor_ && Freshness::samePrecomputeInputs(*slicingFor_, currentVersions()) && ao_->precomputeStarted()) {
                 while (!ao_->precomputeDone()) ao_->advancePrecompute(*tf_, ao_->totalBricks());
@@ -649,7 +659,7 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
     const char* volumeFormat = volume_.format() == StorageFormat::UNorm8    ? "R8 3D"
                                : volume_.format() == StorageFormat::UNorm16 ? "R16 3D"
                                                                             : "R32F 3D";
-    glm::ivec3 grid = volume_.brickGrid();
+    glm::ivec3 grid = volume_.brickGrid(), seen = volume_.seenBrickGrid();
     std::vector<GpuAllocation> list{
         {Resource::Volume, volume_.gpuBytes(), volumeFormat},
         {Resource::TransferFunction, static_cast<std::size_t>(tf_->tableSize()) * 16u, {}},
@@ -661,6 +671,8 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
         list.push_back({Resource::PreviewImage,
                         static_cast<std::size_t>(images_[kPreviewImage].size.x) * static_cast<std::size_t>(images_[kPreviewImage].size.y) * 16u, {}});
     if (labels_) list.push_back({Resource::LabelVolume, labels_->gpuBytes(), {}});
+    if (seenBricks_)
+        list.push_back({Resource::SeenBricks, static_cast<std::size_t>(seen.x) * static_cast<std::size_t>(seen.y) * static_cast<std::size_t>(seen.z), {}});
     if (clip_.count() > 0) {
         list.push_back({Resource::ClipMeshGeometry, clip_.geometryBytes(), {}});
         list.push_back({Resource::ClipMaps, clip_.gpuBytes(), {}});

@@ -189,6 +189,8 @@ private:
     void runSlabPass(const FrameDescription& frame, bool withTubes);
     void runComposite(const FrameDescription& frame);
     void updateOccupancy();
+    void updateSeenBricks();
+    std::unique_ptr<AmbientOcclusion> makeAmbientOcclusion();   // and the seen bricks it reads, made with the first one
     void ensureOutput(glm::ivec2 size);
 
     gl::Context& context_;
