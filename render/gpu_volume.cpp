@@ -50,6 +50,27 @@ std::vector<glm::vec2> brickRangesOf(const VolumeData& data, int size, glm::ivec
     return ranges;
 }
 
+// The ranges of bricks `factor` times larger along each axis, from the finer ones: a coarse brick b's apron,
+// voxels b*F*B-1 .. (b+1)*F*B, is the union of its children's (b*F .. b*F+F-1) aprons, so its range is the
+// union of theirs, exactly (min and max), without another pass over the voxels.
+std::vector<glm::vec2> coarserBrickRanges(const std::vector<glm::vec2>& fine, glm::ivec3 fineGrid, int factor, glm::ivec3 grid) {
+    std::vector<glm::vec2> ranges(static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y) * static_cast<std::size_t>(grid.z),
+                                  glm::vec2(1e30f, -1e30f));
+    for (int z = 0; z < fineGrid.z; ++z)
+        for (int y = 0; y < fineGrid.y; ++y)
+            for (int x = 0; x < fineGrid.x; ++x) {
+                const glm::vec2& child = fine[(static_cast<std::size_t>(z) * static_cast<std::size_t>(fineGrid.y) + static_cast<std::size_t>(y)) *
+                                                  static_cast<std::size_t>(fineGrid.x) +
+                                              static_cast<std::size_t>(x)];
+                glm::vec2& r = ranges[(static_cast<std::size_t>(z / factor) * static_cast<std::size_t>(grid.y) + static_cast<std::size_t>(y / factor)) *
+                                          static_cast<std::size_t>(grid.x) +
+                                      static_cast<std::size_t>(x / factor)];
+                r.x = std::min(r.x, child.x);
+                r.y = std::max(r.y, child.y);
+            }
+    return ranges;
+}
+
 }  // namespace
 
 GpuVolume::GpuVolume(const gl::ContextInfo& info, const VolumeData& data)
@@ -79,10 +100,11 @@ GpuVolume::GpuVolume(const gl::ContextInfo& info, const VolumeData& data)
                           "-byte volume texture");
     gpuBytes_ = data.voxels.size();
 
-    brickGrid_ = (data.dims + brickSize - 1) / brickSize;
-    brickRanges_ = brickRangesOf(data, brickSize, brickGrid_);
+    // One pass over the voxels for the finer bricks; the ray caster's are their unions.
     seenBrickGrid_ = (data.dims + seenBrickSize - 1) / seenBrickSize;
     seenBrickRanges_ = brickRangesOf(data, seenBrickSize, seenBrickGrid_);
+    brickGrid_ = (data.dims + brickSize - 1) / brickSize;
+    brickRanges_ = coarserBrickRanges(seenBrickRanges_, seenBrickGrid_, brickSize / seenBrickSize, brickGrid_);
 }
 
 }  // namespace curette

@@ -34,6 +34,7 @@ public:
     // empty-space skipping, B = seenBrickSize for the voxels whose LAO a visible sample can read
     // (LaoSettings::onlyWhereSeen: finer, as a brick that holds tissue is computed whole).
     static constexpr int seenBrickSize = 4;
+    static_assert(brickSize % seenBrickSize == 0, "a ray caster's brick is a whole number of seen bricks");
     glm::ivec3 brickGrid() const { return brickGrid_; }
     const std::vector<glm::vec2>& brickRanges() const { return brickRanges_; }
     glm::ivec3 seenBrickGrid() const { return seenBrickGrid_; }
