@@ -30,7 +30,7 @@ gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label,
 }  // namespace
 
 AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings, const gl::Texture* seenBricks)
-    : volume_(volume), settings_(settings), occupancy_(settings.onlyWhereSeen ? seenBricks : nullptr), laoReach_(volume.geometry(), reachMm(settings)) {
+    : volume_(volume), settings_(settings), seenBricks_(settings.onlyWhereSeen ? seenBricks : nullptr), laoReach_(volume.geometry(), reachMm(settings)) {
     if (settings.samples < 1 || settings.samples > 1024)
         throw InputError("<lao settings>", "samples", "an integer in [1, 1024]", std::to_string(settings.samples));
     if (!(settings.stepMm > 0.0))
@@ -79,7 +79,7 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     visitBricks_ = gl::createBuffer();
     glNamedBufferStorage(visitBricks_.name(), static_cast<GLsizeiptr>(4 * bricks), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gl::Defines defines;
-    if (occupancy_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
+    if (seenBricks_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
     laoProgram_ = gl::Program::compute("lao.comp", defines);
     compactProgram_ = gl::Program::compute("lao_compact.comp", defines);
 }
@@ -163,9 +163,9 @@ void AmbientOcclusion::setVisitUniforms(gl::Program& p) const {
 
 void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
     // lao_common.glsl's: the voxels no visible sample reads (ambientSeen).
-    if (!occupancy_) return;
-    p.set("occupancyBrickSize", GpuVolume::seenBrickSize);
-    glBindTextureUnit(binding::occupancy, occupancy_->name());
+    if (!seenBricks_) return;
+    p.set("seenBrickSize", GpuVolume::seenBrickSize);
+    glBindTextureUnit(binding::occupancy, seenBricks_->name());
 }
 
 void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation) {

@@ -131,7 +131,7 @@ private:
 
     const GpuVolume& volume_;
     LaoSettings settings_;
-    const gl::Texture* occupancy_;   // the seen bricks; null, or when settings_.onlyWhereSeen is off: LAO everywhere
+    const gl::Texture* seenBricks_;   // null, or when settings_.onlyWhereSeen is off: LAO everywhere
     gl::Texture opacity_, mask_, precomputed_, ambient_;
     gl::Buffer directions_, antiAliasing_, list_, dispatch_, visitBricks_;
     gl::ComputeVariants clipPrograms_{"voxel_clip.comp"};

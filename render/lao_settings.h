@@ -20,7 +20,7 @@ struct LaoSettings {
     // CAO dispatch region), 803 against 1645 ms when both still visited the whole volume.
     enum class Dispatch { Compacted, FullGrid } dispatch = Dispatch::Compacted;
     // Steps I and V cast LAO rays only from voxels a visible sample can read (shaders/lao_common.glsl,
-    // ambientSeen: voxels in an occupancy brick a visible sample can lie in); elsewhere V_AO is 1, which no pixel
+    // ambientSeen: voxels in a seen brick, one a visible sample can lie in); elsewhere V_AO is 1, which no pixel
     // reads. The image is the same either way, bit for bit; off is the paper's LAO of every voxel, for
     // comparison (`curette bench cao --unseen-voxels compute`).
     bool onlyWhereSeen = true;

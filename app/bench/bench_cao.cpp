@@ -4,8 +4,8 @@
 // step, Table 4 second-mesh slowdown) beside ours, with the error against a 512-ray ground truth next to
 // the timings and whether CAO was bit-identical to LAO on every frame.
 #include "app/bench/bench_cao.h"
-#include "app/bench/lao_options.h"
 
+#include "app/bench/lao_options.h"
 #include "app/bench/report.h"
 #include "app/loaded_scene.h"
 #include "app/session_step.h"

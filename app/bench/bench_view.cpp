@@ -10,8 +10,8 @@
 // --check renders the last state once more in a fresh renderer (what `curette render` gives) and compares the
 // image hashes.
 #include "app/bench/bench_view.h"
-#include "app/bench/lao_options.h"
 
+#include "app/bench/lao_options.h"
 #include "app/bench/report.h"
 #include "app/interaction.h"
 #include "app/loaded_scene.h"
