@@ -429,6 +429,10 @@ void ClipMeshSet::uploadCameras() {
         glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());
 }
 
+void ClipMeshSet::addDefines(gl::Defines& defines) const {
+    if (meshes_.empty()) defines.emplace_back("NO_CLIP_MESHES", "1");
+}
+
 void ClipMeshSet::apply(gl::Program& program) const {
     program.set("clipMeshCount", count());
     program.set("clipDepthBoxTests", depthBoxTests_ ? 1 : 0);

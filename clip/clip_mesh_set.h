@@ -114,6 +114,9 @@ public:
     // The binder of shaders/clip_test.glsl: clipMeshCount, the uniform block of clipping cameras and the map
     // arrays on their units.
     void apply(gl::Program& program) const;
+    // NO_CLIP_MESHES while the set is empty, for the passes that test every sample (the ray caster, the slab
+    // pass): their clip tests are then compiled out, not skipped at run time (clip_test.glsl).
+    void addDefines(gl::Defines& defines) const;
 
     // Reads one map layer back (tests): layer 0..3 = front 1, back 1, front 2, back 2.
     std::vector<float> readMap(int index, int layer, bool dilated) const;

@@ -527,6 +527,7 @@ int Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers, int fi
     gl::Defines defines;
     SampleShadingPiece::addDefines(defines, shading);
     SampleShadingPiece::addCutFaceDefines(defines, frame.raycast.cutFace, clip_.count());
+    clip_.addDefines(defines);
     bool tubes = ismosLayers && lastPlan_.runs(Pass::TubeGBuffer);
     if (ismosLayers) IsmosPass::addLayerDefines(defines, frame.ismos);
     if (tubes) defines.emplace_back("ISMOS_TUBES", "1");

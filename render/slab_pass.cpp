@@ -7,13 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace curette {
 
-gl::Program& SlabPass::program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, bool cutFaces) {
-    gl::Defines defines;
+gl::Program& SlabPass::program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, gl::Defines defines) {
     SampleShadingPiece::addDefines(defines, mode);
-    if (cutFaces) defines.emplace_back("CUT_FACES", "1");
     if (tubes) defines.emplace_back("HAS_TUBES", "1");
     if (!clampOcclusion_) defines.emplace_back("OCCLUSION_UNCLAMPED", "1");
     tf.addDefines(defines);
@@ -64,9 +63,10 @@ void SlabPass::run(const SlabInputs& in) {
     glClearTexImage(in.eyeBuffer, 0, GL_RGBA, GL_FLOAT, clearEye);
     glClearTexImage(occlusion_[0].name(), 0, GL_RG, GL_FLOAT, clearOcclusion);
 
-    gl::Defines cutFaceDefines;
-    SampleShadingPiece::addCutFaceDefines(cutFaceDefines, frame.raycast.cutFace, in.clip.count());
-    gl::Program& p = program(frame.shading, tubes != nullptr, in.tf, !cutFaceDefines.empty());
+    gl::Defines clipDefines;
+    SampleShadingPiece::addCutFaceDefines(clipDefines, frame.raycast.cutFace, in.clip.count());
+    in.clip.addDefines(clipDefines);
+    gl::Program& p = program(frame.shading, tubes != nullptr, in.tf, std::move(clipDefines));
     if (tubes) {
         // Surfaces in front of the first slice keep full visibility.
         const float one = 1.0f;

@@ -43,7 +43,8 @@ public:
     std::size_t gpuBytes() const;
 
 private:
-    gl::Program& program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, bool cutFaces);
+    // `clipDefines`: the clip meshes' and cut faces' (ClipMeshSet::addDefines, SampleShadingPiece::addCutFaceDefines).
+    gl::Program& program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, gl::Defines clipDefines);
     void ensureBuffers(glm::ivec2 size);
 
     gl::ComputeVariants programs_{"dos_slice.comp"};
