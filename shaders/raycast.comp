@@ -82,12 +82,14 @@ void main() {
         // step of it (the sum over the lattice is the midpoint rule). Where the ray leaves a clip mesh, the
         // first visible lattice sample is taken at the crossing instead, standing for the ray from there to
         // the end of its own half step, so the tissue starts exactly where the face is; the lattice does not
-        // move. A clipped sample marches through the mesh on its clip test alone and finds the crossing once:
-        // llvmpipe runs a branch for every lane of a group whenever one lane takes it, so the face is worked
-        // out once per crossing, not on every sample.
+        // move. A clipped sample costs its clip test alone (no jump, no classification), and the face is worked
+        // out at the first lattice sample past the crossing, once per crossing, in the same loop as every other
+        // sample: llvmpipe runs a branch for every lane of a group whenever one lane takes it, and a second loop
+        // marching through the mesh (as before) held a second copy of the clip test and made the lanes wait.
         float faceT = -1.0;         // ray parameter of the last cut face crossed (-1: none)
         vec3 faceNormal = vec3(0.0);
         float faceCosine = 0.0;     // |cos| between the ray and the face normal: depth behind the face per mm of ray
+        int meshBehind = -1;        // the mesh holding the last lattice sample (-1: none)
 #endif
         for (; k <= kLast; ++k) {
             float t = (float(k) + jitter) * stepMm;
@@ -96,7 +98,12 @@ void main() {
 #ifdef COUNT_SAMPLES
             ++steps;
 #endif
+#ifdef CUT_FACES
+            // Inside a mesh the ray walks every lattice sample, so it finds the one past the crossing.
+            if (skipEmptySpace && meshBehind < 0) {
+#else
             if (skipEmptySpace) {
+#endif
                 ivec3 brick = clamp(ivec3(floor(tex * vec3(volumeSize) / float(brickSize))), ivec3(0),
                                     textureSize(occupancy, 0) - 1);
                 int distance = int(texelFetch(occupancy, brick, 0).r * 255.0 + 0.5);
@@ -123,27 +130,16 @@ void main() {
             int holding = -1;
             if (insideSpan(span, t)) holding = clipMeshHoldingAmong(span.meshes, eyeWorld + t * direction);
             if (holding >= 0) {
-                // Through the mesh to the first visible lattice sample, then the face between the two.
-                int mesh = holding;
-                bool leaves = false;
-                while (k < kLast) {
-                    float tNext = (float(k + 1) + jitter) * stepMm;
-                    int next = -1;
-                    if (insideSpan(span, tNext)) next = clipMeshHoldingAmong(span.meshes, eyeWorld + tNext * direction);
-                    ++k;
-                    if (next < 0) {
-                        leaves = true;
-                        break;
-                    }
-                    mesh = next;
-                }
+                meshBehind = holding;
 #ifdef ISMOS_LAYERS
                 ismosGap(layers);
 #endif
-                if (!leaves) continue;  // the ray ends inside the mesh
-                t = (float(k) + jitter) * stepMm;
+                continue;  // the ray ends inside the mesh if no later lattice sample leaves it
+            }
+            if (meshBehind >= 0) {
+                // The ray left mesh `meshBehind` between the last lattice sample and this one: the face between.
                 vec3 outward;
-                float s = clipExitFraction(mesh, eyeWorld + (t - stepMm) * direction, eyeWorld + t * direction, outward);
+                float s = clipExitFraction(meshBehind, eyeWorld + (t - stepMm) * direction, eyeWorld + t * direction, outward);
                 float crossing = t - (1.0 - s) * stepMm;
                 faceNormal = -outward;
                 faceCosine = abs(dot(direction, faceNormal));
@@ -151,6 +147,7 @@ void main() {
                 segment = t + 0.5 * stepMm - crossing;
                 t = crossing;
                 tex = originTex + t * directionTex;
+                meshBehind = -1;
             }
 #else
             if (clipMeshCount > 0 && insideSpan(span, t) && clipMeshHoldingAmong(span.meshes, eyeWorld + t * direction) >= 0) {

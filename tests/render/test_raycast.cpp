@@ -222,6 +222,41 @@ TEST(Raycast, JumpingOverManyEmptyBricksAtOnceChangesNothingButTheSteps) {
     }
 }
 
+// Inside a clip mesh the ray walks every lattice sample (raycast.comp: no jump while a mesh holds the last
+// sample), so the first sample past a crossing, where the cut face is worked out, is the same with and without
+// empty-space skipping. Spheres placed at random over the blobs' edges, where a mesh's far side meets both
+// empty bricks and tissue: the image with skipping is the one without, bit for bit.
+TEST(Raycast, CutFacesAreTheSameWithAndWithoutEmptySpaceSkipping) {
+    glContext();
+    glm::ivec3 dims(48, 44, 40);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims, {0.9, 1.1, 1.3}), ScalarType::UInt8, blobs);
+    Renderer renderer(glContext(), volume, blobTransferFunction());
+    renderer.setCountSamples(true);
+    std::mt19937 random(12);
+    std::uniform_real_distribution<double> position(-20.0, 20.0), radius(3.0, 9.0);
+    clip::ClipMeshSet& set = renderer.clipMeshes();
+    for (int i = 0; i < 6; ++i)
+        set.add(std::make_shared<const clip::TriangleMesh>(clip::makeSphere(radius(random), 3)), glm::dvec3(1.0),
+                clip::RigidPose{{position(random), position(random), position(random)}, {}}, "sphere " + std::to_string(i));
+    set.update();
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong})
+        for (double azimuth : {20.0, 110.0, 200.0, 290.0}) {
+            FrameDescription frame = frameLookingAt(glm::dvec3(1, -2, 0), 110, azimuth, 25, {80, 72}, mode);
+            frame.raycast.jitterSeed = 5;
+            frame.raycast.cutFace.enabled = true;
+            auto run = [&](bool skip) {
+                frame.raycast.skipEmptySpace = skip;
+                renderer.render(frame);
+                return std::pair{renderer.readImage(), renderer.rayStepsLastFrame()};
+            };
+            auto [walked, stepsWalked] = run(false);
+            auto [skipped, stepsSkipped] = run(true);
+            SCOPED_TRACE(std::string(shadingModeName(mode)) + ", azimuth " + std::to_string(azimuth));
+            EXPECT_EQ(0, std::memcmp(walked.pixels.data(), skipped.pixels.data(), walked.pixels.size() * sizeof(glm::vec4)));
+            EXPECT_LT(stepsSkipped, stepsWalked) << "the view has empty space to skip";
+        }
+}
+
 // The ray caster tests a sample against the clip maps only inside the ray's span (clip_test.glsl,
 // rayClipSpan): the image is the one that tests every sample against every mesh, bit for bit, with and without
 // cut faces, for a sphere, a turned box, a torus (two intervals) turned off the axes and a box that reaches out
