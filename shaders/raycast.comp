@@ -90,17 +90,46 @@ void main() {
         vec3 faceNormal = vec3(0.0);
         float faceCosine = 0.0;     // |cos| between the ray and the face normal: depth behind the face per mm of ray
         int meshBehind = -1;        // the mesh holding the last lattice sample (-1: none)
+        bool rayDone = false;
+        while (!rayDone) {
+            // One round per cut face. The sample loop stops at the first lattice sample past a crossing and the
+            // face is worked out here: llvmpipe runs all code of a loop body on every step, taken or not, and
+            // the crossing in the sample loop was 40 % of the carved head's solid ray cast.
+            bool atFace = meshBehind >= 0;
+            float faceSegment = stepMm;
+            if (atFace) {
+                float tLattice = (float(k) + jitter) * stepMm;
+                vec3 outward;
+                float s = clipExitFraction(meshBehind, eyeWorld + (tLattice - stepMm) * direction, eyeWorld + tLattice * direction, outward);
+                float crossing = tLattice - (1.0 - s) * stepMm;
+                faceNormal = -outward;
+                faceCosine = abs(dot(direction, faceNormal));
+                faceT = crossing;
+                faceSegment = tLattice + 0.5 * stepMm - crossing;
+                meshBehind = -1;
+            }
 #endif
         for (; k <= kLast; ++k) {
             float t = (float(k) + jitter) * stepMm;
             float segment = stepMm;
+#ifdef CUT_FACES
+            // The round's first sample, past a crossing, is taken at the face (its lattice sample is in no mesh).
+            bool face = atFace;
+            atFace = false;
+            t = face ? faceT : t;
+            segment = face ? faceSegment : segment;
+#endif
             vec3 tex = originTex + t * directionTex;
 #ifdef COUNT_SAMPLES
+#ifdef CUT_FACES
+            if (!face) ++steps;
+#else
             ++steps;
+#endif
 #endif
 #ifdef CUT_FACES
             // Inside a mesh the ray walks every lattice sample, so it finds the one past the crossing.
-            if (skipEmptySpace && meshBehind < 0) {
+            if (skipEmptySpace && meshBehind < 0 && !face) {
 #else
             if (skipEmptySpace) {
 #endif
@@ -128,7 +157,7 @@ void main() {
             // Step VI's shadow-test clipping: a sample inside any clip mesh is not there.
 #ifdef CUT_FACES
             int holding = -1;
-            if (insideSpan(span, t)) holding = clipMeshHoldingAmong(span.meshes, eyeWorld + t * direction);
+            if (!face && insideSpan(span, t)) holding = clipMeshHoldingAmong(span.meshes, eyeWorld + t * direction);
             if (holding >= 0) {
                 meshBehind = holding;
 #ifdef ISMOS_LAYERS
@@ -136,19 +165,9 @@ void main() {
 #endif
                 continue;  // the ray ends inside the mesh if no later lattice sample leaves it
             }
-            if (meshBehind >= 0) {
-                // The ray left mesh `meshBehind` between the last lattice sample and this one: the face between.
-                vec3 outward;
-                float s = clipExitFraction(meshBehind, eyeWorld + (t - stepMm) * direction, eyeWorld + t * direction, outward);
-                float crossing = t - (1.0 - s) * stepMm;
-                faceNormal = -outward;
-                faceCosine = abs(dot(direction, faceNormal));
-                faceT = crossing;
-                segment = t + 0.5 * stepMm - crossing;
-                t = crossing;
-                tex = originTex + t * directionTex;
-                meshBehind = -1;
-            }
+            // The ray left mesh `meshBehind` between the last lattice sample and this one: the next round takes
+            // this sample at the face between them.
+            if (meshBehind >= 0) break;
 #else
             if (clipMeshCount > 0 && insideSpan(span, t) && clipMeshHoldingAmong(span.meshes, eyeWorld + t * direction) >= 0) {
 #ifdef ISMOS_LAYERS
@@ -179,11 +198,23 @@ void main() {
             ismosSample(layers, t * depthPerMm - ismosNearDepth, alpha, 1.0 - accumulated.a);
             if (accumulated.a >= earlyTerminationAlpha) {
                 ismosTerminated(layers);
+#ifdef CUT_FACES
+                rayDone = true;
+#endif
                 break;
             }
 #endif
-            if (accumulated.a >= earlyTerminationAlpha) break;
+            if (accumulated.a >= earlyTerminationAlpha) {
+#ifdef CUT_FACES
+                rayDone = true;
+#endif
+                break;
+            }
         }
+#ifdef CUT_FACES
+            if (k > kLast) rayDone = true;
+        }
+#endif
     }
 #ifdef COUNT_SAMPLES
     atomicAdd(samplesTaken, samples);
