@@ -13,22 +13,30 @@ struct VolumeSample {
     vec3 gradient;     // world gradient of the value (zero when neither phong nor gradient opacity needs it)
 };
 
-VolumeSample classifySample(vec3 tex) {
+// What decides whether the sample is visible: colour and opacity, and the gradient only when gradient
+// opacity needs it (zero otherwise).
+VolumeSample classifyOpacity(vec3 tex) {
     VolumeSample s;
     vec4 classified = classify(sampleTexel(tex));
 #ifdef LABELS
     classified = withLabel(classified, labelStyleAt(tex));
 #endif
     s.albedo = classified.rgb;
-#if SHADING == SHADING_PHONG
-    s.gradient = gradientWorld(tex);
-#else
     s.gradient = useGradientOpacity ? gradientWorld(tex) : vec3(0.0);
-#endif
     s.alphaUnit = classified.a;
     if (useGradientOpacity) s.alphaUnit *= gradientOpacityFactor(length(s.gradient));
     return s;
 }
+
+// The rest a visible sample needs for its shading: phong's gradient, where gradient opacity has not taken it.
+VolumeSample withShadingGradient(VolumeSample s, vec3 tex) {
+#if SHADING == SHADING_PHONG
+    if (!useGradientOpacity) s.gradient = gradientWorld(tex);
+#endif
+    return s;
+}
+
+VolumeSample classifySample(vec3 tex) { return withShadingGradient(classifyOpacity(tex), tex); }
 
 // Nothing there: outside the volume or inside a clip mesh.
 VolumeSample emptySample() { return VolumeSample(vec3(0.0), 0.0, vec3(0.0)); }
