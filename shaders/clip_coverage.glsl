@@ -13,9 +13,6 @@ layout(std430, binding = SSBO_ANTIALIASING) readonly buffer AntiAliasing { vec4 
 uniform mat4 indexToWorld;
 uniform int antiAliasingSamples;   // N
 
-// Every active mesh, as a set of mesh bits (at most MAX_CLIP_MESHES = 16).
-uint allClipMeshes() { return (1u << uint(clipMeshCount)) - 1u; }
-
 // Inside one of the meshes of the set `meshes` (bit i: mesh i); with allClipMeshes(), insideAnyClipMesh.
 bool clippedAtIndex(vec3 index, uint meshes) { return clipMeshHoldingAmong(meshes, (indexToWorld * vec4(index, 1.0)).xyz) >= 0; }
 

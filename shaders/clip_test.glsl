@@ -39,6 +39,9 @@ uniform int clipMeshCount;
 uniform bool clipDepthBoxTests;
 
 // Point `world` inside the interval(s) of mesh `i` in maps `maps` (depth or dilated).
+// Every active mesh, as a set of mesh bits (at most MAX_CLIP_MESHES = 16).
+uint allClipMeshes() { return (1u << uint(clipMeshCount)) - 1u; }
+
 bool insideMeshMaps(int i, vec3 world, bool dilated) {
     ClipMeshGpu mesh = clipMeshes[i];
     vec3 m = (mesh.worldToMap * vec4(world, 1.0)).xyz;
@@ -116,8 +119,12 @@ bool insideSpan(ClipSpan span, float t) { return t >= span.near && t <= span.far
 // The first mesh of the set `meshes` (bit i: mesh i) whose interval holds `world` (-1: none): the one loop
 // behind every "inside a clip mesh" test (all meshes, a ray's span, the meshes near a voxel).
 int clipMeshHoldingAmong(uint meshes, vec3 world) {
-    for (int i = 0; i < clipMeshCount; ++i)
-        if ((meshes & (1u << uint(i))) != 0u && insideMeshMaps(i, world, false)) return i;
+    // Over the set's bits, lowest first, not over every mesh: llvmpipe runs a loop's body for every lane while
+    // any lane is still in the loop, so a voxel near one of two meshes then costs one mesh's test, not two.
+    for (uint rest = meshes & allClipMeshes(); rest != 0u; rest &= rest - 1u) {
+        int i = findLSB(rest);
+        if (insideMeshMaps(i, world, false)) return i;
+    }
     return -1;
 }
 
