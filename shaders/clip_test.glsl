@@ -38,10 +38,10 @@ uniform int clipMeshCount;
 // (ClipMeshSet::setDepthBoxTests); the answers are the same either way.
 uniform bool clipDepthBoxTests;
 
-// Point `world` inside the interval(s) of mesh `i` in maps `maps` (depth or dilated).
 // Every active mesh, as a set of mesh bits (at most MAX_CLIP_MESHES = 16).
 uint allClipMeshes() { return (1u << uint(clipMeshCount)) - 1u; }
 
+// Point `world` inside the interval(s) of mesh `i` in maps `maps` (depth or dilated).
 bool insideMeshMaps(int i, vec3 world, bool dilated) {
     ClipMeshGpu mesh = clipMeshes[i];
     vec3 m = (mesh.worldToMap * vec4(world, 1.0)).xyz;

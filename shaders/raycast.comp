@@ -118,10 +118,8 @@ void main() {
         // step of it (the sum over the lattice is the midpoint rule). Where the ray leaves a clip mesh, the
         // first visible lattice sample is taken at the crossing instead, standing for the ray from there to
         // the end of its own half step, so the tissue starts exactly where the face is; the lattice does not
-        // move. A clipped sample costs its clip test alone (no jump, no classification), and the face is worked
-        // out at the first lattice sample past the crossing, once per crossing, in the same loop as every other
-        // sample: llvmpipe runs a branch for every lane of a group whenever one lane takes it, and a second loop
-        // marching through the mesh (as before) held a second copy of the clip test and made the lanes wait.
+        // move. A clipped sample costs its clip test alone (no jump, no classification); the face is worked out
+        // once per crossing, between rounds of the sample loop (below).
         faceT = -1.0;
         faceNormal = vec3(0.0);
         faceCosine = 0.0;
@@ -135,11 +133,13 @@ void main() {
         // lanes that wait at the end of a round: the crossing (40 % of the carved head's solid ray cast when it
         // was in the loop) and phong's gradient.
         bool rayDone = false;
+#ifdef SHADE_BETWEEN_ROUNDS
         bool shadePending = false;  // the last round stopped at a visible sample:
         VolumeSample pending;       // its classification,
         vec3 pendingTex;            // where it is,
         float pendingT = 0.0;       // how far along the ray,
         float pendingAlpha = 0.0;   // and the opacity of its segment
+#endif
 #ifdef SAMPLE_ROUNDS
         while (!rayDone) {
 #endif
@@ -260,8 +260,9 @@ void main() {
 #endif
         }
 #ifdef SAMPLE_ROUNDS
-            // Neither a visible sample nor a crossing: the lattice ran out.
-            if (!shadePending && k > kLast) rayDone = true;
+            // A round that stopped at a visible sample or a crossing stopped at a lattice sample; past the last
+            // one, the lattice ran out.
+            if (k > kLast) rayDone = true;
         }
 #endif
     }
