@@ -80,7 +80,6 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     glNamedBufferStorage(visitBricks_.name(), static_cast<GLsizeiptr>(4 * bricks), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gl::Defines defines;
     if (seenBricks_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
-    laoProgram_ = gl::Program::compute("lao.comp", defines);
     compactProgram_ = gl::Program::compute("lao_compact.comp", defines);
 }
 
@@ -101,11 +100,22 @@ double AmbientOcclusion::dilationRadiusMm(const LaoSettings& settings, const Vol
     return reachMm(settings) + 2.0 * geometry.cellDiagonalMm();
 }
 
+gl::Defines AmbientOcclusion::laoDefines(float opacityExponent) const {
+    // What lao_ray.glsl compiles in: K, M, and whether the opacity correction is the identity. The exponent is
+    // compared as the float the shader would raise to, so the identity stands in for pow(x, 1.0) only.
+    gl::Defines defines;
+    if (seenBricks_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
+    defines.emplace_back("LAO_DIRECTIONS", std::to_string(settings_.directions.count));
+    defines.emplace_back("LAO_SAMPLES", std::to_string(settings_.samples));
+    if (opacityExponent == 1.0f) defines.emplace_back("LAO_UNIT_STEP", "1");
+    return defines;
+}
+
+gl::Program& AmbientOcclusion::laoProgram(float opacityExponent) { return laoPrograms_.get(laoDefines(opacityExponent)); }
+
 void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
     // lao_ray.glsl's uniforms (lao.comp only; the compaction pass casts no ray).
     glm::ivec3 dims = volume_.geometry().dims;
-    p.set("laoDirectionCount", settings_.directions.count);
-    p.set("laoSamples", settings_.samples);
     p.set("laoTextureMargin", glm::vec3(0.5 / glm::dvec3(dims)));
     p.set("laoOpacityExponent", opacityExponent);
 }
@@ -193,18 +203,20 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-void AmbientOcclusion::bindLao(GLuint target, float opacityExponent) {
+gl::Program& AmbientOcclusion::bindLao(GLuint target, float opacityExponent) {
+    gl::Program& program = laoProgram(opacityExponent);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboRecomputeList, list_.name());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboLaoDirections, directions_.name());
     glBindTextureUnit(binding::opacity, opacity_.name());
     glBindTextureUnit(binding::mask, mask_.name());
     glBindTextureUnit(binding::precomputedAo, precomputed_.name());
     glBindImageTexture(binding::imageAmbient, target, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
-    setLaoUniforms(laoProgram_, opacityExponent);
-    laoProgram_.set("volumeSize", volume_.geometry().dims);
-    laoProgram_.set("listOffset", 0u);
-    setVisitUniforms(laoProgram_);
-    setDecisionUniforms(laoProgram_);
+    setLaoUniforms(program, opacityExponent);
+    program.set("volumeSize", volume_.geometry().dims);
+    program.set("listOffset", 0u);
+    setVisitUniforms(program);
+    setDecisionUniforms(program);
+    return program;
 }
 
 void AmbientOcclusion::buildRecomputeList() {
@@ -233,20 +245,20 @@ void AmbientOcclusion::readRecomputeCounts() {
 void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExponent) {
     const std::uint32_t zero[2] = {0, 0};
     glNamedBufferSubData(list_.name(), 0, 8, zero);
-    bindLao(target, opacityExponent);
+    gl::Program& lao = bindLao(target, opacityExponent);
     // One work group per visited brick (shaders/visit_bricks.glsl).
     if (!compacted) {
         glm::uvec2 grid = groupGrid(visitCount_);
-        laoProgram_.set("laoMode", 0);
-        laoProgram_.use();
+        lao.set("laoMode", 0);
+        lao.use();
         glDispatchCompute(grid.x, grid.y, 1);
     } else {
         buildRecomputeList();
         compactProgram_.set("prepareDispatch", 1);
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        laoProgram_.set("laoMode", 1);
-        laoProgram_.use();
+        lao.set("laoMode", 1);
+        lao.use();
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatch_.name());
         glDispatchComputeIndirect(0);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -277,10 +289,10 @@ std::uint32_t AmbientOcclusion::advanceRecompute(std::uint32_t groups) {
     std::uint32_t n = std::min(groups, recomputeGroups_ - recomputeGroupsDone_);
     if (n == 0) return 0;
     // Other passes may have bound their own resources since the last slice.
-    bindLao(ambient_.name(), recomputeExponent_);
-    laoProgram_.set("laoMode", 1);
-    laoProgram_.set("listOffset", recomputeGroupsDone_ * kLaoGroupSize);
-    laoProgram_.use();
+    gl::Program& lao = bindLao(ambient_.name(), recomputeExponent_);
+    lao.set("laoMode", 1);
+    lao.set("listOffset", recomputeGroupsDone_ * kLaoGroupSize);
+    lao.use();
     glm::uvec2 grid = groupGrid(n);
     glDispatchCompute(grid.x, grid.y, 1);
     recomputeGroupsDone_ += n;

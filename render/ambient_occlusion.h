@@ -124,7 +124,10 @@ private:
     void setDecisionUniforms(gl::Program& program) const;
     void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation);
     void runLao(GLuint target, bool compacted, float opacityExponent);
-    void bindLao(GLuint target, float opacityExponent);
+    // Binds lao.comp's resources and uniforms to the variant for `opacityExponent`, and returns it.
+    gl::Program& bindLao(GLuint target, float opacityExponent);
+    gl::Defines laoDefines(float opacityExponent) const;
+    gl::Program& laoProgram(float opacityExponent);   // compiled when first needed
     void buildRecomputeList();      // lao_compact.comp over the visited bricks
     void readRecomputeCounts();     // the list's length and the LAO rays run, into listCount_ and stats_
     void setLaoUniforms(gl::Program& program, float opacityExponent);
@@ -135,7 +138,8 @@ private:
     gl::Texture opacity_, mask_, precomputed_, ambient_;
     gl::Buffer directions_, antiAliasing_, list_, dispatch_, visitBricks_;
     gl::ComputeVariants clipPrograms_{"voxel_clip.comp"};
-    gl::Program laoProgram_, compactProgram_;
+    gl::ComputeVariants laoPrograms_{"lao.comp"};   // by laoDefines
+    gl::Program compactProgram_;
     AmbientOcclusionStats stats_;
     std::uint32_t listCount_ = 0;            // the recompute list's length (read after it is built)
     std::uint32_t recomputeGroups_ = 0, recomputeGroupsDone_ = 0;   // sliced step V

@@ -9,35 +9,45 @@
 // only: the farthest sample is (M - 1) * step away (render/ambient_occlusion.cpp derives the dilation radius
 // from this). a_i is V_o (opacity per TF unit length, trilinear, zero outside the volume) corrected to the
 // step length.
+//
+// Compiled in (AmbientOcclusion::laoDefines), because llvmpipe pays for what a loop cannot know:
+//   LAO_DIRECTIONS  K, and LAO_SAMPLES M: loops of a constant trip count need no per-step mask bookkeeping
+//                   (the same arithmetic in the same order, so V_AO is the same bit for bit);
+//   LAO_UNIT_STEP   defined when the step equals the TF's unit length: the correction (1 - a)^(step / unit)
+//                   is then 1 - a exactly, and pow (exp2 of log2 on llvmpipe) is about a quarter of a sample.
 #include "bindings.glsl"
 
 layout(binding = BINDING_OPACITY) uniform sampler3D clippedOpacity;
 layout(std430, binding = SSBO_LAO_DIRECTIONS) readonly buffer LaoDirections {
     vec4 laoDirections[];  // xyz: one step along direction k in texture coordinates; w: w_k / (K * M)
 };
-uniform int laoDirectionCount;   // K
-uniform int laoSamples;          // M
+#ifndef LAO_UNIT_STEP
 uniform float laoOpacityExponent;  // step / TF unit length
+#endif
 uniform vec3 laoTextureMargin;   // half a texel: beyond it every sample reads the zero border
 
 float localAmbientOcclusion(vec3 centreTex) {
     float ambient = 0.0;
-    for (int k = 0; k < laoDirectionCount; ++k) {
+    for (int k = 0; k < LAO_DIRECTIONS; ++k) {
         vec3 stepTex = laoDirections[k].xyz;
         float transmittance = 1.0;
         float sum = 0.0;
-        for (int m = 1; m <= laoSamples; ++m) {
+        for (int m = 1; m <= LAO_SAMPLES; ++m) {
             sum += transmittance;  // term m: the transmittance of samples 1 .. m-1
-            if (m == laoSamples) break;
+            if (m == LAO_SAMPLES) break;
             vec3 p = centreTex + float(m) * stepTex;
             if (any(lessThan(p, -laoTextureMargin)) || any(greaterThan(p, 1.0 + laoTextureMargin))) {
                 // Left the volume: the remaining samples read zero opacity, so every later term is this
                 // transmittance (a straight ray never re-enters the box).
-                sum += transmittance * float(laoSamples - m);
+                sum += transmittance * float(LAO_SAMPLES - m);
                 break;
             }
             float a = texture(clippedOpacity, p).r;
+#ifdef LAO_UNIT_STEP
+            transmittance *= 1.0 - a;
+#else
             transmittance *= pow(1.0 - a, laoOpacityExponent);
+#endif
         }
         ambient += laoDirections[k].w * sum;
     }

@@ -69,8 +69,10 @@ struct AoFixture {
 // GPU LAO against the CPU double twin, fed the GPU's own V_o (so only the ray differs). V_AO is stored in
 // R16: the storage alone allows 0.5 / 65535 = 7.6e-6. The float arithmetic over K * (M - 1) = 26 * 11
 // samples adds relative errors of a few 1e-7 per operation: bound 2e-5 (measured: max 7.9e-6, i.e. the
-// storage quantum; rms 4.5e-6), far under the 8-bit display step (3.9e-3).
-TEST(Lao, GpuMatchesCpuTwinOnAnisotropicObliqueVolume) {
+// storage quantum; rms 4.5e-6), far under the 8-bit display step (3.9e-3). Two steps: the TF's unit length
+// (lao_ray.glsl's LAO_UNIT_STEP variant, no pow) and 0.7 mm (the corrected opacity (1 - a)^0.7; the unit
+// step's variant there is off by 9.8e-2).
+void expectLaoMatchesTwinOnAnisotropicObliqueVolume(double stepMm) {
     glm::dmat3 rz(std::cos(0.4), std::sin(0.4), 0, -std::sin(0.4), std::cos(0.4), 0, 0, 0, 1);
     glm::dmat3 linear = rz * glm::dmat3(glm::dvec3(0.9, 0, 0), glm::dvec3(0, 1.1, 0), glm::dvec3(0, 0, 1.3));
     glm::ivec3 dims(30, 28, 24);
@@ -79,7 +81,7 @@ TEST(Lao, GpuMatchesCpuTwinOnAnisotropicObliqueVolume) {
     AoFixture f(dims, affine);
     LaoSettings settings;
     settings.samples = 12;
-    settings.stepMm = 1.0;
+    settings.stepMm = stepMm;
     AmbientOcclusion ao(*f.gpu, settings);
     ao.precompute(*f.tfTexture);
     std::vector<std::uint16_t> gpuOpacity = ao.readOpacity();
@@ -102,10 +104,18 @@ TEST(Lao, GpuMatchesCpuTwinOnAnisotropicObliqueVolume) {
         sumSquares += (got - expected) * (got - expected);
         minAmbient = std::min(minAmbient, expected);
     }
-    std::printf("[ lao twin ] max %.2e rms %.2e over %d voxels (darkest %.3f)\n", maxError, std::sqrt(sumSquares / n), n, minAmbient);
+    std::printf("[ lao twin ] step %.2f mm: max %.2e rms %.2e over %d voxels (darkest %.3f)\n", stepMm, maxError,
+                std::sqrt(sumSquares / n), n, minAmbient);
     EXPECT_LT(maxError, 2e-5);
     EXPECT_LT(minAmbient, 0.8) << "the volume must occlude something";
 }
+
+TEST(Lao, GpuMatchesCpuTwinOnAnisotropicObliqueVolume) {
+    ASSERT_EQ(test::rampTransferFunction(30, 180, 0.35).unitLengthMm, 1.0);
+    expectLaoMatchesTwinOnAnisotropicObliqueVolume(1.0);
+}
+
+TEST(Lao, GpuMatchesCpuTwinWithAStepUnlikeTheUnitLength) { expectLaoMatchesTwinOnAnisotropicObliqueVolume(0.7); }
 
 // Without clip meshes, step IV stores each voxel's TF opacity: the GPU reads the 4096-texel baked table
 // (error <= slope * range / 4095 / 2 = 0.35/150 * 255/8190 = 7e-5) and stores R16 (7.6e-6).
