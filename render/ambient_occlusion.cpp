@@ -3,6 +3,7 @@
 #include "base/error.h"
 #include "base/progress.h"
 #include "gl/bindings.h"
+#include "render/worker_deal.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -120,17 +121,8 @@ void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
     p.set("laoOpacityExponent", opacityExponent);
 }
 
-namespace {
-// Work groups for `items` jobs spread over a 2-D grid (at most 32768 along x; shaders/visit_bricks.glsl and
-// lao_common.glsl linearInvocation number them y * width + x).
-glm::uvec2 groupGrid(std::uint64_t groups) {
-    std::uint64_t x = std::min<std::uint64_t>(groups, 32768);
-    return glm::uvec2(static_cast<unsigned>(std::max<std::uint64_t>(x, 1)), static_cast<unsigned>(x ? (groups + x - 1) / x : 0));
-}
-}  // namespace
-
 std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, bool laoEverywhere) {
-    std::vector<std::uint32_t> list = bricks.visitedIndices();
+    std::vector<std::uint32_t> list = dealtToWorkerThreads(bricks.visitedIndices(), llvmpipeWorkerThreads());
     if (laoEverywhere)
         for (std::uint32_t& entry : list) entry |= kVisitLaoCanChange;
     laoFlagsPending_ = !laoEverywhere;
@@ -197,7 +189,7 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     glBindImageTexture(binding::imageOpacity, opacity_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
     glBindImageTexture(binding::imageMask, mask_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8UI);
     setVisitUniforms(p);
-    glm::uvec2 grid = groupGrid(visitCount_);
+    glm::uvec2 grid = workGroupGrid(visitCount_);
     p.use();
     glDispatchCompute(grid.x, grid.y, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -222,13 +214,13 @@ gl::Program& AmbientOcclusion::bindLao(GLuint target, float opacityExponent) {
 void AmbientOcclusion::buildRecomputeList() {
     // Every visited voxel's decision: copies and unreachable voxels are written here, the rest appended.
     compactProgram_.set("volumeSize", volume_.geometry().dims);
-    compactProgram_.set("maxGroupsX", 32768u);
+    compactProgram_.set("maxGroupsX", kMaxWorkGroupsX);
     setVisitUniforms(compactProgram_);
     setDecisionUniforms(compactProgram_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
     compactProgram_.set("prepareDispatch", 0);
     compactProgram_.use();
-    glm::uvec2 grid = groupGrid(visitCount_);
+    glm::uvec2 grid = workGroupGrid(visitCount_);
     glDispatchCompute(grid.x, grid.y, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -248,7 +240,7 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
     gl::Program& lao = bindLao(target, opacityExponent);
     // One work group per visited brick (shaders/visit_bricks.glsl).
     if (!compacted) {
-        glm::uvec2 grid = groupGrid(visitCount_);
+        glm::uvec2 grid = workGroupGrid(visitCount_);
         lao.set("laoMode", 0);
         lao.use();
         glDispatchCompute(grid.x, grid.y, 1);
@@ -293,7 +285,7 @@ std::uint32_t AmbientOcclusion::advanceRecompute(std::uint32_t groups) {
     lao.set("laoMode", 1);
     lao.set("listOffset", recomputeGroupsDone_ * kLaoGroupSize);
     lao.use();
-    glm::uvec2 grid = groupGrid(n);
+    glm::uvec2 grid = workGroupGrid(n);
     glDispatchCompute(grid.x, grid.y, 1);
     recomputeGroupsDone_ += n;
     if (recomputeGroupsDone_ == recomputeGroups_) readRecomputeCounts();
@@ -337,7 +329,9 @@ double AmbientOcclusion::precomputeProgress() const {
 }
 
 void AmbientOcclusion::uploadVisitRange(std::uint32_t first, std::uint32_t count) {
-    glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * std::size_t(count)), allBricks_.data() + first);
+    std::vector<std::uint32_t> slice =
+        dealtToWorkerThreads(std::vector<std::uint32_t>(allBricks_.begin() + first, allBricks_.begin() + first + count), llvmpipeWorkerThreads());
+    glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * std::size_t(count)), slice.data());
     visitCount_ = count;
     laoFlagsPending_ = false;
 }

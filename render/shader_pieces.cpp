@@ -1,12 +1,12 @@
 #include "render/shader_pieces.h"
 
 #include "gl/bindings.h"
+#include "render/worker_deal.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <algorithm>
 #include <string>
-#include <thread>
 
 namespace curette {
 
@@ -18,7 +18,7 @@ void CameraRayPiece::apply(gl::Program& p) const {
     p.set("outputSize", frame.size);
 }
 
-int TileOrderPiece::defaultRowsPerBand() { return static_cast<int>(std::max(2u, std::thread::hardware_concurrency())); }
+int TileOrderPiece::defaultRowsPerBand() { return llvmpipeWorkerThreads(); }
 
 namespace {
 struct TileBands {

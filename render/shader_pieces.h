@@ -33,8 +33,7 @@ struct CameraRayPiece {
 struct TileOrderPiece {
     glm::ivec2 size;
     int rowsPerBand = defaultRowsPerBand();
-    // One row per llvmpipe worker thread (it starts one per CPU core, LP_NUM_THREADS aside), at least 2: each
-    // thread then gets one row of every band.
+    // One row per llvmpipe worker thread (render/worker_deal.h): each thread then gets one row of every band.
     static int defaultRowsPerBand();
     // The image's bands of rowsPerBand rows of tiles (the last may be partly past the image).
     int bandCount(glm::uvec3 workGroupSize) const;

@@ -18,9 +18,12 @@ uniform uint maxGroupsX;
 
 void main() {
     if (prepareDispatch == 1) {
+        // workGroupGrid's grid (render/worker_deal.h): as few rows as maxGroupsX allows, each as narrow as it
+        // can be, so fewer groups than rows lie past the list and llvmpipe's per-thread runs split the list.
         uint groups = (listCount + 63u) / 64u;
-        uint x = min(groups, maxGroupsX);
-        dispatchSize = uvec3(max(x, 1u), x == 0u ? 0u : (groups + x - 1u) / x, 1u);
+        uint rows = (groups + maxGroupsX - 1u) / maxGroupsX;
+        uint x = groups == 0u ? 1u : (groups + rows - 1u) / rows;
+        dispatchSize = uvec3(x, groups == 0u ? 0u : (groups + x - 1u) / x, 1u);
         return;
     }
     ivec3 v;
