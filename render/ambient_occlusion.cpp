@@ -365,6 +365,7 @@ void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip:
         visit.unite(*lastMeshBricks_);
     }
     lastMeshBricks_ = std::move(current);
+    lastVisit_ = visit;
     stats_.voxels = std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
     stats_.dispatched = visit.visitedVoxels();
     stats_.recomputed = 0;
@@ -372,6 +373,15 @@ void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip:
     stats_.bricks = uploadVisit(visit, !cao);
     stats_.laoBricks = cao ? 0 : stats_.bricks;
     if (visitCount_ > 0) runVoxelClipping(tf, &clip, cao);
+}
+
+void AmbientOcclusion::abandonRecompute() {
+    // Step IV rewrote V_o and V_m over lastVisit_; step V may have rewritten any part of V_AO there. Visiting all
+    // of it next time (with the meshes' bricks then) rewrites every voxel this update touched or left stale, and
+    // outside it nothing was touched since the update before, whose invariant still holds there.
+    if (lastVisit_) lastMeshBricks_ = std::move(*lastVisit_);
+    lastVisit_.reset();
+    recomputeGroups_ = recomputeGroupsDone_ = 0;
 }
 
 void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {

@@ -102,6 +102,11 @@ public:
     std::uint32_t beginRecompute(const TransferFunctionTexture& tf);
     std::uint32_t advanceRecompute(std::uint32_t groups);
     std::uint32_t recomputeGroupsLeft() const { return recomputeGroups_ - recomputeGroupsDone_; }
+    // Step V of the last step IV will not be finished (the viewer moved on during the exact frame in slices):
+    // the next update visits every brick this one visited as well as its own meshes' bricks, so V_o, V_m and
+    // V_AO come out as if this update had finished (ExactInSlices.MotionDuringTheExactFrameAbandonsItsStepV...).
+    // V_AO is not that of any one pose until then.
+    void abandonRecompute();
 
     GLuint ambientTexture() const { return ambient_.name(); }
     const AmbientOcclusionStats& lastStats() const { return stats_; }
@@ -150,6 +155,9 @@ private:
     // Outside these bricks (of the last update) V_o holds the unclipped opacity and V_AO equals V_PAO, so the
     // next CAO update only visits them and its own meshes' bricks. Unset after step I (V_AO not yet written).
     std::optional<BrickSet> lastMeshBricks_;
+    // The bricks the last step IV visited (its meshes' and the update before's): what an abandoned step V leaves
+    // to the next update.
+    std::optional<BrickSet> lastVisit_;
     // Sliced step I: bricks done over both phases (0 .. 2 * totalBricks()); the whole grid's brick numbers.
     bool precomputeStarted_ = false;
     std::uint32_t slicedBricks_ = 0;

@@ -97,10 +97,10 @@ public:
     // until then the image shown stays the last one (previews have their own image). Step V runs in slices of
     // its recompute list (AmbientOcclusion::advanceRecompute), the ray cast in bands of tile rows
     // (TileOrderPiece::dispatchBands), every other pass whole. A call for another frame, or after the scene
-    // changed or a preview was drawn, starts over, except that once step IV has run its step V is finished
-    // first: the next update starts from step IV's poses, so a half-done step V would leave V_AO stale where
-    // they were (render() finishes it too). sliceUnits > 0 fixes the slice size (step V: work groups of the
-    // list, the ray cast: bands), for tests.
+    // changed or a preview was drawn, starts over; a step V under way is abandoned, and the next update visits
+    // the bricks its step IV visited as well as its own (AmbientOcclusion::abandonRecompute), so it rewrites
+    // whatever the abandoned one left stale (render() does the same). sliceUnits > 0 fixes the slice size
+    // (step V: work groups of the list, the ray cast: bands), for tests.
     bool advanceExact(const FrameDescription& frame, double budgetMs, std::uint32_t sliceUnits = 0);
     // How far the exact frame in slices is, in [0, 1] (passes done, the sliced ones by their share done; 0 when
     // none is under way).
@@ -174,9 +174,9 @@ private:
     };
     bool exactJobCurrent(const FrameDescription& frame) const;
     void runExactSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
-    // Runs step V's slices of the exact frame under way (its step IV ran) for about budgetMs (< 0: to the end);
-    // whether step V is done (or was never begun).
-    bool finishPendingStepV(double budgetMs);
+    // The exact frame under way is given up: if its step IV ran and its step V is unfinished, step V is abandoned
+    // (AmbientOcclusion::abandonRecompute), and the next exact frame's IV and V visit this one's bricks too.
+    void abandonExactJob();
     void beginStepV(ExactJob& job);
     bool stepVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
     std::optional<ExactJob> exactJob_;

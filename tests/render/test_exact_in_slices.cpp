@@ -1,7 +1,8 @@
 // The exact frame in slices (Renderer::advanceExact, docs/architecture.md "Preview and exact frames"): step V
 // in slices of its recompute list and the ray cast in bands of tile rows give render()'s V_AO and image bit
 // for bit; the image shown stays the last one until the exact frame is done; and when the scene moves while a
-// step V is under way, it is finished first, so CAO stays equal to a fresh renderer's (the exactness contract).
+// step V is under way, it is abandoned, not finished, and CAO stays equal to a fresh renderer's (the exactness
+// contract).
 #include "tests/render/moving_sphere_scene.h"
 
 #include <gtest/gtest.h>
@@ -101,11 +102,11 @@ TEST(ExactInSlices, StepVIsSlicedIntoManyDispatches) {
 }
 
 // The scene moves while an exact frame is under way: after step IV (step V not begun), and in the middle of
-// step V. The exact frame of the new pose equals a fresh renderer's, V_AO and image: the step V under way was
-// finished first. Pose 0 (the last exact frame), pose 3 (the frame left under way) and pose 4 (the last) lie so
-// far apart that the update at pose 4 (which visits the bricks of poses 3 and 4) does not reach pose 0's: only
-// step V at pose 3 rewrites what pose 0 left, so a step V left half done would keep pose 0's LAO there.
-TEST(ExactInSlices, MotionDuringTheExactFrameFinishesItsStepVAndStaysExact) {
+// step V. The exact frame of the new pose equals a fresh renderer's, V_AO and image. Pose 0 (the last exact
+// frame), pose 3 (the frame left under way) and pose 4 (the last) lie so far apart that the bricks of poses 3
+// and 4 do not reach pose 0's: the update at pose 4 must also visit what the abandoned update at pose 3 visited
+// (pose 0's bricks among them), or pose 0's LAO stays there (leaving them out fails it).
+TEST(ExactInSlices, MotionDuringTheExactFrameAbandonsItsStepVAndStaysExact) {
     MovingSphereScene fresh = freshAt(4);
     for (int extraSlices : {0, 5}) {
         SCOPED_TRACE(extraSlices == 0 ? "moved right after step IV" : "moved in the middle of step V");
@@ -132,6 +133,46 @@ TEST(ExactInSlices, MotionDuringTheExactFrameFinishesItsStepVAndStaysExact) {
     viewer.moveTo(4);
     viewer.renderer->render(viewer.frame);
     EXPECT_EQ(viewer.ambient(), fresh.ambient()) << "render() after an exact frame in slices left its step V half done";
+
+    // Back to the pose of the last finished exact frame after an abandoned step V: V_AO no longer counts as that
+    // pose's, so IV and V run again.
+    MovingSphereScene back;
+    back.renderer->render(back.frame);
+    back.moveTo(3);
+    stepIV = passIndex(*back.renderer, back.frame, Pass::VoxelClipping);
+    for (int i = 0; i <= stepIV + 2; ++i) ASSERT_FALSE(back.renderer->advanceExact(back.frame, 0.0, 1));
+    back.moveTo(0);
+    back.renderer->render(back.frame);
+    MovingSphereScene freshAt0 = freshAt(0);
+    EXPECT_EQ(back.ambient(), freshAt0.ambient()) << "an abandoned step V left V_AO counted as the last exact frame's";
+}
+
+// An abandoned step V is not finished later: the next exact frame in slices takes as many slices as the same
+// update from a renderer whose exact frame at the abandoned pose was finished (finishing it first, as before,
+// took that step V's slices on top).
+TEST(ExactInSlices, AnAbandonedStepVIsNotFinishedByTheNextExactFrame) {
+    auto slicesToExact = [](MovingSphereScene& s) {
+        int calls = 1;
+        while (!s.renderer->advanceExact(s.frame, 0.0, 3)) ++calls;
+        return calls;
+    };
+    MovingSphereScene viewer;
+    viewer.renderer->render(viewer.frame);
+    viewer.moveTo(3);
+    int stepIV = passIndex(*viewer.renderer, viewer.frame, Pass::VoxelClipping);
+    ASSERT_GE(stepIV, 0);
+    for (int i = 0; i <= stepIV + 1; ++i) ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));
+    viewer.moveTo(4);
+    int abandoned = slicesToExact(viewer);
+
+    MovingSphereScene finished;
+    finished.renderer->render(finished.frame);
+    finished.moveTo(3);
+    slicesToExact(finished);
+    finished.moveTo(4);
+    int after = slicesToExact(finished);
+    EXPECT_EQ(viewer.ambient(), finished.ambient());
+    EXPECT_EQ(abandoned, after) << "the next exact frame also ran the abandoned step V";
 }
 
 }  // namespace
