@@ -15,8 +15,8 @@
 //     so a slow scene (or a loaded machine) drops resolution rather than frames; its ray step is
 //     `previewStepScale` times the exact frame's (VTK's interactive sample distance), halving its samples.
 //   - exact quality: the exact frame whenever it is not on screen (a hardware GPU's default).
-//   - adaptive quality computes the exact frame in slices of `exactBudgetMs` per frame (steps V and VI are
-//     sliced: Renderer::advanceExact), showing the last preview meanwhile, so the window never freezes for it;
+//   - adaptive quality computes the exact frame in slices of `exactBudgetMs` per frame (steps IV, V and VI
+//     are sliced: Renderer::advanceExact), showing the last preview meanwhile, so the window never freezes for it;
 //     the decision stays "exact" until the renderer shows it.
 //   - in both, while step I is to run, each frame runs slices of it for `precomputeBudgetMs` and shows a
 //     preview (phong: there is no AO yet) at the preview resolution (a full-size frame on llvmpipe would stall

@@ -159,6 +159,7 @@ void AmbientOcclusion::markLaoBricks() {
 
 void AmbientOcclusion::setVisitUniforms(gl::Program& p) const {
     p.set("visitBrickCount", visitCount_);
+    p.set("visitSlotOffset", 0u);
     p.set("brickGrid", visitBrickGrid(volume_.geometry().dims));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboVisitBricks, visitBricks_.name());
 }
@@ -170,7 +171,8 @@ void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
     glBindTextureUnit(binding::occupancy, seenBricks_->name());
 }
 
-void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation) {
+void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
+                                        std::uint32_t firstSlot, std::uint32_t slots) {
     gl::Defines defines;
     tf.addDefines(defines);
     gl::Program& p = clipPrograms_.get(defines);
@@ -189,7 +191,8 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     glBindImageTexture(binding::imageOpacity, opacity_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
     glBindImageTexture(binding::imageMask, mask_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8UI);
     setVisitUniforms(p);
-    glm::uvec2 grid = workGroupGrid(visitCount_);
+    p.set("visitSlotOffset", firstSlot);
+    glm::uvec2 grid = workGroupGrid(slots);
     p.use();
     glDispatchCompute(grid.x, grid.y, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -333,6 +336,7 @@ void AmbientOcclusion::uploadVisitRange(std::uint32_t first, std::uint32_t count
         dealtToWorkerThreads(std::vector<std::uint32_t>(allBricks_.begin() + first, allBricks_.begin() + first + count), llvmpipeWorkerThreads());
     glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * std::size_t(count)), slice.data());
     visitCount_ = count;
+    clipSlotsDone_ = count;   // no step IV under way over this list
     laoFlagsPending_ = false;
 }
 
@@ -345,13 +349,26 @@ std::uint32_t AmbientOcclusion::advancePrecompute(const TransferFunctionTexture&
     std::uint32_t first = slicedBricks_ - std::uint32_t(phase) * total;
     ran = std::min(bricks, total - first);
     uploadVisitRange(first, ran);
-    if (phase == 0) runVoxelClipping(tf, nullptr, false);
+    if (phase == 0) runVoxelClipping(tf, nullptr, false, 0, visitCount_);
     else runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
     slicedBricks_ += ran;
     return ran;
 }
 
 void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode) {
+    std::uint32_t bricks = beginClipVoxels(clip, mode);
+    advanceClipVoxels(tf, clip, bricks);
+}
+
+std::uint32_t AmbientOcclusion::advanceClipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, std::uint32_t bricks) {
+    std::uint32_t n = std::min(bricks, visitCount_ - clipSlotsDone_);
+    if (n == 0) return 0;
+    runVoxelClipping(tf, &clip, clipDilation_, clipSlotsDone_, n);
+    clipSlotsDone_ += n;
+    return n;
+}
+
+std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, ShadingMode mode) {
     bool cao = mode == ShadingMode::Cao;
     // Full LAO (the baseline) and the first update after step I visit every voxel. A CAO update visits the
     // bricks this frame's meshes reach and those the last update's reached (render/mesh_voxel_box.h): outside
@@ -372,16 +389,19 @@ void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip:
     // Full LAO recomputes every visible voxel; CAO only where a changed V_o is within reach (markLaoBricks).
     stats_.bricks = uploadVisit(visit, !cao);
     stats_.laoBricks = cao ? 0 : stats_.bricks;
-    if (visitCount_ > 0) runVoxelClipping(tf, &clip, cao);
+    clipDilation_ = cao;
+    clipSlotsDone_ = 0;
+    return visitCount_;
 }
 
 void AmbientOcclusion::abandonRecompute() {
-    // Step IV rewrote V_o and V_m over lastVisit_; step V may have rewritten any part of V_AO there. Visiting all
-    // of it next time (with the meshes' bricks then) rewrites every voxel this update touched or left stale, and
-    // outside it nothing was touched since the update before, whose invariant still holds there.
+    // Step IV rewrote V_o and V_m over any part of lastVisit_ (all of it unless it was abandoned in slices), step V
+    // any part of V_AO there. Visiting all of it next time (with the meshes' bricks then) rewrites every voxel this
+    // update touched or left stale; outside it nothing was touched since the update before, whose invariant holds.
     if (lastVisit_) lastMeshBricks_ = std::move(*lastVisit_);
     lastVisit_.reset();
     recomputeGroups_ = recomputeGroupsDone_ = 0;
+    clipSlotsDone_ = visitCount_;
 }
 
 void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {

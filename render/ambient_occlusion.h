@@ -90,6 +90,14 @@ public:
     // Step IV under the meshes' current poses. mode: Cao (masked, over the visited bricks) or Lao (every
     // voxel). Must follow step I.
     void clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode);
+    // Step IV in slices (Renderer::advanceExact): beginClipVoxels decides and uploads the bricks to visit and
+    // returns their number; each advanceClipVoxels(bricks) clips the voxels of the next `bricks` of them (the
+    // meshes must not change in between) and returns how many it ran. Each voxel is clipped by the same
+    // invocation code as in one dispatch, so V_o and V_m come out the same bit for bit. clipVoxels is begin and
+    // one slice of all.
+    std::uint32_t beginClipVoxels(const clip::ClipMeshSet& clip, ShadingMode mode);
+    std::uint32_t advanceClipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, std::uint32_t bricks);
+    std::uint32_t clipBricksLeft() const { return visitCount_ - clipSlotsDone_; }
     // Step V over the bricks step IV just visited.
     void recomputeLao(const TransferFunctionTexture& tf);
     // Step V in slices (Renderer::advanceExact): beginRecompute(tf) decides every visited voxel (copies and
@@ -102,10 +110,10 @@ public:
     std::uint32_t beginRecompute(const TransferFunctionTexture& tf);
     std::uint32_t advanceRecompute(std::uint32_t groups);
     std::uint32_t recomputeGroupsLeft() const { return recomputeGroups_ - recomputeGroupsDone_; }
-    // Step V of the last step IV will not be finished (the viewer moved on during the exact frame in slices):
-    // the next update visits every brick this one visited as well as its own meshes' bricks, so V_o, V_m and
-    // V_AO come out as if this update had finished (ExactInSlices.MotionDuringTheExactFrameAbandonsItsStepV...).
-    // V_AO is not that of any one pose until then.
+    // The update under way (step IV begun, in slices or whole, and step V not finished) will not be finished: the
+    // viewer moved on during the exact frame in slices. The next update visits every brick this one visited as
+    // well as its own meshes' bricks, so V_o, V_m and V_AO come out as if this update had finished
+    // (ExactInSlices.MotionDuringTheExactFrameAbandonsItsStepV...). V_AO is not that of any one pose until then.
     void abandonRecompute();
 
     GLuint ambientTexture() const { return ambient_.name(); }
@@ -127,7 +135,9 @@ private:
     void markLaoBricks();
     void setVisitUniforms(gl::Program& program) const;
     void setDecisionUniforms(gl::Program& program) const;
-    void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation);
+    // Step IV over the slots [firstSlot, firstSlot + slots) of the uploaded list.
+    void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation, std::uint32_t firstSlot,
+                          std::uint32_t slots);
     void runLao(GLuint target, bool compacted, float opacityExponent);
     // Binds lao.comp's resources and uniforms to the variant for `opacityExponent`, and returns it.
     gl::Program& bindLao(GLuint target, float opacityExponent);
@@ -150,6 +160,8 @@ private:
     std::uint32_t recomputeGroups_ = 0, recomputeGroupsDone_ = 0;   // sliced step V
     float recomputeExponent_ = 1;
     std::uint32_t visitCount_ = 0;   // bricks in the uploaded list: what the last step IV visited, step V visits the same
+    std::uint32_t clipSlotsDone_ = 0;   // of them, those step IV has clipped (in slices)
+    bool clipDilation_ = false;         // step IV tests the dilated maps (cao)
     bool laoFlagsPending_ = false;   // a CAO list without its "LAO can change" flags yet: markLaoBricks before step V
     LaoReachBricks laoReach_;
     // Outside these bricks (of the last update) V_o holds the unclipped opacity and V_AO equals V_PAO, so the

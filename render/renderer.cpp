@@ -285,14 +285,39 @@ void Renderer::abandonExactJob() {
     // V_AO's freshness record still names the versions of the last finished step V: this job's step IV ran
     // because the versions had moved on from those, and they only grow, so the record matches no later frame
     // until a step V finishes.
-    if (exactJob_ && exactJob_->stepIVDone && !exactJob_->stepVDone && ao_) ao_->abandonRecompute();
+    if (exactJob_ && exactJob_->stepIVBegun && !exactJob_->stepVDone && ao_) ao_->abandonRecompute();
     exactJob_.reset();
+}
+
+bool Renderer::stepIVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits) {
+    if (!job.stepIVBegun) {
+        // The bricks are decided and uploaded here; from now on an abandoned job leaves them to the next update.
+        job.stepIVBricks = ao_->beginClipVoxels(clip_, job.frame.shading);
+        job.stepIVBegun = true;
+        job.ambientVersions = currentVersions();
+    }
+    if (ao_->clipBricksLeft() > 0) {
+        std::uint32_t left = ao_->clipBricksLeft();
+        // A probe of 1/64 of the bricks first; then the last slice's rate, at most doubling its size (as step V's).
+        std::uint32_t n = sliceSize(stepIVBricksPerMs_, budgetMs, left, std::max<std::uint32_t>(left / 64, 1), sliceUnits);
+        if (sliceUnits == 0 && job.lastStepIVBricks > 0) n = std::min(n, 2 * job.lastStepIVBricks);
+        job.lastStepIVBricks = n;
+        auto start = Clock::now();
+        ao_->advanceClipVoxels(*tf_, clip_, n);
+        glFinish();
+        if (double ms = msSince(start); ms > 0.5) stepIVBricksPerMs_ = n / ms;
+    }
+    if (ao_->clipBricksLeft() > 0) return false;
+    job.stepIVDone = true;
+    return true;
 }
 
 void Renderer::runExactSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits) {
     Pass pass = job.plan.passes[job.next].pass;
     timers_.begin(passInfo(pass).name);
-    if (pass == Pass::LaoRecompute) {
+    if (pass == Pass::VoxelClipping) {
+        if (stepIVSlice(job, budgetMs, sliceUnits)) ++job.next;
+    } else if (pass == Pass::LaoRecompute) {
         if (stepVSlice(job, budgetMs, sliceUnits)) ++job.next;
     } else if (pass == Pass::RayCast) {
         if (job.bands == 0) {
@@ -318,10 +343,6 @@ void Renderer::runExactSlice(ExactJob& job, double budgetMs, std::uint32_t slice
         if (job.bandsDone >= job.bands) ++job.next;
     } else {
         run(pass, job.frame);
-        if (pass == Pass::VoxelClipping) {
-            job.stepIVDone = true;
-            job.ambientVersions = currentVersions();
-        }
         ++job.next;
     }
     timers_.end();
@@ -361,6 +382,8 @@ double Renderer::exactProgress() const {
     double within = 0;
     if (job.next < job.plan.passes.size()) {
         Pass pass = job.plan.passes[job.next].pass;
+        if (pass == Pass::VoxelClipping && job.stepIVBegun && job.stepIVBricks > 0)
+            within = 1.0 - double(ao_->clipBricksLeft()) / job.stepIVBricks;
         if (pass == Pass::LaoRecompute && job.stepVBegun && job.stepVGroups > 0)
             within = 1.0 - double(ao_->recomputeGroupsLeft()) / job.stepVGroups;
         if (pass == Pass::RayCast && job.bands > 0) within = double(job.bandsDone) / job.bands;

@@ -94,13 +94,14 @@ public:
     // The exact frame in slices, for a viewer that keeps presenting while it is computed: each call runs the
     // next part of render(frame)'s plan for about budgetMs of wall time (at least one slice) and returns true
     // once the frame is done. Then showing(frame) holds and the image shown is render(frame)'s, bit for bit;
-    // until then the image shown stays the last one (previews have their own image). Step V runs in slices of
-    // its recompute list (AmbientOcclusion::advanceRecompute), the ray cast in bands of tile rows
+    // until then the image shown stays the last one (previews have their own image). Step IV runs in slices of
+    // its bricks (AmbientOcclusion::advanceClipVoxels), step V in slices of its recompute list
+    // (AmbientOcclusion::advanceRecompute), the ray cast in bands of tile rows
     // (TileOrderPiece::dispatchBands), every other pass whole. A call for another frame, or after the scene
-    // changed or a preview was drawn, starts over; a step V under way is abandoned, and the next update visits
+    // changed or a preview was drawn, starts over; a step IV or V under way is abandoned, and the next update visits
     // the bricks its step IV visited as well as its own (AmbientOcclusion::abandonRecompute), so it rewrites
     // whatever the abandoned one left stale (render() does the same). sliceUnits > 0 fixes the slice size
-    // (step V: work groups of the list, the ray cast: bands), for tests.
+    // (step IV: bricks, step V: work groups of the list, the ray cast: bands), for tests.
     bool advanceExact(const FrameDescription& frame, double budgetMs, std::uint32_t sliceUnits = 0);
     // How far the exact frame in slices is, in [0, 1] (passes done, the sliced ones by their share done; 0 when
     // none is under way).
@@ -165,8 +166,9 @@ private:
         InputVersions versionsSeen;           // the scene at the end of the last slice ...
         std::uint64_t appearanceSeen = 0;
         std::uint64_t previewsSeen = 0;       // ... and the previews drawn by then
-        bool stepIVDone = false, stepVBegun = false, stepVDone = false;
+        bool stepIVBegun = false, stepIVDone = false, stepVBegun = false, stepVDone = false;
         InputVersions ambientVersions;        // what step IV clipped (V_AO's freshness once step V is done)
+        std::uint32_t stepIVBricks = 0, lastStepIVBricks = 0;
         std::uint32_t stepVGroups = 0;
         int bands = 0, bandsDone = 0;         // the ray cast's
         int lastBands = 0;                    // the last slices' sizes
@@ -178,10 +180,12 @@ private:
     // (AmbientOcclusion::abandonRecompute), and the next exact frame's IV and V visit this one's bricks too.
     void abandonExactJob();
     void beginStepV(ExactJob& job);
+    // A slice of step IV (its first decides and uploads the bricks); whether step IV is done.
+    bool stepIVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
     bool stepVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
     std::optional<ExactJob> exactJob_;
     std::uint64_t previewsRendered_ = 0;
-    double stepVGroupsPerMs_ = 0, rayCastBandsPerMs_ = 0;   // the last slices' rates (0: not measured yet)
+    double stepVGroupsPerMs_ = 0, rayCastBandsPerMs_ = 0, stepIVBricksPerMs_ = 0;   // the last slices' rates (0: not measured yet)
     // The ambient texture the image passes shade lao/cao with: V_AO, or in a preview previewAmbient()'s.
     GLuint shadedAmbientTexture() const;
     void validateSize(const FrameDescription& frame) const;

@@ -20,10 +20,11 @@ layout(std430, binding = SSBO_VISIT_BRICKS) buffer VisitBricks {
     uint visitBricks[];   // brick number bx + grid.x * (by + grid.y * bz) | flags
 };
 uniform uint visitBrickCount;
-uniform ivec3 brickGrid;   // bricks per axis
+uniform ivec3 brickGrid;        // bricks per axis
+uniform uint visitSlotOffset;   // the slot of this dispatch's first work group (step IV in slices; else 0)
 
 // This invocation's slot in the list (its work group).
-uint visitSlot() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
+uint visitSlot() { return visitSlotOffset + gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
 
 // This invocation's voxel and its brick's list entry, or false when the slot is past the list or the voxel
 // past the grid's upper faces (partial bricks). Needs a work group of BRICK_VOXELS invocations.

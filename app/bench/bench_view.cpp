@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <thread>
 
 namespace curette::bench {
@@ -240,7 +241,12 @@ int benchView(const CommandLine& cl) {
     // iterations after the last motion was applied (how long the window waited at most while it settled).
     double exactRenderMs = 0, settleFrameMaxMs = 0;
     int exactSlices = 0;
-    for (auto f = played.rbegin(); f != played.rend() && f->kind == FrameKind::Exact; ++f) exactRenderMs += f->renderMs, ++exactSlices;
+    // ... and its work by pass (steps IV, V and VI, and the clip maps when they were not drawn by the last preview).
+    std::map<std::string, double> exactPassMs;
+    for (auto f = played.rbegin(); f != played.rend() && f->kind == FrameKind::Exact; ++f) {
+        exactRenderMs += f->renderMs, ++exactSlices;
+        for (const FrameTimings::Entry& e : f->passes.passes) exactPassMs[passInfo(e.pass).name] += e.ms;
+    }
     for (const LoopFrame& f : played)
         if (lastMotionApplied >= 0 && f.t - f.ms / 1000.0 >= lastMotionApplied) settleFrameMaxMs = std::max(settleFrameMaxMs, f.ms);
     double fromRecordedMotion = lastMotionRecorded >= 0 ? 1000 * (exactAfterMotion - lastMotionRecorded) : 0;
@@ -294,6 +300,7 @@ int benchView(const CommandLine& cl) {
     table.add({"last motion -> exact", fromRecordedMotion, "ms", "recorded time of the last motion to the exact frame on screen"});
     table.add({"applied motion -> exact", fromAppliedMotion, "ms", "wall time the last motion was applied to the exact frame on screen"});
     table.add({"exact frame render", exactRenderMs, "ms", "the last exact frame's render + finish (steps IV, V, VI), over its slices"});
+    for (const auto& [pass, ms] : exactPassMs) table.add({"  " + pass, ms, "ms", "of which this pass, over the slices"});
     table.add({"exact frame slices", static_cast<double>(exactSlices), "", "iterations that ran it (--exact-budget 0: one)"});
     table.add({"settle frame max", settleFrameMaxMs, "ms", "the longest the window waited between the last motion and the exact frame"});
     table.add({"last frame exact", lastIsExact ? "yes" : "NO", "", "the image on screen at the end is the exact frame of the last state"});
@@ -331,6 +338,7 @@ int benchView(const CommandLine& cl) {
         {"exact_after_motion_ms", fromRecordedMotion},
         {"exact_after_applied_motion_ms", fromAppliedMotion},
         {"exact_render_ms", exactRenderMs},
+        {"exact_pass_ms", exactPassMs},
         {"exact_slices", exactSlices},
         {"settle_frame_max_ms", settleFrameMaxMs},
         {"last_frame", {{"exact", lastIsExact}, {"image_hash", hash}, {"size", {size.x, size.y}}}},

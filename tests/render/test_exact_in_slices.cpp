@@ -30,6 +30,14 @@ int passIndex(const Renderer& renderer, const FrameDescription& frame, Pass pass
     return -1;
 }
 
+// Runs the exact frame of `s` in slices until its step IV is done (the passes before it one per call, step IV in
+// one slice), without finishing the frame.
+void advancePastStepIV(MovingSphereScene& s) {
+    int stepIV = passIndex(*s.renderer, s.frame, Pass::VoxelClipping);
+    ASSERT_GE(stepIV, 0);
+    for (int i = 0; i <= stepIV; ++i) ASSERT_FALSE(s.renderer->advanceExact(s.frame, 0.0, ~0u));
+}
+
 TEST(ExactInSlices, EqualsOneRenderBitForBitAndShowsTheLastImageUntilDone) {
     for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Lao, ShadingMode::Phong}) {
         SCOPED_TRACE(shadingModeName(mode));
@@ -101,21 +109,31 @@ TEST(ExactInSlices, StepVIsSlicedIntoManyDispatches) {
     EXPECT_TRUE(sameImage(a.renderer->readImage(), b.renderer->readImage()));
 }
 
-// The scene moves while an exact frame is under way: after step IV (step V not begun), and in the middle of
-// step V. The exact frame of the new pose equals a fresh renderer's, V_AO and image. Pose 0 (the last exact
-// frame), pose 3 (the frame left under way) and pose 4 (the last) lie so far apart that the bricks of poses 3
-// and 4 do not reach pose 0's: the update at pose 4 must also visit what the abandoned update at pose 3 visited
-// (pose 0's bricks among them), or pose 0's LAO stays there (leaving them out fails it).
+// The scene moves while an exact frame is under way: in the middle of step IV, after it (step V not begun), and
+// in the middle of step V. The exact frame of the new pose equals a fresh renderer's, V_AO and image. Pose 0
+// (the last exact frame), pose 3 (the frame left under way) and pose 4 (the last) lie so far apart that the
+// bricks of poses 3 and 4 do not reach pose 0's: the update at pose 4 must also visit what the abandoned update
+// at pose 3 visited (pose 0's bricks among them), or pose 0's LAO stays there (leaving them out fails it).
 TEST(ExactInSlices, MotionDuringTheExactFrameAbandonsItsStepVAndStaysExact) {
     MovingSphereScene fresh = freshAt(4);
-    for (int extraSlices : {0, 5}) {
-        SCOPED_TRACE(extraSlices == 0 ? "moved right after step IV" : "moved in the middle of step V");
+    struct Case {
+        const char* name;
+        bool pastStepIV;
+        int extraSlices;   // of one brick (step IV) or one group of the list (step V)
+    };
+    for (Case c : {Case{"moved in the middle of step IV", false, 3}, Case{"moved right after step IV", true, 0},
+                   Case{"moved in the middle of step V", true, 5}}) {
+        SCOPED_TRACE(c.name);
         MovingSphereScene viewer;
         viewer.renderer->render(viewer.frame);
         viewer.moveTo(3);
-        int stepIV = passIndex(*viewer.renderer, viewer.frame, Pass::VoxelClipping);
-        ASSERT_GE(stepIV, 0);
-        for (int i = 0; i <= stepIV + extraSlices; ++i) ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));
+        if (c.pastStepIV) {
+            advancePastStepIV(viewer);
+        } else {
+            int stepIV = passIndex(*viewer.renderer, viewer.frame, Pass::VoxelClipping);
+            for (int i = 0; i < stepIV; ++i) ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));
+        }
+        for (int i = 0; i < c.extraSlices; ++i) ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));
         // The mesh moves on, with a preview; then the exact frame of pose 4, in slices.
         viewer.moveTo(4);
         viewer.renderer->renderPreview(viewer.frame);
@@ -128,30 +146,29 @@ TEST(ExactInSlices, MotionDuringTheExactFrameAbandonsItsStepVAndStaysExact) {
     MovingSphereScene viewer;
     viewer.renderer->render(viewer.frame);
     viewer.moveTo(3);
-    int stepIV = passIndex(*viewer.renderer, viewer.frame, Pass::VoxelClipping);
-    for (int i = 0; i <= stepIV; ++i) ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));
+    advancePastStepIV(viewer);
     viewer.moveTo(4);
     viewer.renderer->render(viewer.frame);
     EXPECT_EQ(viewer.ambient(), fresh.ambient()) << "render() after an exact frame in slices left its step V half done";
 
-    // Back to the pose of the last finished exact frame after an abandoned step V: V_AO no longer counts as that
-    // pose's, so IV and V run again.
+    // Back to the pose of the last finished exact frame after an abandoned step V: IV and V run again.
     MovingSphereScene back;
     back.renderer->render(back.frame);
     back.moveTo(3);
-    stepIV = passIndex(*back.renderer, back.frame, Pass::VoxelClipping);
-    for (int i = 0; i <= stepIV + 2; ++i) ASSERT_FALSE(back.renderer->advanceExact(back.frame, 0.0, 1));
+    advancePastStepIV(back);
+    for (int i = 0; i < 2; ++i) ASSERT_FALSE(back.renderer->advanceExact(back.frame, 0.0, 1));
     back.moveTo(0);
     back.renderer->render(back.frame);
     MovingSphereScene freshAt0 = freshAt(0);
     EXPECT_EQ(back.ambient(), freshAt0.ambient()) << "an abandoned step V left V_AO counted as the last exact frame's";
 }
 
-// An abandoned step V is not finished later: the next exact frame in slices takes as many slices as the same
-// update from a renderer whose exact frame at the abandoned pose was finished (finishing it first, as before,
-// took that step V's slices on top).
+// An abandoned step V is not finished later: after its step IV, the next exact frame in slices takes as many
+// slices as the same update from a renderer whose exact frame at the abandoned pose was finished (finishing it
+// first, as before, took that step V's slices on top).
 TEST(ExactInSlices, AnAbandonedStepVIsNotFinishedByTheNextExactFrame) {
-    auto slicesToExact = [](MovingSphereScene& s) {
+    auto slicesAfterStepIV = [](MovingSphereScene& s) {
+        advancePastStepIV(s);
         int calls = 1;
         while (!s.renderer->advanceExact(s.frame, 0.0, 3)) ++calls;
         return calls;
@@ -159,18 +176,17 @@ TEST(ExactInSlices, AnAbandonedStepVIsNotFinishedByTheNextExactFrame) {
     MovingSphereScene viewer;
     viewer.renderer->render(viewer.frame);
     viewer.moveTo(3);
-    int stepIV = passIndex(*viewer.renderer, viewer.frame, Pass::VoxelClipping);
-    ASSERT_GE(stepIV, 0);
-    for (int i = 0; i <= stepIV + 1; ++i) ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));
+    advancePastStepIV(viewer);
+    ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));   // step V's list
     viewer.moveTo(4);
-    int abandoned = slicesToExact(viewer);
+    int abandoned = slicesAfterStepIV(viewer);
 
     MovingSphereScene finished;
     finished.renderer->render(finished.frame);
     finished.moveTo(3);
-    slicesToExact(finished);
+    slicesAfterStepIV(finished);
     finished.moveTo(4);
-    int after = slicesToExact(finished);
+    int after = slicesAfterStepIV(finished);
     EXPECT_EQ(viewer.ambient(), finished.ambient());
     EXPECT_EQ(abandoned, after) << "the next exact frame also ran the abandoned step V";
 }
