@@ -394,7 +394,7 @@ std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, S
     return visitCount_;
 }
 
-void AmbientOcclusion::abandonRecompute() {
+void AmbientOcclusion::abandonUpdate() {
     // Step IV rewrote V_o and V_m over any part of lastVisit_ (all of it unless it was abandoned in slices), step V
     // any part of V_AO there. Visiting all of it next time (with the meshes' bricks then) rewrites every voxel this
     // update touched or left stale; outside it nothing was touched since the update before, whose invariant holds.

@@ -114,7 +114,7 @@ public:
     // viewer moved on during the exact frame in slices. The next update visits every brick this one visited as
     // well as its own meshes' bricks, so V_o, V_m and V_AO come out as if this update had finished
     // (ExactInSlices.MotionDuringTheExactFrameAbandonsItsStepV...). V_AO is not that of any one pose until then.
-    void abandonRecompute();
+    void abandonUpdate();
 
     GLuint ambientTexture() const { return ambient_.name(); }
     const AmbientOcclusionStats& lastStats() const { return stats_; }

@@ -245,6 +245,23 @@ std::uint32_t sliceSize(double rate, double budgetMs, std::uint32_t left, std::u
     if (!(rate > 0)) return std::clamp<std::uint32_t>(probe, 1, left);
     return static_cast<std::uint32_t>(std::clamp(rate * std::max(budgetMs, 1.0), 1.0, double(left)));
 }
+
+// One slice of a sliced pass (step IV's bricks, step V's list groups, the ray cast's bands): sliceSize's units,
+// at most twice the last slice's (the rate comes from the last slice, whose units may have been cheap, air at
+// the top of the image or far from the cut, so a wrong rate overruns the budget little), run by `run`; then the
+// GPU is waited for and the rate measured again. Returns the units run.
+template <typename Run>
+std::uint32_t runTimedSlice(double& unitsPerMs, std::uint32_t& lastUnits, double budgetMs, std::uint32_t left, std::uint32_t probe,
+                            std::uint32_t fixed, Run run) {
+    std::uint32_t n = sliceSize(unitsPerMs, budgetMs, left, probe, fixed);
+    if (fixed == 0 && lastUnits > 0) n = std::min(n, 2 * lastUnits);
+    lastUnits = n;
+    auto start = Clock::now();
+    run(n);
+    glFinish();
+    if (double ms = msSince(start); ms > 0.5) unitsPerMs = n / ms;
+    return n;
+}
 }  // namespace
 
 bool Renderer::exactJobCurrent(const FrameDescription& frame) const {
@@ -262,14 +279,8 @@ bool Renderer::stepVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUni
     if (!job.stepVBegun) {
         beginStepV(job);
     } else if (ao_->recomputeGroupsLeft() > 0) {
-        std::uint32_t n = sliceSize(stepVGroupsPerMs_, budgetMs, ao_->recomputeGroupsLeft(), std::max<std::uint32_t>(job.stepVGroups / 64, 1), sliceUnits);
-        if (sliceUnits == 0 && job.lastStepVGroups > 0) n = std::min(n, 2 * job.lastStepVGroups);   // as the ray cast's bands
-        job.lastStepVGroups = n;
-        auto start = Clock::now();
-        ao_->advanceRecompute(n);
-        glFinish();
-        double ms = msSince(start);
-        if (ms > 0.5) stepVGroupsPerMs_ = n / ms;
+        runTimedSlice(stepVGroupsPerMs_, job.lastStepVGroups, budgetMs, ao_->recomputeGroupsLeft(),
+                      std::max<std::uint32_t>(job.stepVGroups / 64, 1), sliceUnits, [&](std::uint32_t n) { ao_->advanceRecompute(n); });
     }
     if (ao_->recomputeGroupsLeft() > 0) return false;
     ambientWritten_ = true;
@@ -285,7 +296,7 @@ void Renderer::abandonExactJob() {
     // V_AO's freshness record still names the versions of the last finished step V: this job's step IV ran
     // because the versions had moved on from those, and they only grow, so the record matches no later frame
     // until a step V finishes.
-    if (exactJob_ && exactJob_->stepIVBegun && !exactJob_->stepVDone && ao_) ao_->abandonRecompute();
+    if (exactJob_ && exactJob_->stepIVBegun && !exactJob_->stepVDone && ao_) ao_->abandonUpdate();
     exactJob_.reset();
 }
 
@@ -296,16 +307,10 @@ bool Renderer::stepIVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUn
         job.stepIVBegun = true;
         job.ambientVersions = currentVersions();
     }
-    if (ao_->clipBricksLeft() > 0) {
-        std::uint32_t left = ao_->clipBricksLeft();
-        // A probe of 1/64 of the bricks first; then the last slice's rate, at most doubling its size (as step V's).
-        std::uint32_t n = sliceSize(stepIVBricksPerMs_, budgetMs, left, std::max<std::uint32_t>(left / 64, 1), sliceUnits);
-        if (sliceUnits == 0 && job.lastStepIVBricks > 0) n = std::min(n, 2 * job.lastStepIVBricks);
-        job.lastStepIVBricks = n;
-        auto start = Clock::now();
-        ao_->advanceClipVoxels(*tf_, clip_, n);
-        glFinish();
-        if (double ms = msSince(start); ms > 0.5) stepIVBricksPerMs_ = n / ms;
+    if (std::uint32_t left = ao_->clipBricksLeft(); left > 0) {
+        // A probe of 1/64 of the bricks until a rate is known.
+        runTimedSlice(stepIVBricksPerMs_, job.lastStepIVBricks, budgetMs, left, std::max<std::uint32_t>(left / 64, 1), sliceUnits,
+                      [&](std::uint32_t n) { ao_->advanceClipVoxels(*tf_, clip_, n); });
     }
     if (ao_->clipBricksLeft() > 0) return false;
     job.stepIVDone = true;
@@ -326,19 +331,13 @@ void Renderer::runExactSlice(ExactJob& job, double budgetMs, std::uint32_t slice
             job.bands = runRayCast(job.frame, false, 0, 1);
             glFinish();
             job.bandsDone = 1;
+            job.lastBands = 1;
             if (double ms = msSince(start); ms > 0.5) rayCastBandsPerMs_ = 1 / ms;
         } else {
-            std::uint32_t left = static_cast<std::uint32_t>(job.bands - job.bandsDone);
-            // The rate comes from the last slice, whose bands may have been cheap (air at the top of the image):
-            // a slice at most doubles the last one's size, so a wrong rate overruns the budget little.
-            auto n = static_cast<int>(sliceSize(rayCastBandsPerMs_, budgetMs, left, 1, sliceUnits));
-            if (sliceUnits == 0) n = std::min(n, 2 * std::max(job.lastBands, 1));
-            job.lastBands = n;
-            auto start = Clock::now();
-            runRayCast(job.frame, false, job.bandsDone, n);
-            glFinish();
-            job.bandsDone += n;
-            if (double ms = msSince(start); ms > 0.5) rayCastBandsPerMs_ = n / ms;
+            auto left = static_cast<std::uint32_t>(job.bands - job.bandsDone);
+            std::uint32_t ran = runTimedSlice(rayCastBandsPerMs_, job.lastBands, budgetMs, left, 1, sliceUnits,
+                                              [&](std::uint32_t n) { runRayCast(job.frame, false, job.bandsDone, static_cast<int>(n)); });
+            job.bandsDone += static_cast<int>(ran);
         }
         if (job.bandsDone >= job.bands) ++job.next;
     } else {

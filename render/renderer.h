@@ -99,7 +99,7 @@ public:
     // (AmbientOcclusion::advanceRecompute), the ray cast in bands of tile rows
     // (TileOrderPiece::dispatchBands), every other pass whole. A call for another frame, or after the scene
     // changed or a preview was drawn, starts over; a step IV or V under way is abandoned, and the next update visits
-    // the bricks its step IV visited as well as its own (AmbientOcclusion::abandonRecompute), so it rewrites
+    // the bricks its step IV visited as well as its own (AmbientOcclusion::abandonUpdate), so it rewrites
     // whatever the abandoned one left stale (render() does the same). sliceUnits > 0 fixes the slice size
     // (step IV: bricks, step V: work groups of the list, the ray cast: bands), for tests.
     bool advanceExact(const FrameDescription& frame, double budgetMs, std::uint32_t sliceUnits = 0);
@@ -171,13 +171,13 @@ private:
         std::uint32_t stepIVBricks = 0, lastStepIVBricks = 0;
         std::uint32_t stepVGroups = 0;
         int bands = 0, bandsDone = 0;         // the ray cast's
-        int lastBands = 0;                    // the last slices' sizes
+        std::uint32_t lastBands = 0;          // the last slices' sizes
         std::uint32_t lastStepVGroups = 0;
     };
     bool exactJobCurrent(const FrameDescription& frame) const;
     void runExactSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
     // The exact frame under way is given up: if its step IV ran and its step V is unfinished, step V is abandoned
-    // (AmbientOcclusion::abandonRecompute), and the next exact frame's IV and V visit this one's bricks too.
+    // (AmbientOcclusion::abandonUpdate), and the next exact frame's IV and V visit this one's bricks too.
     void abandonExactJob();
     void beginStepV(ExactJob& job);
     // A slice of step IV (its first decides and uploads the bricks); whether step IV is done.

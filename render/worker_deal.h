@@ -25,9 +25,10 @@ std::vector<std::uint32_t> dealtToWorkerThreads(const std::vector<std::uint32_t>
 // The widest row of work groups a dispatch here uses (GL guarantees 65535 per dimension).
 inline constexpr std::uint32_t kMaxWorkGroupsX = 32768;
 
-// A 2-D grid of work groups for `groups` jobs numbered y * width + x (at most kMaxWorkGroupsX along x): as few rows as that allows, each as narrow as it can be, so fewer groups than
-// rows lie past the jobs and llvmpipe's runs split the jobs themselves evenly. shaders/lao_compact.comp sizes
-// its indirect dispatch the same way. (1, 0) for no jobs.
+// A 2-D grid of work groups for `groups` jobs numbered y * width + x (at most kMaxWorkGroupsX along x): as few
+// rows as that allows, each as narrow as it can be, so fewer groups than rows lie past the jobs and llvmpipe's
+// runs split the jobs themselves evenly. shaders/lao_compact.comp sizes its indirect dispatch the same way.
+// (1, 0) for no jobs.
 glm::uvec2 workGroupGrid(std::uint64_t groups);
 
 }  // namespace curette
