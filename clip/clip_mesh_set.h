@@ -98,6 +98,7 @@ public:
     // off tests every sample against every mesh, with the same answers (the tests' and `bench cao`'s
     // reference).
     void setDepthBoxTests(bool on) { depthBoxTests_ = on; }
+    bool depthBoxTests() const { return depthBoxTests_; }
 
     // Changes whenever the clipped region may have changed (a pose, a scale, a mesh added or removed).
     std::uint64_t version() const { return version_; }

@@ -211,7 +211,46 @@ void Renderer::validateSize(const FrameDescription& frame) const {
                          std::to_string(frame.size.x) + "x" + std::to_string(frame.size.y));
 }
 
+namespace {
+bool writesImage(Pass pass) {
+    const std::vector<Resource>& writes = passInfo(pass).writes;
+    return std::find(writes.begin(), writes.end(), Resource::OutputImage) != writes.end();
+}
+}  // namespace
+
+std::optional<PixelRect> Renderer::recastRegion(const FrameDescription& frame, const FramePlan& plan) const {
+    if (!recastOnlyChanged_ || !exactImage_ || exactImage_->frame != frame || exactImage_->appearance != appearanceVersion_ ||
+        exactImage_->diagnostics != diagnostics())
+        return std::nullopt;
+    InputVersions now = currentVersions(), before = exactImage_->versions;
+    before.clipMeshes = now.clipMeshes;
+    if (!(before == now)) return std::nullopt;
+    // The ray cast must be the only image pass (tubes in view bring the slab pass and the compositor), and the maps
+    // not drawn again (a rigid motion only moves their cameras).
+    for (const PlannedPass& p : plan.passes)
+        if (p.pass == Pass::ClipMaps || (writesImage(p.pass) && p.pass != Pass::RayCast)) return std::nullopt;
+    auto boxes = changedBoxes(exactImage_->clip, ClipSnapshot::of(clip_, volume_.geometry().cellDiagonalMm()),
+                              traits(frame.shading).ambientOcclusion);
+    // No mesh moved: render() of an unchanged state is asked for on purpose (benchmarks time it), so it runs whole.
+    if (!boxes || boxes->empty()) return std::nullopt;
+    return pixelsMeeting(*boxes, frame);
+}
+
+void Renderer::beginExactImage(const std::optional<PixelRect>& region, glm::ivec2 size) {
+    exactImage_.reset();
+    recastRegion_ = region;
+    lastRecastShare_ = region ? double(region->clampedTo(size).area()) / (double(size.x) * double(size.y)) : 1.0;
+}
+
+void Renderer::beginImage(ExactJob& job) {
+    if (job.imageBegun) return;
+    beginExactImage(job.recast, job.frame.size);
+    job.imageBegun = true;
+}
+
 void Renderer::markShown(const FrameDescription& frame, bool exact) {
+    if (exact)
+        exactImage_ = ExactImage{frame, currentVersions(), appearanceVersion_, ClipSnapshot::of(clip_, volume_.geometry().cellDiagonalMm()), diagnostics()};
     shownImage_ = exact ? kExactImage : kPreviewImage;
     shownFrame_ = frame;
     shownVersions_ = currentVersions();
@@ -227,6 +266,7 @@ void Renderer::render(const FrameDescription& frame) {
     lastPlan_ = plan(frame);
     // A rigid motion changes only the clipping cameras: upload them when the maps are not redrawn anyway.
     if (!lastPlan_.runs(Pass::ClipMaps)) clip_.uploadCameras();
+    beginExactImage(recastRegion(frame, lastPlan_), frame.size);
     for (const PlannedPass& p : lastPlan_.passes) {
         timers_.begin(passInfo(p.pass).name);
         run(p.pass, frame);
@@ -325,12 +365,14 @@ void Renderer::runExactSlice(ExactJob& job, double budgetMs, std::uint32_t slice
     } else if (pass == Pass::LaoRecompute) {
         if (stepVSlice(job, budgetMs, sliceUnits)) ++job.next;
     } else if (pass == Pass::RayCast) {
-        if (job.bands == 0) {
-            // The first slice: a probe of one band, which also says how many there are.
+        if (!job.rayCastBegun) {
+            // The first slice: a probe of one band, which also says how many there are (none: every pixel is kept).
+            beginImage(job);
+            job.rayCastBegun = true;
             auto start = Clock::now();
             job.bands = runRayCast(job.frame, false, 0, 1);
             glFinish();
-            job.bandsDone = 1;
+            job.bandsDone = std::min(job.bands, 1);
             job.lastBands = 1;
             if (double ms = msSince(start); ms > 0.5) rayCastBandsPerMs_ = 1 / ms;
         } else {
@@ -341,6 +383,7 @@ void Renderer::runExactSlice(ExactJob& job, double budgetMs, std::uint32_t slice
         }
         if (job.bandsDone >= job.bands) ++job.next;
     } else {
+        if (writesImage(pass)) beginImage(job);
         run(pass, job.frame);
         ++job.next;
     }
@@ -360,6 +403,7 @@ bool Renderer::advanceExact(const FrameDescription& frame, double budgetMs, std:
         job.plan = plan(frame);
         // As render(): a rigid motion changes only the clipping cameras.
         if (!job.plan.runs(Pass::ClipMaps)) clip_.uploadCameras();
+        job.recast = recastRegion(frame, job.plan);
         exactJob_ = std::move(job);
     }
     ExactJob& job = *exactJob_;
@@ -579,7 +623,8 @@ int Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers, int fi
         if (firstBand == 0) glNamedBufferSubData(sampleCounter_.name(), 0, 16, zero);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboSampleCounter, sampleCounter_.name());
     }
-    TileOrderPiece tiles{frame.size, tileRowsPerBand_};
+    // An exact frame's ray cast covers its recast region; a preview's and ISMOS's, every pixel.
+    TileOrderPiece tiles{frame.size, tileRowsPerBand_, target_ == kExactImage && !ismosLayers ? recastRegion_ : std::nullopt};
     int bands = tiles.bandCount(p.workGroupSize());
     tiles.dispatchBands(p, firstBand, bandCount < 0 ? bands : bandCount);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);

@@ -14,6 +14,7 @@
 #include "render/gpu_volume.h"
 #include "render/image.h"
 #include "render/ismos_pass.h"
+#include "render/recast_region.h"
 #include "render/shader_pieces.h"
 #include "render/slab_pass.h"
 #include "render/transfer_function_texture.h"
@@ -141,6 +142,12 @@ public:
     glm::dvec2 rayStepsByDispatchHalf() const;
     // The ray caster's tile order (render/shader_pieces.h TileOrderPiece): rows per band, 1 = scanline order.
     void setTileRowsPerBand(int rows) { tileRowsPerBand_ = rows; }
+    // Whether an exact frame after rigid motions of clip meshes alone casts only the pixels they can change and
+    // keeps the others of the last exact image (render/recast_region.h; on by default, the image is the same bit
+    // for bit); off casts every pixel (for `bench` and tests).
+    void setRecastOnlyChangedPixels(bool on) { recastOnlyChanged_ = on; }
+    // The share of the image the last exact frame's ray cast covered (1: all of it; 0: it kept every pixel).
+    double lastRecastShare() const { return lastRecastShare_; }
 
     // Time per pass of the frames rendered since the last call.
     FrameTimings collectTimings();
@@ -158,6 +165,11 @@ private:
     // The whole image, or (bandCount >= 0) its bands [firstBand, firstBand + bandCount) of tile rows;
     // returns the image's number of bands.
     int runRayCast(const FrameDescription& frame, bool ismosLayers = false, int firstBand = 0, int bandCount = -1);
+    // The pixels the exact frame `frame` with plan `plan` must cast (none: all of them): those the meshes' motion
+    // since the last exact image can change, when nothing else changed (render/recast_region.h).
+    std::optional<PixelRect> recastRegion(const FrameDescription& frame, const FramePlan& plan) const;
+    // Called as an exact frame starts writing the exact image: from then on it is no longer the last one's.
+    void beginExactImage(const std::optional<PixelRect>& region, glm::ivec2 size);
     // The exact frame in slices (advanceExact).
     struct ExactJob {
         FrameDescription frame;
@@ -173,7 +185,11 @@ private:
         int bands = 0, bandsDone = 0;         // the ray cast's
         std::uint32_t lastBands = 0;          // the last slices' sizes
         std::uint32_t lastStepVGroups = 0;
+        std::optional<PixelRect> recast;      // the pixels its ray cast covers (none: all)
+        bool imageBegun = false;              // its first image pass ran (the last exact image is gone)
+        bool rayCastBegun = false;
     };
+    void beginImage(ExactJob& job);           // beginExactImage for the job's first image pass
     bool exactJobCurrent(const FrameDescription& frame) const;
     void runExactSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
     // The exact frame under way is given up: if its step IV ran and its step V is unfinished, step V is abandoned
@@ -215,6 +231,22 @@ private:
     InputVersions shownVersions_;
     std::uint64_t shownAppearanceVersion_ = 0;
     bool shownExact_ = false;
+    // The exact image (images_[kExactImage]) as the last exact frame left it, and what it was rendered from:
+    // none while an exact frame is writing it, or before the first.
+    struct ExactImage {
+        FrameDescription frame;
+        InputVersions versions;
+        std::uint64_t appearance = 0;
+        ClipSnapshot clip;
+        glm::ivec3 diagnostics{0};
+    };
+    // The settings that change what a frame counts or how it is dispatched, not its image: a frame after one of
+    // them changed casts every pixel, so what it counts is the whole image's.
+    glm::ivec3 diagnostics() const { return {countSamples_ ? 1 : 0, emptySpaceJumpLimit_, tileRowsPerBand_}; }
+    std::optional<ExactImage> exactImage_;
+    bool recastOnlyChanged_ = true;
+    std::optional<PixelRect> recastRegion_;   // the exact frame under way in render(): the pixels its ray cast covers
+    double lastRecastShare_ = 1.0;
     PreviewAmbient shownPreviewAmbient_ = PreviewAmbient::None;
     std::optional<PreviewAmbient> previewing_;   // set while renderPreview runs its passes
     bool ambientWritten_ = false;                // V_AO written (step V) since the current V_PAO's step I

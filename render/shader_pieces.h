@@ -18,7 +18,10 @@
 #include "gl/program.h"
 #include "render/frame.h"
 #include "render/gpu_volume.h"
+#include "render/recast_region.h"
 #include "render/shading_mode.h"
+
+#include <optional>
 
 namespace curette {
 
@@ -29,15 +32,18 @@ struct CameraRayPiece {
 };
 
 // tile_order.glsl: the order in which the workgroups of a per-pixel pass take the image's rows of tiles;
-// dispatches the pass over an image of `size` pixels. rowsPerBand = 1: scanline order.
+// dispatches the pass over an image of `size` pixels, or over the tiles that meet `region` only (the pixels an
+// exact frame casts again, render/recast_region.h: each pixel is shaded by the same invocation code either way).
+// rowsPerBand = 1: scanline order.
 struct TileOrderPiece {
     glm::ivec2 size;
     int rowsPerBand = defaultRowsPerBand();
+    std::optional<PixelRect> region;   // none: the whole image
     // One row per llvmpipe worker thread (render/worker_deal.h): each thread then gets one row of every band.
     static int defaultRowsPerBand();
-    // The image's bands of rowsPerBand rows of tiles (the last may be partly past the image).
+    // The bands of rowsPerBand rows of tiles that meet the region (the image's, the last may be partly past it).
     int bandCount(glm::uvec3 workGroupSize) const;
-    // The whole image, or the bands [firstBand, firstBand + bands) of it (clamped to the image's).
+    // Every band, or the bands [firstBand, firstBand + bands) of those (clamped to their number).
     void dispatch(gl::Program& program) const;
     void dispatchBands(gl::Program& program, int firstBand, int bands) const;
 };

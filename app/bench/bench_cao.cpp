@@ -139,6 +139,9 @@ int benchCao(const CommandLine& cl) {
             r = std::make_unique<Renderer>(*context, loaded.volume, loaded.scene.transferFunction);
             configureRenderer(loaded, *r);
             r->clipMeshes().setDepthBoxTests(depthBoxTests == "on");
+            // Every frame's ray cast covers the whole image, like for like: the solid frames in between would keep
+            // the cao renderer from keeping pixels, not the lao one (Renderer::setRecastOnlyChangedPixels).
+            r->setRecastOnlyChangedPixels(false);
         }
     auto rendererFor = [&](ShadingMode mode, int meshes) -> Renderer& {
         return *renderers.at({mode == ShadingMode::Lao ? ShadingMode::Lao : ShadingMode::Cao, meshes});

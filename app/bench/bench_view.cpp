@@ -119,6 +119,7 @@ int benchView(const CommandLine& cl) {
     auto setupStart = Clock::now();
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
+    renderer.setRecastOnlyChangedPixels(recastOnlyChanged(cl));
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
                      initialFrame(loaded.scene, geometry));
@@ -301,6 +302,7 @@ int benchView(const CommandLine& cl) {
     table.add({"applied motion -> exact", fromAppliedMotion, "ms", "wall time the last motion was applied to the exact frame on screen"});
     table.add({"exact frame render", exactRenderMs, "ms", "the last exact frame's render + finish (steps IV, V, VI), over its slices"});
     for (const auto& [pass, ms] : exactPassMs) table.add({"  " + pass, ms, "ms", "of which this pass, over the slices"});
+    table.add({"exact frame recast", renderer.lastRecastShare(), "", "share of the pixels its ray cast covered (the rest kept: --recast changed)"});
     table.add({"exact frame slices", static_cast<double>(exactSlices), "", "iterations that ran it (--exact-budget 0: one)"});
     table.add({"settle frame max", settleFrameMaxMs, "ms", "the longest the window waited between the last motion and the exact frame"});
     table.add({"last frame exact", lastIsExact ? "yes" : "NO", "", "the image on screen at the end is the exact frame of the last state"});
@@ -340,6 +342,7 @@ int benchView(const CommandLine& cl) {
         {"exact_render_ms", exactRenderMs},
         {"exact_pass_ms", exactPassMs},
         {"exact_slices", exactSlices},
+        {"exact_recast_share", renderer.lastRecastShare()},
         {"settle_frame_max_ms", settleFrameMaxMs},
         {"last_frame", {{"exact", lastIsExact}, {"image_hash", hash}, {"size", {size.x, size.y}}}},
         {"tables", {table.toJson()}},

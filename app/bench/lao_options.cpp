@@ -14,4 +14,14 @@ void applyUnseenVoxelsOption(const CommandLine& cl, LaoSettings& lao) {
     lao.onlyWhereSeen = choice == "skip";
 }
 
+OptionSpec recastOption() {
+    return {"recast", true, "changed (default) or all: pixels an exact frame after mesh motions casts again (same image)"};
+}
+
+bool recastOnlyChanged(const CommandLine& cl) {
+    std::string choice = cl.valueOr("recast", "changed");
+    if (choice != "changed" && choice != "all") throw InputError("<command line>", "--recast", "changed or all", "\"" + choice + "\"");
+    return choice == "changed";
+}
+
 }  // namespace curette::bench

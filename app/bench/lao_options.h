@@ -1,5 +1,5 @@
 #pragma once
-// LAO options shared by `bench cao` and `bench view`, applied to the scene's LAO settings.
+// Options shared by `bench cao` and `bench view`: the scene's LAO settings, and what the exact frame recasts.
 
 #include "app/command_line.h"
 #include "render/lao_settings.h"
@@ -10,5 +10,10 @@ namespace curette::bench {
 // (LaoSettings::onlyWhereSeen; skip is the default and gives the same image).
 OptionSpec unseenVoxelsOption();
 void applyUnseenVoxelsOption(const CommandLine& cl, LaoSettings& lao);
+
+// --recast changed|all: whether an exact frame after mesh motions casts only the pixels they can change
+// (Renderer::setRecastOnlyChangedPixels; changed is the default and gives the same image).
+OptionSpec recastOption();
+bool recastOnlyChanged(const CommandLine& cl);
 
 }  // namespace curette::bench

@@ -106,6 +106,7 @@ int bench(const Arguments& args) {
                                             {"check", false, "also render the last state in a fresh renderer and compare image hashes"},
                                             {"rays", true, "LAO ray count K instead of the scene's (6, 14, 26, 54 or any fibonacci count)"},
                                             bench::unseenVoxelsOption(),
+                                            bench::recastOption(),
                                             {"json", true, "JSON output file (default bench-view.json)"}}));
         return bench::benchView(cl);
     }

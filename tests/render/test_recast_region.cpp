@@ -1,0 +1,200 @@
+// Pixels an exact frame casts again (render/recast_region.h): after rigid motions of clip meshes alone, the exact
+// frame casts only the pixels the motions can change and keeps the others, and the image is a fresh renderer's
+// bit for bit; anything else casts every pixel. The projection of a box covers every pixel whose centre ray
+// meets it (against the CPU camera ray and a double-precision slab test).
+#include "render/recast_region.h"
+#include "render/reference/camera_ray.h"
+#include "tests/render/moving_sphere_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace curette {
+namespace {
+
+using test::MovingSphereScene;
+using test::sameImage;
+
+bool rayMeetsBox(const reference::CameraRay& ray, glm::dvec3 lo, glm::dvec3 hi) {
+    double near = 0.0, far = 1e30;
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(ray.direction[a]) < 1e-300) {
+            if (ray.origin[a] < lo[a] || ray.origin[a] > hi[a]) return false;
+            continue;
+        }
+        double t0 = (lo[a] - ray.origin[a]) / ray.direction[a], t1 = (hi[a] - ray.origin[a]) / ray.direction[a];
+        near = std::max(near, std::min(t0, t1));
+        far = std::min(far, std::max(t0, t1));
+    }
+    return far >= near;
+}
+
+TEST(RecastRegion, TheProjectionOfABoxCoversEveryPixelWhoseRayMeetsIt) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int tight = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        FrameDescription frame;
+        frame.size = {40 + int(60 * unit(random)), 30 + int(50 * unit(random))};
+        frame.camera.fit(glm::dvec3(0), 50.0);
+        frame.camera.azimuthDeg = 360 * unit(random);
+        frame.camera.elevationDeg = -80 + 160 * unit(random);
+        frame.camera.fovYDeg = 20 + 40 * unit(random);
+        glm::dvec3 centre(-40 + 80 * unit(random), -40 + 80 * unit(random), -40 + 80 * unit(random));
+        glm::dvec3 half(1 + 20 * unit(random), 1 + 20 * unit(random), 1 + 20 * unit(random));
+        WorldCorners box;
+        for (int c = 0; c < 8; ++c)
+            box[std::size_t(c)] = centre + glm::dvec3((c & 1) ? half.x : -half.x, (c & 2) ? half.y : -half.y, (c & 4) ? half.z : -half.z);
+        std::optional<PixelRect> rect = pixelsMeeting({box}, frame);
+        if (!rect) continue;   // the box reaches the eye: every pixel
+        int meeting = 0;
+        for (int y = 0; y < frame.size.y; ++y)
+            for (int x = 0; x < frame.size.x; ++x) {
+                if (!rayMeetsBox(reference::cameraRay(frame, {x, y}), centre - half, centre + half)) continue;
+                ++meeting;
+                ASSERT_TRUE(x >= rect->min.x && x < rect->max.x && y >= rect->min.y && y < rect->max.y)
+                    << "trial " << trial << ": pixel " << x << "," << y << " meets the box outside its rectangle";
+            }
+        if (meeting > 0 && rect->area() < std::int64_t(frame.size.x) * frame.size.y) ++tight;
+    }
+    EXPECT_GT(tight, 50) << "most rectangles must leave pixels out for the test to mean something";
+    // A box around the eye has no bounded projection.
+    FrameDescription frame;
+    frame.camera.fit(glm::dvec3(0), 50.0);
+    glm::dvec3 eye = frame.camera.position();
+    WorldCorners around;
+    for (int c = 0; c < 8; ++c) around[std::size_t(c)] = eye + glm::dvec3((c & 1) ? 5.0 : -5.0, (c & 2) ? 5.0 : -5.0, (c & 4) ? 5.0 : -5.0);
+    EXPECT_FALSE(pixelsMeeting({around}, frame).has_value());
+}
+
+// A random rigid pose near the blobs: a translation within the volume and any rotation.
+clip::RigidPose randomPose(std::mt19937& random) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    clip::RigidPose p;
+    p.position = glm::dvec3(14 * u(random), 12 * u(random), 12 * u(random));
+    p.orientation = glm::normalize(glm::dquat(u(random), u(random), u(random), u(random)));
+    return p;
+}
+
+// A second clip mesh that stays where it is: its pixels are kept when the sphere moves elsewhere.
+void addStillBox(MovingSphereScene& s) {
+    clip::RigidPose p;
+    p.position = glm::dvec3(12, -10, -6);
+    s.renderer->clipMeshes().add(std::make_shared<const clip::TriangleMesh>(clip::makeBox(glm::dvec3(6, 4, 5))), glm::dvec3(1.0), p, "box");
+}
+
+// LAO rays of 12 mm: V_AO changes up to 12 mm and more from a mesh, far beyond its depth box.
+void farReachingLao(MovingSphereScene& s) {
+    LaoSettings lao = s.renderer->laoSettings();
+    lao.samples = 9;
+    lao.stepMm = 1.5;
+    s.renderer->setLaoSettings(lao);
+}
+
+TEST(RecastRegion, ExactFramesAfterMeshMotionsEqualAFreshRenderersBitForBit) {
+    for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Lao, ShadingMode::Phong, ShadingMode::Solid}) {
+        SCOPED_TRACE(shadingModeName(mode));
+        std::mt19937 random(11);
+        MovingSphereScene viewer(mode);
+        farReachingLao(viewer);
+        addStillBox(viewer);
+        viewer.frame.size = {96, 80};
+        viewer.renderer->render(viewer.frame);
+        double leastShare = 1.0;
+        for (int step = 0; step < 6; ++step) {
+            SCOPED_TRACE("step " + std::to_string(step));
+            clip::RigidPose pose = randomPose(random);
+            // Small motions too: the region is then mostly the mesh's own boxes.
+            if (step % 2 == 1) pose.position = viewer.renderer->clipMeshes().pose(0).position + glm::dvec3(1.5, -1.0, 0.5);
+            viewer.renderer->clipMeshes().setPose(0, pose);
+            if (step % 3 == 2) {
+                // The viewer's way: a preview, then the exact frame in slices (one band of the ray cast each).
+                viewer.renderer->renderPreview(viewer.frame);
+                int calls = 0;
+                while (!viewer.renderer->advanceExact(viewer.frame, 0.0, 1)) ASSERT_LT(++calls, 100000);
+            } else {
+                viewer.renderer->render(viewer.frame);
+            }
+            leastShare = std::min(leastShare, viewer.renderer->lastRecastShare());
+
+            MovingSphereScene fresh(mode);
+            farReachingLao(fresh);
+            addStillBox(fresh);
+            fresh.frame = viewer.frame;
+            fresh.renderer->clipMeshes().setPose(0, pose);
+            fresh.renderer->render(fresh.frame);
+            ASSERT_DOUBLE_EQ(fresh.renderer->lastRecastShare(), 1.0) << "a fresh renderer has no image to keep";
+            ASSERT_TRUE(sameImage(viewer.renderer->readImage(), fresh.renderer->readImage()))
+                << "the exact frame after the motion differs from a fresh renderer's (recast share "
+                << viewer.renderer->lastRecastShare() << ")";
+        }
+        // (The AO modes' boxes reach far: the LAO rays' 12 mm on every side.)
+        EXPECT_LT(leastShare, traits(mode).ambientOcclusion ? 0.9 : 0.6) << "some motion must keep pixels for the test to mean something";
+    }
+}
+
+TEST(RecastRegion, AnythingButAMeshMotionCastsEveryPixel) {
+    MovingSphereScene s;
+    s.frame.size = {96, 80};
+    s.renderer->render(s.frame);
+    s.moveTo(1);
+    s.renderer->render(s.frame);
+    ASSERT_LT(s.renderer->lastRecastShare(), 1.0);
+    // Nothing changed: render() is asked for the same frame on purpose (a benchmark timing it), so it runs whole.
+    s.renderer->render(s.frame);
+    EXPECT_DOUBLE_EQ(s.renderer->lastRecastShare(), 1.0);
+
+    // Each change comes with a motion of the sphere (to pose 2, back to 1, ...), which alone would keep pixels.
+    int moves = 0;
+    auto everyPixelAfter = [&](const char* what, auto change) {
+        SCOPED_TRACE(what);
+        s.moveTo(++moves % 2 == 1 ? 2 : 1);
+        change();
+        s.renderer->render(s.frame);
+        EXPECT_DOUBLE_EQ(s.renderer->lastRecastShare(), 1.0);
+    };
+    everyPixelAfter("the camera turned", [&] { s.frame.camera.azimuthDeg += 5; });
+    everyPixelAfter("the TF changed", [&] { s.renderer->setTransferFunction(test::rampTransferFunction(40, 170, 0.3)); });
+    everyPixelAfter("the mesh was scaled", [&] { s.renderer->clipMeshes().setScale(0, glm::dvec3(1.1)); });
+    everyPixelAfter("a mesh was added", [&] { addStillBox(s); });
+    everyPixelAfter("the mode changed", [&] { s.frame.shading = ShadingMode::Phong; });
+    everyPixelAfter("the jitter changed", [&] { s.frame.raycast.jitterSeed = 5; });
+    everyPixelAfter("samples are counted", [&] { s.renderer->setCountSamples(true); });
+    // A mesh motion alone keeps pixels again; a preview in between keeps the exact image, so it still does.
+    s.moveTo(3);
+    s.renderer->render(s.frame);
+    EXPECT_LT(s.renderer->lastRecastShare(), 1.0);
+    s.moveTo(2);
+    s.renderer->renderPreview(s.frame);
+    s.renderer->render(s.frame);
+    EXPECT_LT(s.renderer->lastRecastShare(), 1.0);
+    // Off: every pixel.
+    s.renderer->setRecastOnlyChangedPixels(false);
+    s.moveTo(4);
+    s.renderer->render(s.frame);
+    EXPECT_DOUBLE_EQ(s.renderer->lastRecastShare(), 1.0);
+}
+
+// An exact frame in slices abandoned in the middle of its ray cast has overwritten part of the exact image: the
+// next exact frame must not keep pixels of it.
+TEST(RecastRegion, AnExactFrameAbandonedInItsRayCastLeavesNoPixelsToKeep) {
+    MovingSphereScene viewer(ShadingMode::Phong);
+    viewer.frame.size = {96, 80};
+    viewer.renderer->render(viewer.frame);
+    viewer.moveTo(5);
+    // The ray cast's probe band, written into the exact image, and then back to the pose of that image: were
+    // its record kept, nothing would be cast and the band of pose 5 would stay.
+    ASSERT_FALSE(viewer.renderer->advanceExact(viewer.frame, 0.0, 1));
+    ASSERT_GT(viewer.renderer->exactProgress(), 0.0);
+    viewer.moveTo(0);
+    viewer.renderer->render(viewer.frame);
+    EXPECT_DOUBLE_EQ(viewer.renderer->lastRecastShare(), 1.0);
+    MovingSphereScene fresh(ShadingMode::Phong);
+    fresh.frame = viewer.frame;
+    fresh.renderer->render(fresh.frame);
+    EXPECT_TRUE(sameImage(viewer.renderer->readImage(), fresh.renderer->readImage()));
+}
+
+}  // namespace
+}  // namespace curette
