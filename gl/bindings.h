@@ -56,6 +56,7 @@ inline constexpr unsigned ssboTubePositions = 14;
 inline constexpr unsigned ssboTubeDirections = 15;
 inline constexpr unsigned ssboTubeColors = 16;
 inline constexpr unsigned ssboTubeIndices = 17;
+inline constexpr unsigned ssboTileSpans = 18;
 
 inline constexpr unsigned uboClipMeshes = 0;
 

@@ -1,5 +1,7 @@
 #include "render/recast_region.h"
 
+#include <glm/gtc/constants.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,26 +9,52 @@
 namespace curette {
 
 namespace {
-// Far above the float rounding of the shaders' ray and box arithmetic (millimetres, pixels), so a ray the GPU
-// finds meeting a box is never one the projection leaves out.
-constexpr double kBoxMarginMm = 1.0;
-constexpr int kPixelMargin = 1;
+// Far above the float rounding of the shaders' ray, box and map arithmetic (millimetres), so a ray the GPU finds
+// meeting a region is never one the projection leaves out; and a pixel more on every side of what is cast.
+constexpr double kMarginMm = 1.0;
+constexpr double kMarginPixels = 1.0;
 
-WorldCorners cornersOf(const clip::RigidPose& pose, glm::dvec3 lo, glm::dvec3 hi) {
-    lo -= kBoxMarginMm;
-    hi += kBoxMarginMm;
+ConvexCorners boxCorners(const clip::RigidPose& pose, glm::dvec3 lo, glm::dvec3 hi) {
+    lo -= kMarginMm;
+    hi += kMarginMm;
     glm::dmat4 toWorld = pose.matrix();
-    WorldCorners corners;
+    ConvexCorners corners;
     for (int c = 0; c < 8; ++c)
-        corners[static_cast<std::size_t>(c)] = glm::dvec3(toWorld * glm::dvec4((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z, 1.0));
+        corners.emplace_back(toWorld * glm::dvec4((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z, 1.0));
     return corners;
+}
+
+// Row by row, the pixels in both.
+PixelRegion intersection(const PixelRegion& a, const PixelRegion& b) {
+    PixelRegion r = a;
+    for (std::size_t y = 0; y < r.rows.size(); ++y)
+        r.rows[y] = glm::ivec2(std::max(a.rows[y].x, b.rows[y].x), std::min(a.rows[y].y, b.rows[y].y));
+    return r;
 }
 }  // namespace
 
-PixelRect PixelRect::unitedWith(const PixelRect& other) const {
-    if (empty()) return other;
-    if (other.empty()) return *this;
-    return {glm::min(min, other.min), glm::max(max, other.max)};
+PixelRegion PixelRegion::none(glm::ivec2 size) {
+    return {size, std::vector<glm::ivec2>(static_cast<std::size_t>(std::max(size.y, 0)), glm::ivec2(0))};
+}
+
+bool PixelRegion::contains(glm::ivec2 pixel) const {
+    if (pixel.y < 0 || pixel.y >= static_cast<int>(rows.size())) return false;
+    glm::ivec2 run = rows[static_cast<std::size_t>(pixel.y)];
+    return pixel.x >= run.x && pixel.x < run.y;
+}
+
+std::int64_t PixelRegion::area() const {
+    std::int64_t n = 0;
+    for (glm::ivec2 run : rows) n += std::max(run.y - run.x, 0);
+    return n;
+}
+
+void PixelRegion::unite(const PixelRegion& other) {
+    for (std::size_t y = 0; y < rows.size() && y < other.rows.size(); ++y) {
+        glm::ivec2 &a = rows[y], b = other.rows[y];
+        if (b.x >= b.y) continue;
+        a = a.x >= a.y ? b : glm::ivec2(std::min(a.x, b.x), std::max(a.y, b.y));
+    }
 }
 
 ClipSnapshot ClipSnapshot::of(const clip::ClipMeshSet& set, double cellDiagonalMm) {
@@ -36,58 +64,131 @@ ClipSnapshot ClipSnapshot::of(const clip::ClipMeshSet& set, double cellDiagonalM
     for (int i = 0; i < set.count(); ++i) {
         ClipMeshReach m;
         m.pose = set.pose(i);
+        glm::dvec3 depthLo, depthHi;
+        set.depthBoxLocal(i, depthLo, depthHi);
         if (s.depthBoxTests) {
-            set.depthBoxLocal(i, m.clipLo, m.clipHi);
+            m.clipLo = depthLo;
+            m.clipHi = depthHi;
         } else {
             set.mapBoxLocal(i, m.clipLo, m.clipHi);
         }
         set.dilatedBoxLocal(i, m.ambientLo, m.ambientHi);
         m.ambientLo -= cellDiagonalMm;
         m.ambientHi += cellDiagonalMm;
+        // The balls: around the centre of the mesh's bounds, holding every (scaled) vertex, so the mesh's hull.
+        // A point the depth maps call inside lies on a map pixel's centre line inside that hull, within half a
+        // pixel's diagonal of it: the depth box's growth across the map (a whole pixel, the slack and margin)
+        // covers that. The dilated box's growth across the map (the kernel radius, more than R, and half a pixel)
+        // covers R on top.
+        const clip::ClippingCamera& camera = set.camera(i);
+        m.centre = 0.5 * (camera.localMin + camera.localMax);
+        double hull = 0.0;
+        glm::dvec3 scale = set.scale(i);
+        for (const glm::vec3& p : set.geometry(i)->positions) hull = std::max(hull, glm::length(scale * glm::dvec3(p) - m.centre));
+        m.clipRadius = hull + (depthHi.x - camera.localMax.x);
+        m.ambientRadius = hull + (m.ambientHi.x - camera.localMax.x);
         s.meshes.push_back(m);
     }
     return s;
 }
 
-std::optional<std::vector<WorldCorners>> changedBoxes(const ClipSnapshot& before, const ClipSnapshot& now, bool ambient) {
+std::optional<std::vector<ChangedRegion>> changedRegions(const ClipSnapshot& before, const ClipSnapshot& now, bool ambient) {
     // The maps drawn again (a mesh's geometry or scale, the resolution or the dilation radius changed), a mesh
     // added or removed, or the depth-box tests switched: more than poses.
     if (before.mapRenders != now.mapRenders || before.depthBoxTests != now.depthBoxTests || before.meshes.size() != now.meshes.size())
         return std::nullopt;
-    std::vector<WorldCorners> boxes;
+    std::vector<ChangedRegion> regions;
     for (std::size_t i = 0; i < now.meshes.size(); ++i) {
-        const ClipMeshReach &a = before.meshes[i], &b = now.meshes[i];
+        ClipMeshReach a = before.meshes[i], b = now.meshes[i];
         if (a == b) continue;
-        if (a.clipLo != b.clipLo || a.clipHi != b.clipHi || a.ambientLo != b.ambientLo || a.ambientHi != b.ambientHi) return std::nullopt;
-        for (const ClipMeshReach* m : {&a, &b}) {
-            boxes.push_back(cornersOf(m->pose, m->clipLo, m->clipHi));
-            if (ambient) boxes.push_back(cornersOf(m->pose, m->ambientLo, m->ambientHi));
+        b.pose = a.pose;
+        if (!(a == b)) return std::nullopt;   // more than the pose
+        for (const clip::RigidPose& pose : {before.meshes[i].pose, now.meshes[i].pose}) {
+            glm::dvec3 centre(pose.matrix() * glm::dvec4(a.centre, 1.0));
+            regions.push_back({boxCorners(pose, a.clipLo, a.clipHi), {centre, a.clipRadius + kMarginMm}});
+            if (ambient) regions.push_back({boxCorners(pose, a.ambientLo, a.ambientHi), {centre, a.ambientRadius + kMarginMm}});
         }
     }
-    return boxes;
+    return regions;
 }
 
-std::optional<PixelRect> pixelsMeeting(const std::vector<WorldCorners>& boxes, const FrameDescription& frame) {
-    // A ray starts at the eye (raycast.comp), and the projection of a box wholly in front of it is the convex hull
-    // of its corners' projections; the pixel centres of pixel_ray.glsl: ndc = (pixel + 0.5) / size * 2 - 1, y up.
+std::optional<PixelRegion> pixelsMeeting(const ConvexCorners& corners, const FrameDescription& frame) {
+    // A ray starts at the eye (raycast.comp), and the projection of a hull wholly in front of the eye's plane is
+    // the hull of its corners' projections. Pixel centres as pixel_ray.glsl: ndc = (pixel + 0.5) / size * 2 - 1,
+    // y up; here in pixel units, y down, a centre at (x + 0.5, y + 0.5).
     glm::dvec2 size(frame.size);
     glm::dmat4 viewProjection = frame.camera.projection(size.x / size.y) * frame.camera.view();
-    PixelRect all;
-    for (const WorldCorners& box : boxes) {
-        glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-        for (const glm::dvec3& corner : box) {
-            glm::dvec4 clip = viewProjection * glm::dvec4(corner, 1.0);
-            if (!(clip.w > 1e-9)) return std::nullopt;   // at or behind the eye
-            glm::dvec2 ndc(clip.x / clip.w, clip.y / clip.w);
-            glm::dvec2 pixel((ndc.x + 1.0) * 0.5 * size.x, (1.0 - ndc.y) * 0.5 * size.y);   // where pixel centres are at +0.5
-            lo = glm::min(lo, pixel);
-            hi = glm::max(hi, pixel);
+    std::vector<glm::dvec2> points;
+    double top = std::numeric_limits<double>::infinity(), bottom = -top;
+    for (const glm::dvec3& corner : corners) {
+        glm::dvec4 clip = viewProjection * glm::dvec4(corner, 1.0);
+        if (!(clip.w > 1e-9)) return std::nullopt;
+        glm::dvec2 p((clip.x / clip.w + 1.0) * 0.5 * size.x, (1.0 - clip.y / clip.w) * 0.5 * size.y);
+        points.push_back(p);
+        top = std::min(top, p.y);
+        bottom = std::max(bottom, p.y);
+    }
+    PixelRegion region = PixelRegion::none(frame.size);
+    // Row y: the hull's extent across the strip of its centre line widened by the margin. Every point of a
+    // segment between two corners lies in the hull, and the hull's extreme points within the strip are corners
+    // in it or crossings of its edges (segments among those) with the strip's lines.
+    int firstRow = static_cast<int>(std::clamp(std::floor(top - 0.5 - kMarginPixels), 0.0, size.y));
+    int endRow = static_cast<int>(std::clamp(std::ceil(bottom - 0.5 + kMarginPixels) + 1.0, 0.0, size.y));
+    for (int y = firstRow; y < endRow; ++y) {
+        double lo = y + 0.5 - kMarginPixels, hi = y + 0.5 + kMarginPixels;
+        double left = std::numeric_limits<double>::infinity(), right = -left;
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const glm::dvec2& p = points[i];
+            if (p.y >= lo && p.y <= hi) left = std::min(left, p.x), right = std::max(right, p.x);
+            for (std::size_t j = i + 1; j < points.size(); ++j) {
+                const glm::dvec2& q = points[j];
+                for (double line : {lo, hi}) {
+                    if ((p.y - line) * (q.y - line) > 0.0 || p.y == q.y) continue;
+                    double x = p.x + (q.x - p.x) * (line - p.y) / (q.y - p.y);
+                    left = std::min(left, x);
+                    right = std::max(right, x);
+                }
+            }
         }
-        // Pixels whose centre lies in [lo, hi], widened by a margin and kept within the image (before the
-        // conversion to int, so far-off corners do not overflow it).
-        glm::dvec2 from = glm::clamp(glm::floor(lo - 0.5) - double(kPixelMargin), glm::dvec2(0.0), size);
-        glm::dvec2 to = glm::clamp(glm::ceil(hi - 0.5) + double(kPixelMargin + 1), glm::dvec2(0.0), size);
-        all = all.unitedWith(PixelRect{glm::ivec2(from), glm::ivec2(to)});
+        if (!(left <= right)) continue;
+        // Pixels whose centre lies within the margin of [left, right] (clamped before the conversion to int).
+        double from = std::clamp(std::ceil(left - 0.5 - kMarginPixels), 0.0, size.x);
+        double to = std::clamp(std::floor(right - 0.5 + kMarginPixels) + 1.0, 0.0, size.x);
+        region.rows[static_cast<std::size_t>(y)] = glm::ivec2(static_cast<int>(from), static_cast<int>(to));
+    }
+    return region;
+}
+
+std::optional<PixelRegion> pixelsMeeting(const WorldBall& ball, const FrameDescription& frame) {
+    // The rays that meet the ball form a cone from the eye of half-angle asin(r / d). The frustum of the pyramid
+    // around it whose cross-sections are octagons circumscribing the cone's circles, between the ball's nearest
+    // and farthest distances along the axis, holds the ball; its projection is that of the pyramid.
+    glm::dvec3 eye = frame.camera.position();
+    glm::dvec3 axis = ball.centre - eye;
+    double d = glm::length(axis);
+    if (!(d > ball.radius * (1.0 + 1e-9))) return std::nullopt;
+    axis /= d;
+    glm::dvec3 side = glm::normalize(glm::cross(axis, std::abs(axis.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+    glm::dvec3 up = glm::cross(side, axis);
+    double tangent = ball.radius / std::sqrt(d * d - ball.radius * ball.radius);
+    const int sides = 8;
+    double circumscribe = 1.0 / std::cos(glm::pi<double>() / sides);
+    ConvexCorners corners;
+    for (double s : {d - ball.radius, d + ball.radius})
+        for (int k = 0; k < sides; ++k) {
+            double phi = 2.0 * glm::pi<double>() * k / sides;
+            corners.push_back(eye + s * axis + s * tangent * circumscribe * (std::cos(phi) * side + std::sin(phi) * up));
+        }
+    return pixelsMeeting(corners, frame);
+}
+
+std::optional<PixelRegion> pixelsMeeting(const std::vector<ChangedRegion>& regions, const FrameDescription& frame) {
+    PixelRegion all = PixelRegion::none(frame.size);
+    for (const ChangedRegion& r : regions) {
+        // A ray that meets the region meets both the box and the ball.
+        std::optional<PixelRegion> box = pixelsMeeting(r.box, frame), ball = pixelsMeeting(r.ball, frame);
+        if (!box && !ball) return std::nullopt;
+        all.unite(box && ball ? intersection(*box, *ball) : box ? *box : *ball);
     }
     return all;
 }

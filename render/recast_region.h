@@ -3,45 +3,52 @@
 // (docs/architecture.md, "Pixels an exact frame casts again"). A pixel is its ray's alone (shaders/raycast.comp:
 // the same camera, volume, TF, settings and jitter give the same samples), so where the ray meets nothing that
 // changed it is the last image's pixel bit for bit. A rigid motion of mesh i changes, along a ray:
-//  - its clip tests, only inside the box where its depth maps can call a point inside: the depth box
-//    (clip::ClipMeshSet::depthBoxLocal), where the ray caster tests it at all (clip_test.glsl rayClipSpan); the
-//    map box without the depth-box tests (a lookup outside it answers "outside" at any pose);
-//  - V_AO (lao, cao): V_AO = LAO(V_o) at every voxel (the exactness contract), a clip sample of voxel u lies
-//    within a cell diagonal of u, and LAO(v) reads V_o within the reach plus a cell diagonal of v, so the
-//    motion changes V_AO only within R (AmbientOcclusion::dilationRadiusMm) of a point the mesh's maps call
-//    inside, at its old pose or its new one: inside its dilated box (clip::ClipMeshSet::dilatedBoxLocal); a
-//    sample reads V_AO within a cell diagonal of itself, so the box grown by one.
-// Both boxes are taken at the old pose and the new one; the pixels are those whose centre ray the projection of
-// some box covers. Anything else that changed (camera, size, mode, settings, volume, TF, LAO settings, the
-// meshes' geometry, scale, number or maps, tubes in the frame) casts every pixel.
+//  - its clip tests: a sample's answer changes only where the mesh's depth maps call it inside at the old pose
+//    or the new one, within the mesh's bounding ball grown by a map pixel and inside its depth box
+//    (clip::ClipMeshSet::depthBoxLocal; without the depth-box tests, its map box), and the cut face and the
+//    rules after a crossing follow a sample inside;
+//  - V_AO (lao, cao): V_AO = LAO(V_o) at every voxel (the exactness contract); a clip sample of voxel u lies
+//    within a cell diagonal of u, and LAO(v) reads V_o, and the seam rule the categories, within the reach plus
+//    a cell diagonal of v, so V_AO changes only within R (AmbientOcclusion::dilationRadiusMm) of a point the
+//    maps call inside: inside the dilated box (clip::ClipMeshSet::dilatedBoxLocal, which grows the bounds by
+//    more than R) and the ball grown as much; a sample reads V_AO within a cell diagonal of itself, so both
+//    grown by one more.
+// Each region is the intersection of a box and a ball, taken at the old pose and the new one; a pixel is cast
+// when its centre ray can meet one. Anything else that changed (camera, size, mode, settings, volume, TF, LAO
+// settings, the meshes' geometry, scale, number or maps, tubes in the frame) casts every pixel.
 
 #include "clip/clip_mesh_set.h"
 #include "render/frame.h"
 
-#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 namespace curette {
 
-// Pixels [min, max) of an image (x right, y down: row 0 is the top of the picture).
-struct PixelRect {
-    glm::ivec2 min{0}, max{0};
-    bool empty() const { return max.x <= min.x || max.y <= min.y; }
-    std::int64_t area() const { return empty() ? 0 : std::int64_t(max.x - min.x) * (max.y - min.y); }
-    PixelRect clampedTo(glm::ivec2 size) const { return {glm::clamp(min, glm::ivec2(0), size), glm::clamp(max, glm::ivec2(0), size)}; }
-    // The smallest rectangle holding both.
-    PixelRect unitedWith(const PixelRect& other) const;
-    bool operator==(const PixelRect&) const = default;
+// Pixels of an image row by row: row y holds the pixels [rows[y].x, rows[y].y) (none when x >= y). Row 0 is the
+// top of the picture.
+struct PixelRegion {
+    glm::ivec2 size{0};
+    std::vector<glm::ivec2> rows;
+    static PixelRegion none(glm::ivec2 size);
+    bool contains(glm::ivec2 pixel) const;
+    std::int64_t area() const;
+    // Row by row, the smallest run holding both runs.
+    void unite(const PixelRegion& other);
+    bool operator==(const PixelRegion&) const = default;
 };
 
-// What of the clip meshes an exact image depends on: per mesh, its pose and the two boxes above in its pose's
-// local frame (they do not move with the pose), and how many times the maps were drawn.
+// A convex region of world millimetres: the convex hull of its corners.
+using ConvexCorners = std::vector<glm::dvec3>;
+
+// What of the clip meshes an exact image depends on: per mesh, its pose and, in its pose's local frame (they do
+// not move with the pose), the two regions above as a box and a ball each; and how many times the maps were drawn.
 struct ClipMeshReach {
     clip::RigidPose pose;
-    glm::dvec3 clipLo, clipHi;         // its clip tests: the depth box, or the map box without depth-box tests
-    glm::dvec3 ambientLo, ambientHi;   // its reach into V_AO: the dilated box grown by a cell diagonal
+    glm::dvec3 clipLo, clipHi, ambientLo, ambientHi;   // the boxes
+    glm::dvec3 centre;                                 // the balls' centre
+    double clipRadius = 0, ambientRadius = 0;
     bool operator==(const ClipMeshReach&) const = default;
 };
 
@@ -52,15 +59,28 @@ struct ClipSnapshot {
     static ClipSnapshot of(const clip::ClipMeshSet& set, double cellDiagonalMm);
 };
 
-// A box in world millimetres: its eight corners.
-using WorldCorners = std::array<glm::dvec3, 8>;
+// A ball in world millimetres.
+struct WorldBall {
+    glm::dvec3 centre;
+    double radius = 0;
+};
 
-// The world boxes within which an image of the meshes `now` can differ from one of the meshes `before` (with
-// V_AO: `ambient`); none when more than poses changed (then every pixel may change).
-std::optional<std::vector<WorldCorners>> changedBoxes(const ClipSnapshot& before, const ClipSnapshot& now, bool ambient);
+// Where an image of the meshes `now` can differ from one of the meshes `before` (with V_AO: `ambient`): per
+// region, a box (its corners) and a ball that both hold it. None when more than poses changed (then every pixel
+// may change); empty when nothing did.
+struct ChangedRegion {
+    ConvexCorners box;
+    WorldBall ball;
+};
+std::optional<std::vector<ChangedRegion>> changedRegions(const ClipSnapshot& before, const ClipSnapshot& now, bool ambient);
 
-// The pixels of `frame` whose centre ray can meet one of `boxes` (empty when none); none when a box reaches the
-// camera's near plane, so that its projection is not bounded by its corners' (then every pixel).
-std::optional<PixelRect> pixelsMeeting(const std::vector<WorldCorners>& boxes, const FrameDescription& frame);
+// The pixels of `frame` whose centre ray can meet `corners`' hull, row by row; none when the hull reaches the
+// eye's plane, so that its projection is not the hull of its corners' (then every pixel).
+std::optional<PixelRegion> pixelsMeeting(const ConvexCorners& corners, const FrameDescription& frame);
+// ... whose centre ray can meet the ball (through a pyramid around the cone of rays that meet it); none when the
+// eye is in it.
+std::optional<PixelRegion> pixelsMeeting(const WorldBall& ball, const FrameDescription& frame);
+// ... that can meet one of the regions: per region, the pixels of its box and of its ball. None: every pixel.
+std::optional<PixelRegion> pixelsMeeting(const std::vector<ChangedRegion>& regions, const FrameDescription& frame);
 
 }  // namespace curette

@@ -218,7 +218,7 @@ bool writesImage(Pass pass) {
 }
 }  // namespace
 
-std::optional<PixelRect> Renderer::recastRegion(const FrameDescription& frame, const FramePlan& plan) const {
+std::optional<PixelRegion> Renderer::recastRegion(const FrameDescription& frame, const FramePlan& plan) const {
     if (!recastOnlyChanged_ || !exactImage_ || exactImage_->frame != frame || exactImage_->appearance != appearanceVersion_ ||
         exactImage_->diagnostics != diagnostics())
         return std::nullopt;
@@ -229,17 +229,18 @@ std::optional<PixelRect> Renderer::recastRegion(const FrameDescription& frame, c
     // not drawn again (a rigid motion only moves their cameras).
     for (const PlannedPass& p : plan.passes)
         if (p.pass == Pass::ClipMaps || (writesImage(p.pass) && p.pass != Pass::RayCast)) return std::nullopt;
-    auto boxes = changedBoxes(exactImage_->clip, ClipSnapshot::of(clip_, volume_.geometry().cellDiagonalMm()),
+    auto boxes = changedRegions(exactImage_->clip, ClipSnapshot::of(clip_, volume_.geometry().cellDiagonalMm()),
                               traits(frame.shading).ambientOcclusion);
     // No mesh moved: render() of an unchanged state is asked for on purpose (benchmarks time it), so it runs whole.
     if (!boxes || boxes->empty()) return std::nullopt;
     return pixelsMeeting(*boxes, frame);
 }
 
-void Renderer::beginExactImage(const std::optional<PixelRect>& region, glm::ivec2 size) {
+void Renderer::beginExactImage(const std::optional<PixelRegion>& region, glm::ivec2 size) {
     exactImage_.reset();
     recastRegion_ = region;
-    lastRecastShare_ = region ? double(region->clampedTo(size).area()) / (double(size.x) * double(size.y)) : 1.0;
+    recastSpans_.reset();
+    lastRecastShare_ = region ? double(region->area()) / (double(size.x) * double(size.y)) : 1.0;
 }
 
 void Renderer::beginImage(ExactJob& job) {
@@ -624,7 +625,18 @@ int Renderer::runRayCast(const FrameDescription& frame, bool ismosLayers, int fi
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboSampleCounter, sampleCounter_.name());
     }
     // An exact frame's ray cast covers its recast region; a preview's and ISMOS's, every pixel.
-    TileOrderPiece tiles{frame.size, tileRowsPerBand_, target_ == kExactImage && !ismosLayers ? recastRegion_ : std::nullopt};
+    TileOrderPiece tiles{frame.size, tileRowsPerBand_};
+    if (target_ == kExactImage && !ismosLayers && recastRegion_) {
+        glm::uvec2 tileSize(p.workGroupSize());
+        if (!recastSpans_ || recastSpans_->tileSize != tileSize) {
+            recastSpans_ = tileSpansOf(*recastRegion_, tileSize);
+            recastSpanBuffer_ = gl::createBuffer();
+            glNamedBufferStorage(recastSpanBuffer_.name(), static_cast<GLsizeiptr>(std::max<std::size_t>(recastSpans_->rows.size(), 1) * sizeof(glm::uvec2)),
+                                 recastSpans_->rows.data(), 0);
+        }
+        tiles.spans = &*recastSpans_;
+        tiles.spanBuffer = recastSpanBuffer_.name();
+    }
     int bands = tiles.bandCount(p.workGroupSize());
     tiles.dispatchBands(p, firstBand, bandCount < 0 ? bands : bandCount);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);

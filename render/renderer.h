@@ -167,9 +167,9 @@ private:
     int runRayCast(const FrameDescription& frame, bool ismosLayers = false, int firstBand = 0, int bandCount = -1);
     // The pixels the exact frame `frame` with plan `plan` must cast (none: all of them): those the meshes' motion
     // since the last exact image can change, when nothing else changed (render/recast_region.h).
-    std::optional<PixelRect> recastRegion(const FrameDescription& frame, const FramePlan& plan) const;
+    std::optional<PixelRegion> recastRegion(const FrameDescription& frame, const FramePlan& plan) const;
     // Called as an exact frame starts writing the exact image: from then on it is no longer the last one's.
-    void beginExactImage(const std::optional<PixelRect>& region, glm::ivec2 size);
+    void beginExactImage(const std::optional<PixelRegion>& region, glm::ivec2 size);
     // The exact frame in slices (advanceExact).
     struct ExactJob {
         FrameDescription frame;
@@ -185,7 +185,7 @@ private:
         int bands = 0, bandsDone = 0;         // the ray cast's
         std::uint32_t lastBands = 0;          // the last slices' sizes
         std::uint32_t lastStepVGroups = 0;
-        std::optional<PixelRect> recast;      // the pixels its ray cast covers (none: all)
+        std::optional<PixelRegion> recast;      // the pixels its ray cast covers (none: all)
         bool imageBegun = false;              // its first image pass ran (the last exact image is gone)
         bool rayCastBegun = false;
     };
@@ -245,7 +245,9 @@ private:
     glm::ivec3 diagnostics() const { return {countSamples_ ? 1 : 0, emptySpaceJumpLimit_, tileRowsPerBand_}; }
     std::optional<ExactImage> exactImage_;
     bool recastOnlyChanged_ = true;
-    std::optional<PixelRect> recastRegion_;   // the exact frame under way in render(): the pixels its ray cast covers
+    std::optional<PixelRegion> recastRegion_;   // the exact frame under way: the pixels its ray cast covers
+    std::optional<TileSpans> recastSpans_;       // ... in the ray caster's tiles,
+    gl::Buffer recastSpanBuffer_;                // ... uploaded
     double lastRecastShare_ = 1.0;
     PreviewAmbient shownPreviewAmbient_ = PreviewAmbient::None;
     std::optional<PreviewAmbient> previewing_;   // set while renderPreview runs its passes

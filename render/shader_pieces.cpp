@@ -20,34 +20,53 @@ void CameraRayPiece::apply(gl::Program& p) const {
 
 int TileOrderPiece::defaultRowsPerBand() { return llvmpipeWorkerThreads(); }
 
+TileSpans tileSpansOf(const PixelRegion& region, glm::uvec2 tileSize) {
+    TileSpans t;
+    t.tileSize = tileSize;
+    glm::uvec2 tiles = (glm::uvec2(glm::max(region.size, glm::ivec2(1))) + tileSize - 1u) / tileSize;
+    t.rows.assign(tiles.y, glm::uvec2(0));
+    t.firstRow = tiles.y;
+    for (std::size_t y = 0; y < region.rows.size(); ++y) {
+        glm::ivec2 run = region.rows[y];
+        if (run.x >= run.y) continue;
+        unsigned row = static_cast<unsigned>(y) / tileSize.y;
+        glm::uvec2 columns(static_cast<unsigned>(run.x) / tileSize.x, (static_cast<unsigned>(run.y) - 1u) / tileSize.x + 1u);
+        glm::uvec2& span = t.rows[row];
+        span = span.x >= span.y ? columns : glm::uvec2(std::min(span.x, columns.x), std::max(span.y, columns.y));
+        t.firstRow = std::min(t.firstRow, row);
+        t.endRow = std::max(t.endRow, row + 1);
+        t.widest = std::max(t.widest, span.y - span.x);
+    }
+    if (t.endRow == 0) t.firstRow = 0;
+    return t;
+}
+
 namespace {
-// The tiles of an image (or of the part of it that meets a region) in bands of rows.
+// The tiles of an image (or the rows of tiles that spans cover) in bands of rows.
 struct TileBands {
     glm::uvec2 tiles;                 // of the whole image
     unsigned perBand;
-    unsigned firstColumn, columns;    // the tile columns that meet the region
-    unsigned firstBand, bands;        // the bands that meet it
+    unsigned columns;                 // the dispatch's width
+    unsigned firstBand, bands;        // the bands it covers
 };
-TileBands tileBands(glm::ivec2 size, int rowsPerBand, glm::uvec3 group, const std::optional<PixelRect>& region) {
+TileBands tileBands(glm::ivec2 size, int rowsPerBand, glm::uvec3 group, const TileSpans* spans) {
     glm::uvec2 tiles = (glm::uvec2(glm::max(size, glm::ivec2(1))) + glm::uvec2(group) - 1u) / glm::uvec2(group);
     unsigned perBand = static_cast<unsigned>(std::clamp(rowsPerBand, 1, static_cast<int>(tiles.y)));
-    unsigned allBands = (tiles.y + perBand - 1) / perBand;
-    if (!region) return {tiles, perBand, 0, tiles.x, 0, allBands};
-    PixelRect r = region->clampedTo(size);
-    if (r.empty()) return {tiles, perBand, 0, 0, 0, 0};
-    glm::uvec2 first = glm::uvec2(r.min) / glm::uvec2(group), last = (glm::uvec2(r.max) - 1u) / glm::uvec2(group);
-    return {tiles, perBand, first.x, last.x - first.x + 1, first.y / perBand, last.y / perBand - first.y / perBand + 1};
+    if (!spans) return {tiles, perBand, tiles.x, 0, (tiles.y + perBand - 1) / perBand};
+    if (spans->endRow == 0) return {tiles, perBand, 0, 0, 0};
+    unsigned first = spans->firstRow / perBand;
+    return {tiles, perBand, spans->widest, first, (spans->endRow + perBand - 1) / perBand - first};
 }
 }  // namespace
 
 int TileOrderPiece::bandCount(glm::uvec3 workGroupSize) const {
-    return static_cast<int>(tileBands(size, rowsPerBand, workGroupSize, region).bands);
+    return static_cast<int>(tileBands(size, rowsPerBand, workGroupSize, spans).bands);
 }
 
 void TileOrderPiece::dispatch(gl::Program& p) const { dispatchBands(p, 0, bandCount(p.workGroupSize())); }
 
 void TileOrderPiece::dispatchBands(gl::Program& p, int firstBand, int bands) const {
-    TileBands t = tileBands(size, rowsPerBand, p.workGroupSize(), region);
+    TileBands t = tileBands(size, rowsPerBand, p.workGroupSize(), spans);
     unsigned first = static_cast<unsigned>(std::clamp(firstBand, 0, static_cast<int>(t.bands)));
     unsigned count = std::min(static_cast<unsigned>(std::max(bands, 0)), t.bands - first);
     if (count == 0 || t.columns == 0) return;
@@ -55,7 +74,8 @@ void TileOrderPiece::dispatchBands(gl::Program& p, int firstBand, int bands) con
     p.set("firstBand", t.firstBand + first);
     p.set("rowsPerBand", t.perBand);
     p.set("tileGrid", t.tiles);
-    p.set("firstTileColumn", t.firstColumn);
+    p.set("tileSpansOn", spans ? 1 : 0);
+    if (spans) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboTileSpans, spanBuffer);
     p.use();
     glDispatchCompute(t.columns, count * t.perBand, 1);
 }

@@ -21,7 +21,7 @@
 #include "render/recast_region.h"
 #include "render/shading_mode.h"
 
-#include <optional>
+#include <vector>
 
 namespace curette {
 
@@ -31,17 +31,27 @@ struct CameraRayPiece {
     void apply(gl::Program& program) const;
 };
 
+// The tiles a dispatch covers when not all of them: per row of tiles, a run of columns [x, y) (render/
+// recast_region.h's pixels, in tiles), and the rows that have any.
+struct TileSpans {
+    glm::uvec2 tileSize{0};
+    std::vector<glm::uvec2> rows;
+    unsigned firstRow = 0, endRow = 0, widest = 0;
+};
+TileSpans tileSpansOf(const PixelRegion& region, glm::uvec2 tileSize);
+
 // tile_order.glsl: the order in which the workgroups of a per-pixel pass take the image's rows of tiles;
-// dispatches the pass over an image of `size` pixels, or over the tiles that meet `region` only (the pixels an
-// exact frame casts again, render/recast_region.h: each pixel is shaded by the same invocation code either way).
-// rowsPerBand = 1: scanline order.
+// dispatches the pass over an image of `size` pixels, or over the tiles of `spans` only (uploaded in
+// `spanBuffer`; each pixel is shaded by the same invocation code either way). rowsPerBand = 1: scanline order.
 struct TileOrderPiece {
     glm::ivec2 size;
     int rowsPerBand = defaultRowsPerBand();
-    std::optional<PixelRect> region;   // none: the whole image
+    const TileSpans* spans = nullptr;
+    GLuint spanBuffer = 0;
     // One row per llvmpipe worker thread (render/worker_deal.h): each thread then gets one row of every band.
     static int defaultRowsPerBand();
-    // The bands of rowsPerBand rows of tiles that meet the region (the image's, the last may be partly past it).
+    // The bands of rowsPerBand rows of tiles the dispatch covers (the image's, the last may be partly past it;
+    // with spans, from the band of their first row to that of their last).
     int bandCount(glm::uvec3 workGroupSize) const;
     // Every band, or the bands [firstBand, firstBand + bands) of those (clamped to their number).
     void dispatch(gl::Program& program) const;

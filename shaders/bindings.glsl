@@ -52,6 +52,7 @@
 #define SSBO_TUBE_DIRECTIONS 15     // float[]: ... of the normal stream (x y z)
 #define SSBO_TUBE_COLORS 16         // vec4[]: ... of the colour stream
 #define SSBO_TUBE_INDICES 17        // uint[]: ... of the triangle index stream
+#define SSBO_TILE_SPANS 18          // uvec2[]: per row of tiles, the columns a dispatch covers (tile_order.glsl)
 
 #define UBO_CLIP_MESHES 0           // ClipMeshGpu[MAX_CLIP_MESHES]: per-mesh clipping camera
 

@@ -14,21 +14,31 @@
 // A dispatch may cover a run of bands only (the exact frame in slices, Renderer::advanceExact): bands
 // firstBand .. firstBand + tileBands - 1, dealt out the same way, so each slice is a horizontal strip of the
 // image that the threads share alike, and the slices of a frame together shade every pixel once.
-// A dispatch may also cover a run of tile columns only (firstTileColumn and the dispatch's width): the exact
-// frame that casts again only the pixels a clip mesh's motion can change (render/recast_region.h).
+// A dispatch may also cover, per row of tiles, only the run of columns in tileSpans (the dispatch as wide as the
+// widest): the exact frame that casts again only the pixels a clip mesh's motion can change
+// (render/recast_region.h). A pixel is shaded by the same invocation code either way.
+#include "bindings.glsl"
 
 uniform uint tileBands;       // B: the bands this dispatch covers (all: ceil(tile rows / m))
 uniform uint firstBand;       // the first of them
 uniform uint rowsPerBand;     // m
 uniform uvec2 tileGrid;       // tiles across and down
-uniform uint firstTileColumn; // the first tile column this dispatch covers
+uniform bool tileSpansOn;      // cover only the tiles of each row's span
+layout(std430, binding = SSBO_TILE_SPANS) readonly buffer TileSpans { uvec2 tileSpans[]; };   // per row of tiles: [first, end)
 
 // The pixel this invocation shades; false when its group lies past the last row of tiles.
 bool tilePixel(uvec2 tileSize, out ivec2 pixel) {
     uint j = gl_WorkGroupID.y;
     uint row = (firstBand + j % tileBands) * rowsPerBand + j / tileBands;
-    pixel = ivec2(uvec2(gl_WorkGroupID.x + firstTileColumn, row) * tileSize + gl_LocalInvocationID.xy);
-    return row < tileGrid.y;
+    uint column = gl_WorkGroupID.x;
+    bool inside = row < tileGrid.y;
+    if (tileSpansOn && inside) {
+        uvec2 span = tileSpans[row];
+        column += span.x;
+        inside = column < span.y;
+    }
+    pixel = ivec2(uvec2(column, row) * tileSize + gl_LocalInvocationID.xy);
+    return inside;
 }
 
 // Whether this group lies in the first half of the dispatch (as two worker threads split it; for `bench`).

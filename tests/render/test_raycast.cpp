@@ -517,6 +517,7 @@ TEST(Raycast, BindingsMatchGlsl) {
     EXPECT_EQ(glsl.at("SSBO_TUBE_DIRECTIONS"), binding::ssboTubeDirections);
     EXPECT_EQ(glsl.at("SSBO_TUBE_COLORS"), binding::ssboTubeColors);
     EXPECT_EQ(glsl.at("SSBO_TUBE_INDICES"), binding::ssboTubeIndices);
+    EXPECT_EQ(glsl.at("SSBO_TILE_SPANS"), binding::ssboTileSpans);
     EXPECT_EQ(glsl.at("SSBO_POISSON_DISK"), binding::ssboPoissonDisk);
     EXPECT_EQ(glsl.at("SSBO_SAMPLE_COUNTER"), binding::ssboSampleCounter);
     EXPECT_EQ(glsl.at("SSBO_LAO_DIRECTIONS"), binding::ssboLaoDirections);
