@@ -39,6 +39,12 @@ bool rayMeetsBall(const reference::CameraRay& ray, const WorldBall& ball) {
     return glm::length(toCentre - along * ray.direction) <= ball.radius;
 }
 
+// A point within 40 mm of the origin along every axis.
+glm::dvec3 randomPosition(std::mt19937& random) {
+    std::uniform_real_distribution<double> u(-40.0, 40.0);
+    return {u(random), u(random), u(random)};
+}
+
 FrameDescription randomFrame(std::mt19937& random) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     FrameDescription frame;
@@ -69,8 +75,7 @@ TEST(RecastRegion, TheProjectionOfABoxCoversEveryPixelWhoseRayMeetsIt) {
     int tight = 0;
     for (int trial = 0; trial < 200; ++trial) {
         FrameDescription frame = randomFrame(random);
-        clip::RigidPose pose;
-        pose.position = glm::dvec3(40 * signed_(random), 40 * signed_(random), 40 * signed_(random));
+        clip::RigidPose pose{randomPosition(random), {}};
         pose.orientation = glm::normalize(glm::dquat(signed_(random), signed_(random), signed_(random), signed_(random)));
         glm::dvec3 half(1 + 20 * unit(random), 1 + 20 * unit(random), 1 + 20 * unit(random));
         ConvexCorners box;
@@ -93,11 +98,11 @@ TEST(RecastRegion, TheProjectionOfABoxCoversEveryPixelWhoseRayMeetsIt) {
 
 TEST(RecastRegion, TheProjectionOfABallCoversEveryPixelWhoseRayMeetsItAndLittleMore) {
     std::mt19937 random(9);
-    std::uniform_real_distribution<double> unit(0.0, 1.0), signed_(-1.0, 1.0);
+    std::uniform_real_distribution<double> radius(2.0, 27.0);
     int measured = 0;
     for (int trial = 0; trial < 200; ++trial) {
         FrameDescription frame = randomFrame(random);
-        WorldBall ball{glm::dvec3(40 * signed_(random), 40 * signed_(random), 40 * signed_(random)), 2 + 25 * unit(random)};
+        WorldBall ball{randomPosition(random), radius(random)};
         std::optional<PixelRegion> region = pixelsMeeting(ball, frame);
         if (!region) {
             EXPECT_LE(glm::length(ball.centre - frame.camera.position()), ball.radius * (1 + 1e-6)) << "trial " << trial;
