@@ -142,6 +142,9 @@ void AmbientOcclusion::markLaoBricks() {
     std::vector<std::uint8_t> changed(std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z), 0);
     for (std::uint32_t entry : list)
         if (entry & kVisitOpacityChanged) changed[entry & kVisitBrickNumber] = 1;
+    // Where the meshes left alone reach and this update does not visit, V_o may be clipped.
+    for (std::size_t b = 0; b < changed.size() && b < stillBricks_.visited.size(); ++b)
+        if (stillBricks_.visited[b] && !(lastVisit_ && lastVisit_->visited[b])) changed[b] = 1;
     laoReach_.setChanged(grid, changed);
     std::uint64_t lao = 0;
     for (std::uint32_t& entry : list) {
@@ -316,7 +319,8 @@ void AmbientOcclusion::beginPrecompute() {
     }
     precomputeStarted_ = true;
     slicedBricks_ = 0;
-    lastMeshBricks_.reset();   // V_AO is not written from this V_PAO yet: the next update visits every brick
+    lastUpdate_.reset();   // V_AO is not written from this V_PAO yet: the next update visits every brick
+    carried_.reset();
 }
 
 int AmbientOcclusion::precomputePhase() const {
@@ -374,14 +378,34 @@ std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, S
     // bricks this frame's meshes reach and those the last update's reached (render/mesh_voxel_box.h): outside
     // both, every voxel is category c now and was outside every map box last time, so V_o (unclipped) and
     // V_AO (= V_PAO) already hold what a whole-grid pass would write.
+    // A mesh that did not change since the last update (pose, scale, geometry, and no map drawn again) is left
+    // where it is: its bricks hold what it made them, and a moved mesh's reach is within its own bricks, which
+    // are visited (at the old and the new state). A 42 mm sphere moving through the carved head then no longer
+    // clips again, and recomputes the LAO around, the still cylinder.
     glm::ivec3 dims = volume_.geometry().dims;
-    BrickSet current = bricksAroundMeshes(volume_.geometry(), clip);
+    UpdateMeshes now{clip.mapRenderCount(), {}};
+    for (int i = 0; i < clip.count(); ++i)
+        now.meshes.push_back({clip.pose(i), clip.scale(i), clip.geometry(i), bricksAroundMesh(volume_.geometry(), clip, i)});
     BrickSet visit = BrickSet::all(dims);
-    if (cao && lastMeshBricks_) {
-        visit = current;
-        visit.unite(*lastMeshBricks_);
+    stillBricks_ = BrickSet::none(dims);
+    if (cao && lastUpdate_) {
+        visit = BrickSet::none(dims);
+        const UpdateMeshes& last = *lastUpdate_;
+        bool sameSet = last.mapRenders == now.mapRenders && last.meshes.size() == now.meshes.size();
+        for (std::size_t i = 0; i < now.meshes.size(); ++i) {
+            if (sameSet && now.meshes[i].sameMesh(last.meshes[i])) {
+                stillBricks_.unite(now.meshes[i].bricks);
+            } else {
+                visit.unite(now.meshes[i].bricks);
+                if (sameSet) visit.unite(last.meshes[i].bricks);
+            }
+        }
+        if (!sameSet)
+            for (const MeshBricks& m : last.meshes) visit.unite(m.bricks);
+        if (carried_) visit.unite(*carried_);
     }
-    lastMeshBricks_ = std::move(current);
+    carried_.reset();
+    lastUpdate_ = std::move(now);
     lastVisit_ = visit;
     stats_.voxels = std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
     stats_.dispatched = visit.visitedVoxels();
@@ -398,7 +422,7 @@ void AmbientOcclusion::abandonUpdate() {
     // Step IV rewrote V_o and V_m over any part of lastVisit_ (all of it unless it was abandoned in slices), step V
     // any part of V_AO there. Visiting all of it next time (with the meshes' bricks then) rewrites every voxel this
     // update touched or left stale; outside it nothing was touched since the update before, whose invariant holds.
-    if (lastVisit_) lastMeshBricks_ = std::move(*lastVisit_);
+    if (lastVisit_) carried_ = std::move(*lastVisit_);
     lastVisit_.reset();
     recomputeGroups_ = recomputeGroupsDone_ = 0;
     clipSlotsDone_ = visitCount_;

@@ -164,12 +164,27 @@ private:
     bool clipDilation_ = false;         // step IV tests the dilated maps (cao)
     bool laoFlagsPending_ = false;   // a CAO list without its "LAO can change" flags yet: markLaoBricks before step V
     LaoReachBricks laoReach_;
-    // Outside these bricks (of the last update) V_o holds the unclipped opacity and V_AO equals V_PAO, so the
-    // next CAO update only visits them and its own meshes' bricks. Unset after step I (V_AO not yet written).
-    std::optional<BrickSet> lastMeshBricks_;
-    // The bricks the last step IV visited (its meshes' and the update before's): what an abandoned step V leaves
-    // to the next update.
-    std::optional<BrickSet> lastVisit_;
+    // The last update's meshes and the bricks each reached (render/mesh_voxel_box.h). Outside the bricks of a mesh
+    // V_o, V_m and V_AO hold what they would without it, and where it reached they hold what its state then
+    // made them; so the next CAO update visits the bricks of the meshes that changed since (their old and new
+    // ones) and leaves the others'. Unset after step I (V_AO not yet written).
+    struct MeshBricks {
+        clip::RigidPose pose;
+        glm::dvec3 scale{1.0};
+        const clip::TriangleMesh* geometry = nullptr;
+        BrickSet bricks;
+        bool sameMesh(const MeshBricks& o) const { return pose == o.pose && scale == o.scale && geometry == o.geometry; }
+    };
+    struct UpdateMeshes {
+        std::uint64_t mapRenders = 0;   // the maps drawn again (resolution, dilation radius): every mesh changed
+        std::vector<MeshBricks> meshes;
+    };
+    std::optional<UpdateMeshes> lastUpdate_;
+    // The bricks of the meshes this update leaves, where it does not visit: their V_o may be clipped, so step V
+    // counts them as changed (markLaoBricks) without step IV's flags.
+    BrickSet stillBricks_;
+    // The bricks the last step IV visited: what an abandoned update leaves to the next one (carried_).
+    std::optional<BrickSet> lastVisit_, carried_;
     // Sliced step I: bricks done over both phases (0 .. 2 * totalBricks()); the whole grid's brick numbers.
     bool precomputeStarted_ = false;
     std::uint32_t slicedBricks_ = 0;

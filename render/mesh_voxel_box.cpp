@@ -115,9 +115,15 @@ bool mayIntersect(const Parallelepiped& a, const Parallelepiped& b) {
 
 BrickSet bricksAroundMeshes(const VolumeGeometry& g, const clip::ClipMeshSet& clip) {
     BrickSet set = BrickSet::none(g.dims);
+    for (int i = 0; i < clip.count(); ++i) set.unite(bricksAroundMesh(g, clip, i));
+    return set;
+}
+
+BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip, int i) {
+    BrickSet set = BrickSet::none(g.dims);
     const glm::dmat3 linear(g.indexToWorld);
     const glm::dmat4 worldToIndex = g.worldToIndex();
-    for (int i = 0; i < clip.count(); ++i) {
+    {
         // The mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal).
         glm::dvec3 lo, hi;
         clip.dilatedBoxLocal(i, lo, hi);

@@ -56,5 +56,7 @@ struct BrickSet {
 // centre, less than the kernel radius) in a mesh: step IV would write exactly its unclipped opacity and
 // category c. Several meshes: the union.
 BrickSet bricksAroundMeshes(const VolumeGeometry& geometry, const clip::ClipMeshSet& clip);
+// ... of mesh `index` alone.
+BrickSet bricksAroundMesh(const VolumeGeometry& geometry, const clip::ClipMeshSet& clip, int index);
 
 }  // namespace curette

@@ -302,6 +302,10 @@ int benchView(const CommandLine& cl) {
     table.add({"applied motion -> exact", fromAppliedMotion, "ms", "wall time the last motion was applied to the exact frame on screen"});
     table.add({"exact frame render", exactRenderMs, "ms", "the last exact frame's render + finish (steps IV, V, VI), over its slices"});
     for (const auto& [pass, ms] : exactPassMs) table.add({"  " + pass, ms, "ms", "of which this pass, over the slices"});
+    AmbientOcclusionStats aoStats = renderer.ambientOcclusion() ? renderer.ambientOcclusion()->lastStats() : AmbientOcclusionStats{};
+    double volumeVoxels = std::max<double>(double(aoStats.voxels), 1.0);
+    table.add({"exact frame visited", 100.0 * double(aoStats.dispatched) / volumeVoxels, "%", "of the volume's voxels, steps IV and V of the last update"});
+    table.add({"exact frame recomputed", 100.0 * double(aoStats.recomputed) / volumeVoxels, "%", "of the volume's voxels, LAO rays cast in its step V"});
     table.add({"exact frame recast", renderer.lastRecastShare(), "", "share of the pixels its ray cast covered (the rest kept: --recast changed)"});
     table.add({"exact frame slices", static_cast<double>(exactSlices), "", "iterations that ran it (--exact-budget 0: one)"});
     table.add({"settle frame max", settleFrameMaxMs, "ms", "the longest the window waited between the last motion and the exact frame"});
@@ -343,6 +347,7 @@ int benchView(const CommandLine& cl) {
         {"exact_pass_ms", exactPassMs},
         {"exact_slices", exactSlices},
         {"exact_recast_share", renderer.lastRecastShare()},
+        {"exact_ao", {{"voxels", aoStats.voxels}, {"visited", aoStats.dispatched}, {"recomputed", aoStats.recomputed}}},
         {"settle_frame_max_ms", settleFrameMaxMs},
         {"last_frame", {{"exact", lastIsExact}, {"image_hash", hash}, {"size", {size.x, size.y}}}},
         {"tables", {table.toJson()}},
