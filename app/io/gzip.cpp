@@ -12,13 +12,16 @@ namespace curette::io {
 
 bool isGzip(std::span<const std::uint8_t> bytes) { return bytes.size() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b; }
 
-std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes,
-                                 std::uint64_t stopAfter) {
+namespace {
+// The one inflate loop: gzip members (16 + MAX_WBITS, restarting for each further member) or one raw deflate
+// stream (-MAX_WBITS, whatever follows its end ignored); `what` names the stream in errors.
+std::vector<std::uint8_t> inflateStream(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes,
+                                        std::uint64_t stopAfter, bool gzip) {
+    const std::string what = gzip ? "gzip stream" : "deflate stream";
     std::vector<std::uint8_t> out;
     Progress progress("decompressing " + source, static_cast<double>(bytes.size()));
     z_stream stream{};
-    // 16 + MAX_WBITS: expect a gzip header; the loop below restarts for each further member.
-    if (inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK) throw SystemError(source + ": zlib could not initialise");
+    if (inflateInit2(&stream, gzip ? 16 + MAX_WBITS : -MAX_WBITS) != Z_OK) throw SystemError(source + ": zlib could not initialise");
     std::size_t consumed = 0;
     std::uint8_t chunk[1 << 16];
     while (consumed < bytes.size()) {
@@ -32,13 +35,12 @@ std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std:
             if (status == Z_NEED_DICT || status == Z_DATA_ERROR || status == Z_MEM_ERROR) {
                 std::string reason = stream.msg ? stream.msg : "corrupt data";
                 inflateEnd(&stream);
-                throw InputError(source, "gzip stream", "valid gzip-compressed data", reason);
+                throw InputError(source, what, gzip ? "valid gzip-compressed data" : "valid deflate-compressed data (RFC 1951)", reason);
             }
             std::size_t produced = sizeof chunk - stream.avail_out;
             if (out.size() + produced > maxBytes) {
                 inflateEnd(&stream);
-                throw InputError(source, "gzip stream", "at most " + std::to_string(maxBytes) + " bytes once decompressed",
-                                 "more");
+                throw InputError(source, what, "at most " + std::to_string(maxBytes) + " bytes once decompressed", "more");
             }
             out.insert(out.end(), chunk, chunk + produced);
             progress.update(static_cast<double>(bytes.size() - stream.avail_in));
@@ -48,10 +50,11 @@ std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std:
             }
             if (status == Z_BUF_ERROR || (status == Z_OK && stream.avail_in == 0 && produced == 0)) {
                 inflateEnd(&stream);
-                throw InputError(source, "gzip stream", "a complete gzip stream", "a truncated one");
+                throw InputError(source, what, "a complete " + what, "a truncated one");
             }
         }
         consumed = bytes.size() - stream.avail_in;
+        if (!gzip) break;
         // Trailing zero padding after the last member is tolerated (some tools pad).
         if (std::all_of(bytes.begin() + static_cast<std::ptrdiff_t>(consumed), bytes.end(), [](std::uint8_t b) { return b == 0; })) break;
         if (!isGzip(bytes.subspan(consumed))) break;  // not another member: trailing garbage is ignored
@@ -59,6 +62,16 @@ std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std:
     }
     inflateEnd(&stream);
     return out;
+}
+}  // namespace
+
+std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes,
+                                 std::uint64_t stopAfter) {
+    return inflateStream(bytes, source, maxBytes, stopAfter, true);
+}
+
+std::vector<std::uint8_t> inflateRaw(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes) {
+    return inflateStream(bytes, source, maxBytes, 0, false);
 }
 
 std::vector<std::uint8_t> gzipCompress(std::span<const std::uint8_t> bytes, int level) {

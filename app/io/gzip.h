@@ -1,5 +1,5 @@
 #pragma once
-// gzip decompression (RFC 1952, through zlib), including files of several concatenated members, with a
+// gzip and raw deflate decompression (RFC 1952, 1951, through zlib), including files of several concatenated members, with a
 // limit so a small file cannot claim gigabytes; and compression into one gzip member, for the writers.
 
 #include <cstdint>
@@ -16,6 +16,10 @@ bool isGzip(std::span<const std::uint8_t> bytes);
 // With stopAfter > 0, returns as soon as that many bytes are out (to read a header before sizing the whole).
 std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes,
                                  std::uint64_t stopAfter = 0);
+
+// Inflates one raw deflate stream (RFC 1951, no header: DICOM's deflated transfer syntax, PS3.5 A.5); bytes
+// after its end are ignored. Throws InputError(source, "deflate stream", ...) as gunzip does.
+std::vector<std::uint8_t> inflateRaw(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes);
 
 // Deflates `bytes` into a single gzip member (zlib level 0..9; 6 is zlib's default). Throws SystemError
 // when zlib fails (out of memory).
