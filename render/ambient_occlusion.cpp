@@ -142,9 +142,20 @@ void AmbientOcclusion::markLaoBricks() {
     std::vector<std::uint8_t> changed(std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z), 0);
     for (std::uint32_t entry : list)
         if (entry & kVisitOpacityChanged) changed[entry & kVisitBrickNumber] = 1;
-    // Where the meshes left alone reach and this update does not visit, V_o may be clipped.
+    // Where the meshes left alone reach and this update does not visit, V_o is what step IV made it when it last
+    // visited the brick, clipped or not (nothing that reaches it changed since).
+    if (clippedBricks_.size() != changed.size()) {
+        clippedBricks_.assign(changed.size(), 0);
+        clippedBricksKnown_ = false;
+    }
     for (std::size_t b = 0; b < changed.size() && b < stillBricks_.visited.size(); ++b)
-        if (stillBricks_.visited[b] && !(lastVisit_ && lastVisit_->visited[b])) changed[b] = 1;
+        if (stillBricks_.visited[b] && !(lastVisit_ && lastVisit_->visited[b]))
+            changed[b] = clippedBricksKnown_ ? clippedBricks_[b] : std::uint8_t(1);
+    for (std::uint32_t entry : list) {
+        std::uint32_t b = entry & kVisitBrickNumber;
+        clippedBricks_[b] = (entry & kVisitOpacityChanged) ? 1 : 0;
+    }
+    if (list.size() == changed.size()) clippedBricksKnown_ = true;   // every brick visited
     laoReach_.setChanged(grid, changed);
     std::uint64_t lao = 0;
     for (std::uint32_t& entry : list) {
@@ -321,6 +332,7 @@ void AmbientOcclusion::beginPrecompute() {
     slicedBricks_ = 0;
     lastUpdate_.reset();   // V_AO is not written from this V_PAO yet: the next update visits every brick
     carried_.reset();
+    clippedBricksKnown_ = false;
 }
 
 int AmbientOcclusion::precomputePhase() const {
@@ -407,6 +419,7 @@ std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, S
     carried_.reset();
     lastUpdate_ = std::move(now);
     lastVisit_ = visit;
+    if (!cao) clippedBricksKnown_ = false;   // full LAO rewrites V_o everywhere and reads no flags back
     stats_.voxels = std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
     stats_.dispatched = visit.visitedVoxels();
     stats_.recomputed = 0;

@@ -180,9 +180,12 @@ private:
         std::vector<MeshBricks> meshes;
     };
     std::optional<UpdateMeshes> lastUpdate_;
-    // The bricks of the meshes this update leaves, where it does not visit: their V_o may be clipped, so step V
-    // counts them as changed (markLaoBricks) without step IV's flags.
+    // The bricks of the meshes this update leaves, where it does not visit: their V_o may be clipped. Step V counts
+    // those clipped when step IV last visited them as changed (markLaoBricks), or all of them while that is not
+    // known for every brick (after step I, and after a full LAO update, until a CAO update has visited every brick).
     BrickSet stillBricks_;
+    std::vector<std::uint8_t> clippedBricks_;   // per brick: step IV clipped a voxel with opacity when it last visited it
+    bool clippedBricksKnown_ = false;
     // The bricks the last step IV visited: what an abandoned update leaves to the next one (carried_).
     std::optional<BrickSet> lastVisit_, carried_;
     // Sliced step I: bricks done over both phases (0 .. 2 * totalBricks()); the whole grid's brick numbers.

@@ -40,6 +40,7 @@ int bench(const Arguments& args) {
                               {"ground-truth-voxels", true, "voxels checked against 512-ray LAO (default 400)"},
                               {"compare-dispatch", false, "compare step V variants at every K (default: K = 26 only)"},
                               {"depth-box-tests", true, "on (default) or off: the ray caster and step IV test every sample against every mesh"},
+                              {"second-mesh", true, "moves (default: with the first, as in the paper) or still (stays where it overlaps the first at the start)"},
                               bench::unseenVoxelsOption(),
                               {"json", true, "JSON output file (default bench-cao.json)"}}));
         return bench::benchCao(cl);
