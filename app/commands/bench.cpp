@@ -100,7 +100,7 @@ int bench(const Arguments& args) {
         CommandLine cl(rest, withGpuOption({{"session", true, "session file (JSON Lines) played back in real time"},
                                             {"size", true, "window size WxH (default 1024x768)"},
                                             {"quality", true, "exact|adaptive (default: adaptive on a software renderer, exact on a GPU)"},
-                                            {"settle", true, "seconds without motion after which the motion counts as stopped (default 0.2)"},
+                                            {"settle", true, "seconds without motion after which the motion counts as stopped (default 0.1)"},
                                             {"precompute-budget", true, "ms of step I per frame while it runs (default 60)"},
                                             {"exact-budget", true, "adaptive quality: ms of the exact frame per frame, in slices (default 60; 0: whole)"},
                                             {"preview-target", true, "ms a motion preview is steered to (default 70)"},

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <optional>
 
 namespace curette {
@@ -141,10 +143,10 @@ TEST(ViewFrameLoop, StepIWaitsWhileItsInputsAreBeingEdited) {
         EXPECT_EQ(d.render, FrameKind::Preview) << "frame " << i;
         EXPECT_TRUE(d.inMotion);
     }
-    // The drag stops: step I waits out the settle time (0.2 s = 3.2 frames), then runs.
+    // The drag stops: step I waits out the settle time (frames of 1/16 s: the first frame at or past it runs).
     int waited = 0;
     while ((d = run.frame(false, true)).precomputeBudgetMs == 0) ASSERT_LT(++waited, 10) << "step I never resumed";
-    EXPECT_EQ(waited, 3) << "it resumes once the inputs have been still for the settle time";
+    EXPECT_EQ(waited, static_cast<int>(std::ceil(s.settleSeconds / 0.0625)) - 1) << "it resumes once the inputs have been still for the settle time";
     EXPECT_EQ(d.precomputeBudgetMs, 40);
     // A camera motion alone (inputs unchanged) does not hold step I back.
     d = run.frame(true, true);
