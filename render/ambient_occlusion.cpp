@@ -140,21 +140,18 @@ void AmbientOcclusion::markLaoBricks() {
     glGetNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * list.size()), list.data());
     const glm::ivec3 grid = visitBrickGrid(volume_.geometry().dims);
     std::vector<std::uint8_t> changed(std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z), 0);
-    for (std::uint32_t entry : list)
-        if (entry & kVisitOpacityChanged) changed[entry & kVisitBrickNumber] = 1;
-    // Where the meshes left alone reach and this update does not visit, V_o is what step IV made it when it last
-    // visited the brick, clipped or not (nothing that reaches it changed since).
     if (clippedBricks_.size() != changed.size()) {
         clippedBricks_.assign(changed.size(), 0);
         clippedBricksKnown_ = false;
     }
+    // Where the meshes left alone reach and this update does not visit, V_o is what step IV made it when it last
+    // visited the brick, clipped or not (nothing that reaches it changed since).
     for (std::size_t b = 0; b < changed.size() && b < stillBricks_.visited.size(); ++b)
         if (stillBricks_.visited[b] && !(lastVisit_ && lastVisit_->visited[b]))
             changed[b] = clippedBricksKnown_ ? clippedBricks_[b] : std::uint8_t(1);
-    for (std::uint32_t entry : list) {
-        std::uint32_t b = entry & kVisitBrickNumber;
-        clippedBricks_[b] = (entry & kVisitOpacityChanged) ? 1 : 0;
-    }
+    // The visited bricks: what step IV just found, kept for the updates that will leave them.
+    for (std::uint32_t entry : list)
+        changed[entry & kVisitBrickNumber] = clippedBricks_[entry & kVisitBrickNumber] = (entry & kVisitOpacityChanged) ? 1 : 0;
     if (list.size() == changed.size()) clippedBricksKnown_ = true;   // every brick visited
     laoReach_.setChanged(grid, changed);
     std::uint64_t lao = 0;
@@ -387,35 +384,34 @@ std::uint32_t AmbientOcclusion::advanceClipVoxels(const TransferFunctionTexture&
 std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, ShadingMode mode) {
     bool cao = mode == ShadingMode::Cao;
     // Full LAO (the baseline) and the first update after step I visit every voxel. A CAO update visits the
-    // bricks this frame's meshes reach and those the last update's reached (render/mesh_voxel_box.h): outside
-    // both, every voxel is category c now and was outside every map box last time, so V_o (unclipped) and
-    // V_AO (= V_PAO) already hold what a whole-grid pass would write.
-    // A mesh that did not change since the last update (pose, scale, geometry, and no map drawn again) is left
-    // where it is: its bricks hold what it made them, and a moved mesh's reach is within its own bricks, which
-    // are visited (at the old and the new state). A 42 mm sphere moving through the carved head then no longer
+    // bricks (render/mesh_voxel_box.h) of the meshes that changed since the last update (pose, scale, geometry,
+    // or every mesh when the maps were drawn again or one was added or removed), those they reach now and those
+    // they reached then: outside a mesh's bricks nothing depends on it, so elsewhere V_o, V_m and V_AO already
+    // hold what a whole-grid pass would write. A mesh that did not change is left where it is: its bricks hold
+    // what its state, the same now, made them. A 42 mm sphere moving through the carved head then no longer
     // clips again, and recomputes the LAO around, the still cylinder.
     glm::ivec3 dims = volume_.geometry().dims;
+    const bool partial = cao && lastUpdate_;
+    const bool sameSet = partial && lastUpdate_->mapRenders == clip.mapRenderCount() && lastUpdate_->meshes.size() == std::size_t(clip.count());
     UpdateMeshes now{clip.mapRenderCount(), {}};
-    for (int i = 0; i < clip.count(); ++i)
-        now.meshes.push_back({clip.pose(i), clip.scale(i), clip.geometry(i), bricksAroundMesh(volume_.geometry(), clip, i)});
-    BrickSet visit = BrickSet::all(dims);
+    BrickSet visit = partial ? BrickSet::none(dims) : BrickSet::all(dims);
     stillBricks_ = BrickSet::none(dims);
-    if (cao && lastUpdate_) {
-        visit = BrickSet::none(dims);
-        const UpdateMeshes& last = *lastUpdate_;
-        bool sameSet = last.mapRenders == now.mapRenders && last.meshes.size() == now.meshes.size();
-        for (std::size_t i = 0; i < now.meshes.size(); ++i) {
-            if (sameSet && now.meshes[i].sameMesh(last.meshes[i])) {
-                stillBricks_.unite(now.meshes[i].bricks);
-            } else {
-                visit.unite(now.meshes[i].bricks);
-                if (sameSet) visit.unite(last.meshes[i].bricks);
-            }
+    for (int i = 0; i < clip.count(); ++i) {
+        MeshBricks m{clip.pose(i), clip.scale(i), clip.geometry(i), {}};
+        const MeshBricks* last = sameSet ? &lastUpdate_->meshes[std::size_t(i)] : nullptr;
+        if (last && m.sameMesh(*last)) {
+            m.bricks = last->bricks;   // the same dilated box: the same bricks
+            stillBricks_.unite(m.bricks);
+        } else {
+            m.bricks = bricksAroundMesh(volume_.geometry(), clip, i);
+            if (partial) visit.unite(m.bricks);
+            if (last) visit.unite(last->bricks);
         }
-        if (!sameSet)
-            for (const MeshBricks& m : last.meshes) visit.unite(m.bricks);
-        if (carried_) visit.unite(*carried_);
+        now.meshes.push_back(std::move(m));
     }
+    if (partial && !sameSet)
+        for (const MeshBricks& m : lastUpdate_->meshes) visit.unite(m.bricks);
+    if (partial && carried_) visit.unite(*carried_);
     carried_.reset();
     lastUpdate_ = std::move(now);
     lastVisit_ = visit;

@@ -123,45 +123,42 @@ BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip
     BrickSet set = BrickSet::none(g.dims);
     const glm::dmat3 linear(g.indexToWorld);
     const glm::dmat4 worldToIndex = g.worldToIndex();
-    {
-        // The mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal).
-        glm::dvec3 lo, hi;
-        clip.dilatedBoxLocal(i, lo, hi);
-        glm::dmat4 toWorld = clip.pose(i).matrix();
-        Parallelepiped box;
-        box.centre = glm::dvec3(toWorld * glm::dvec4(0.5 * (lo + hi), 1.0));
-        for (int a = 0; a < 3; ++a) {
-            box.axis[a] = glm::dvec3(toWorld[a]);   // the pose's rotation: unit axes
-            box.half[a] = 0.5 * (hi[a] - lo[a]);
-        }
-        // Only the bricks within the box's index-space bounds can meet it.
-        glm::dvec3 first(std::numeric_limits<double>::infinity()), last(-std::numeric_limits<double>::infinity());
-        for (int corner = 0; corner < 8; ++corner) {
-            glm::dvec3 world = box.centre;
-            for (int a = 0; a < 3; ++a) world += ((corner >> a) & 1 ? 1.0 : -1.0) * box.half[a] * box.axis[a];
-            glm::dvec3 index(worldToIndex * glm::dvec4(world, 1.0));
-            first = glm::min(first, index);
-            last = glm::max(last, index);
-        }
-        glm::ivec3 from = glm::ivec3(glm::clamp(glm::floor(first / double(kVisitBrickSize)) - 1.0, glm::dvec3(0.0), glm::dvec3(set.grid)));
-        glm::ivec3 to = glm::ivec3(glm::clamp(glm::floor(last / double(kVisitBrickSize)) + 2.0, glm::dvec3(0.0), glm::dvec3(set.grid)));
-        for (int bz = from.z; bz < to.z; ++bz)
-            for (int by = from.y; by < to.y; ++by)
-                for (int bx = from.x; bx < to.x; ++bx) {
-                    std::size_t b = std::size_t(bx) + std::size_t(set.grid.x) * (std::size_t(by) + std::size_t(set.grid.y) * std::size_t(bz));
-                    if (set.visited[b]) continue;
-                    // The brick's voxel centres span [o, o + size - 1] in index space.
-                    glm::ivec3 o = kVisitBrickSize * glm::ivec3(bx, by, bz);
-                    glm::dvec3 size(glm::min(glm::ivec3(kVisitBrickSize), g.dims - o));
-                    Parallelepiped brick;
-                    brick.centre = glm::dvec3(g.indexToWorld * glm::dvec4(glm::dvec3(o) + 0.5 * (size - 1.0), 1.0));
-                    for (int a = 0; a < 3; ++a) {
-                        brick.axis[a] = linear[a];
-                        brick.half[a] = 0.5 * (size[a] - 1.0);
-                    }
-                    if (mayIntersect(box, brick)) set.visited[b] = 1;
-                }
+    // The mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal).
+    glm::dvec3 lo, hi;
+    clip.dilatedBoxLocal(i, lo, hi);
+    glm::dmat4 toWorld = clip.pose(i).matrix();
+    Parallelepiped box;
+    box.centre = glm::dvec3(toWorld * glm::dvec4(0.5 * (lo + hi), 1.0));
+    for (int a = 0; a < 3; ++a) {
+        box.axis[a] = glm::dvec3(toWorld[a]);   // the pose's rotation: unit axes
+        box.half[a] = 0.5 * (hi[a] - lo[a]);
     }
+    // Only the bricks within the box's index-space bounds can meet it.
+    glm::dvec3 first(std::numeric_limits<double>::infinity()), last(-std::numeric_limits<double>::infinity());
+    for (int corner = 0; corner < 8; ++corner) {
+        glm::dvec3 world = box.centre;
+        for (int a = 0; a < 3; ++a) world += ((corner >> a) & 1 ? 1.0 : -1.0) * box.half[a] * box.axis[a];
+        glm::dvec3 index(worldToIndex * glm::dvec4(world, 1.0));
+        first = glm::min(first, index);
+        last = glm::max(last, index);
+    }
+    glm::ivec3 from = glm::ivec3(glm::clamp(glm::floor(first / double(kVisitBrickSize)) - 1.0, glm::dvec3(0.0), glm::dvec3(set.grid)));
+    glm::ivec3 to = glm::ivec3(glm::clamp(glm::floor(last / double(kVisitBrickSize)) + 2.0, glm::dvec3(0.0), glm::dvec3(set.grid)));
+    for (int bz = from.z; bz < to.z; ++bz)
+        for (int by = from.y; by < to.y; ++by)
+            for (int bx = from.x; bx < to.x; ++bx) {
+                std::size_t b = std::size_t(bx) + std::size_t(set.grid.x) * (std::size_t(by) + std::size_t(set.grid.y) * std::size_t(bz));
+                // The brick's voxel centres span [o, o + size - 1] in index space.
+                glm::ivec3 o = kVisitBrickSize * glm::ivec3(bx, by, bz);
+                glm::dvec3 size(glm::min(glm::ivec3(kVisitBrickSize), g.dims - o));
+                Parallelepiped brick;
+                brick.centre = glm::dvec3(g.indexToWorld * glm::dvec4(glm::dvec3(o) + 0.5 * (size - 1.0), 1.0));
+                for (int a = 0; a < 3; ++a) {
+                    brick.axis[a] = linear[a];
+                    brick.half[a] = 0.5 * (size[a] - 1.0);
+                }
+                if (mayIntersect(box, brick)) set.visited[b] = 1;
+            }
     return set;
 }
 

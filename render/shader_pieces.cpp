@@ -20,10 +20,15 @@ void CameraRayPiece::apply(gl::Program& p) const {
 
 int TileOrderPiece::defaultRowsPerBand() { return llvmpipeWorkerThreads(); }
 
+namespace {
+// Tiles across and down an image of `size` pixels.
+glm::uvec2 tilesCovering(glm::ivec2 size, glm::uvec2 tileSize) { return (glm::uvec2(glm::max(size, glm::ivec2(1))) + tileSize - 1u) / tileSize; }
+}  // namespace
+
 TileSpans tileSpansOf(const PixelRegion& region, glm::uvec2 tileSize) {
     TileSpans t;
     t.tileSize = tileSize;
-    glm::uvec2 tiles = (glm::uvec2(glm::max(region.size, glm::ivec2(1))) + tileSize - 1u) / tileSize;
+    glm::uvec2 tiles = tilesCovering(region.size, tileSize);
     t.rows.assign(tiles.y, glm::uvec2(0));
     t.firstRow = tiles.y;
     for (std::size_t y = 0; y < region.rows.size(); ++y) {
@@ -50,7 +55,7 @@ struct TileBands {
     unsigned firstBand, bands;        // the bands it covers
 };
 TileBands tileBands(glm::ivec2 size, int rowsPerBand, glm::uvec3 group, const TileSpans* spans) {
-    glm::uvec2 tiles = (glm::uvec2(glm::max(size, glm::ivec2(1))) + glm::uvec2(group) - 1u) / glm::uvec2(group);
+    glm::uvec2 tiles = tilesCovering(size, glm::uvec2(group));
     unsigned perBand = static_cast<unsigned>(std::clamp(rowsPerBand, 1, static_cast<int>(tiles.y)));
     if (!spans) return {tiles, perBand, tiles.x, 0, (tiles.y + perBand - 1) / perBand};
     if (spans->endRow == 0) return {tiles, perBand, 0, 0, 0};

@@ -1,5 +1,6 @@
 #pragma once
-// Options shared by `bench cao` and `bench view`: the scene's LAO settings, and what the exact frame recasts.
+// Options of `bench cao` and `bench view`: the scene's LAO settings (both), and what the exact frame recasts (view;
+// bench cao always casts every pixel).
 
 #include "app/command_line.h"
 #include "render/lao_settings.h"
