@@ -130,6 +130,9 @@ void ClipMeshSet::uploadGeometry(Mesh& mesh) {
         mesh.localMin = glm::min(mesh.localMin, p);
         mesh.localMax = glm::max(mesh.localMax, p);
     }
+    glm::dvec3 centre = 0.5 * (mesh.localMin + mesh.localMax);
+    mesh.hullRadius = 0.0;
+    for (const glm::vec3& p : positions) mesh.hullRadius = std::max(mesh.hullRadius, glm::length(glm::dvec3(p) - centre));
     mesh.vertices = gl::createBuffer();
     glNamedBufferStorage(mesh.vertices.name(), static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
     mesh.indices = gl::createBuffer();
@@ -224,6 +227,7 @@ void ClipMeshSet::update() {
         Mesh& m = meshes_[static_cast<std::size_t>(i)];
         if (m.mapsDirty) {
             m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, mapResolution_);
+            m.camera.hullRadiusMm = m.hullRadius;
             renderMaps(i);
             m.mapsDirty = false;
             m.dilatedDirty = true;
@@ -379,6 +383,27 @@ void ClipMeshSet::depthBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const
     glm::dvec3 grow(pixel + slack, pixel + slack, slack);
     lo = c.localMin - grow;
     hi = c.localMax + grow;
+}
+
+ClipMeshSet::Ball ClipMeshSet::depthBallLocal(int index) const {
+    // A point the depth maps call inside lies in a pixel whose centre's ray meets the mesh there, so within half
+    // a pixel's diagonal (across the map) of a point of the mesh's hull, which lies within hullRadiusMm of the
+    // bounds' centre. The depth box's growth across the map (a whole pixel, the slack and the margin) covers the
+    // half diagonal.
+    const ClippingCamera& c = camera(index);
+    glm::dvec3 lo, hi;
+    depthBoxLocal(index, lo, hi);
+    return {0.5 * (c.localMin + c.localMax), c.hullRadiusMm + (hi.x - c.localMax.x)};
+}
+
+ClipMeshSet::Ball ClipMeshSet::reachBallLocal(int index) const {
+    // Every point within R of a point the depth maps call inside lies within hullRadiusMm + px / sqrt(2) + R of
+    // the centre (depthBallLocal). The dilated box's growth across the map, K + px / 2 + slack with
+    // K = R + sqrt(2) px + rounding (kernelRadiusMm), is more than px / sqrt(2) + R.
+    const ClippingCamera& c = camera(index);
+    glm::dvec3 lo, hi;
+    dilatedBoxLocal(index, lo, hi);
+    return {0.5 * (c.localMin + c.localMax), c.hullRadiusMm + (hi.x - c.localMax.x)};
 }
 
 ClipMeshSet::WorldBox ClipMeshSet::mapBoxWorldBounds(int index) const {

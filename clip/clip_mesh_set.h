@@ -89,6 +89,20 @@ public:
     // maps only where its ray meets this box (clip_test.glsl rayClipSpan), step IV and the removal field only
     // the meshes whose box is within a voxel's sample reach (nearDepthBox). Valid after update().
     void depthBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
+    // Balls in the pose's local frame, around the centre of the mesh's bounds (derivations in the .cpp). Valid
+    // after update().
+    //  - depthBallLocal: holds every point the depth maps call inside, like the depth box (and grown as much);
+    //  - reachBallLocal: holds every point within R (dilationRadiusMm) of such a point, grown as the dilated box
+    //    is across the map. Where a mesh can change a voxel's V_o (a clip sample inside) or its LAO (a changed
+    //    V_o within reach) lies in both its reach ball and its dilated box (render/mesh_voxel_box.h). Unlike the
+    //    box, the ball need not hold the whole dilated shape: the separable kernel reaches past it at the map's
+    //    diagonals, where the shape holds no voxel whose AO the mesh changes.
+    struct Ball {
+        glm::dvec3 centre{0.0};
+        double radius = 0.0;
+    };
+    Ball depthBallLocal(int index) const;
+    Ball reachBallLocal(int index) const;
     // For the rounding between a point computed one way where the box is tested (from a ray parameter, or a
     // voxel centre rather than its sample) and another where the maps are: far above it, small beside a mesh.
     static constexpr double depthBoxMarginMm = 0.5;
@@ -139,6 +153,7 @@ private:
         gl::Buffer vertices, indices;
         GLsizei indexCount = 0;
         glm::dvec3 localMin{0.0}, localMax{0.0};
+        double hullRadius = 0.0;   // the farthest scaled vertex from the centre of localMin..localMax
     };
     void uploadGeometry(Mesh& mesh);
     void allocateArrays(int layers);

@@ -12,6 +12,8 @@ namespace curette::clip {
 
 struct ClippingCamera {
     glm::dvec3 localMin{0.0}, localMax{0.0};  // the mesh's local bounds (scaled geometry)
+    double hullRadiusMm = 0.0;                // the farthest (scaled) vertex from the bounds' centre: a ball
+                                              // around it there holds the mesh's convex hull
     glm::dvec2 mapOrigin{0.0};                // local x, y of the map's corner (0, 0)
     double mapSizeMm = 1.0;                   // side of the square map in local millimetres
     int resolution = 256;                     // pixels per side

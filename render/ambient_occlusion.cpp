@@ -400,7 +400,7 @@ std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, S
         MeshBricks m{clip.pose(i), clip.scale(i), clip.geometry(i), {}};
         const MeshBricks* last = sameSet ? &lastUpdate_->meshes[std::size_t(i)] : nullptr;
         if (last && m.sameMesh(*last)) {
-            m.bricks = last->bricks;   // the same dilated box: the same bricks
+            m.bricks = last->bricks;   // the same box and ball: the same bricks
             stillBricks_.unite(m.bricks);
         } else {
             m.bricks = bricksAroundMesh(volume_.geometry(), clip, i);

@@ -5,12 +5,12 @@
 //   V   update():     V_AO: category c copies V_PAO, b (and a voxels next to a visible one) recompute LAO,
 //                     in CAO only in bricks within LAO reach of a V_o step IV changed (render/lao_reach.h);
 //                     elsewhere the rays read only step I's V_o, so they copy V_PAO
-// A CAO update visits only the voxels whose category can differ from c now or could at the previous update:
-// the bricks (render/mesh_voxel_box.h, 4^3 voxels) the meshes' oriented dilated boxes reach in either frame;
-// everywhere else V_o, V_AO are what a whole-grid pass would write again. V_m outside those bricks may still
-// say b from an earlier `lao` update: only step V reads it, at visited voxels and at the 26 neighbours of
-// visited clipped ones, which lie within a cell diagonal of the mesh, inside its dilated box, and so are
-// visited too.
+// A CAO update visits only the voxels whose V_o or V_AO the meshes can change now or could at the previous
+// update: the bricks (render/mesh_voxel_box.h, 4^3 voxels) where a mesh's oriented dilated box and its reach ball
+// meet, in either frame; everywhere else V_o, V_AO are what a whole-grid pass would write again. V_m outside
+// those bricks may be stale (b from an earlier `lao` update, or c where a dilated shape reaches past its ball):
+// only step V reads it, at visited voxels and at the 26 neighbours of visited clipped ones, which lie within a
+// cell diagonal of the mesh, inside its box and ball, and so are visited too.
 // Shading `lao` is the baseline CAO is measured against: the same passes without the dilation test, so every
 // visible voxel recomputes. Both produce bit-identical V_AO (the exactness contract, tested).
 //

@@ -111,6 +111,18 @@ bool mayIntersect(const Parallelepiped& a, const Parallelepiped& b) {
     return true;
 }
 
+// Whether the parallelepiped may meet the ball: its centre lies within the radius plus the parallelepiped's
+// circumradius (its farthest corner from its centre) of the ball's. Conservative by the rounding margin of
+// mayIntersect, and by at most the circumradius.
+bool mayMeetBall(const Parallelepiped& p, glm::dvec3 centre, double radius) {
+    double circumradius = 0.0;
+    for (int signs = 0; signs < 4; ++signs)
+        circumradius = std::max(circumradius, glm::length(p.half[0] * p.axis[0] + ((signs & 1) ? -1.0 : 1.0) * p.half[1] * p.axis[1] +
+                                                          ((signs & 2) ? -1.0 : 1.0) * p.half[2] * p.axis[2]));
+    double reach = radius + circumradius;
+    return glm::length(p.centre - centre) <= reach + 1e-9 * reach + 1e-9;
+}
+
 }  // namespace
 
 BrickSet bricksAroundMeshes(const VolumeGeometry& g, const clip::ClipMeshSet& clip) {
@@ -123,10 +135,12 @@ BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip
     BrickSet set = BrickSet::none(g.dims);
     const glm::dmat3 linear(g.indexToWorld);
     const glm::dmat4 worldToIndex = g.worldToIndex();
-    // The mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal).
+    // The mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal) and its reach ball (reachBallLocal).
     glm::dvec3 lo, hi;
     clip.dilatedBoxLocal(i, lo, hi);
     glm::dmat4 toWorld = clip.pose(i).matrix();
+    clip::ClipMeshSet::Ball ball = clip.reachBallLocal(i);
+    glm::dvec3 ballCentre(toWorld * glm::dvec4(ball.centre, 1.0));
     Parallelepiped box;
     box.centre = glm::dvec3(toWorld * glm::dvec4(0.5 * (lo + hi), 1.0));
     for (int a = 0; a < 3; ++a) {
@@ -157,7 +171,7 @@ BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip
                     brick.axis[a] = linear[a];
                     brick.half[a] = 0.5 * (size[a] - 1.0);
                 }
-                if (mayIntersect(box, brick)) set.visited[b] = 1;
+                if (mayMeetBall(brick, ballCentre, ball.radius) && mayIntersect(box, brick)) set.visited[b] = 1;
             }
     return set;
 }

@@ -49,12 +49,16 @@ struct BrickSet {
     std::vector<std::uint32_t> visitedIndices() const;
 };
 
-// The bricks of the voxels the meshes' maps can touch: every brick whose voxel centres' parallelepiped meets
-// some mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal, an oriented box: outside it neither the depth
-// nor the dilated maps call any point inside), by the separating-axis theorem. A voxel outside every such
-// brick has its centre in no dilated shape, and none of its clip samples (within a cell diagonal of the
-// centre, less than the kernel radius) in a mesh: step IV would write exactly its unclipped opacity and
-// category c. Several meshes: the union.
+// The bricks of the voxels whose V_o, V_m or V_AO a mesh can change: every brick whose voxel centres'
+// parallelepiped meets some mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal, an oriented box: outside it
+// neither the depth nor the dilated maps call any point inside), by the separating-axis theorem, and its reach
+// ball (clip::ClipMeshSet::reachBallLocal: every point within R of one the depth maps call inside), through the
+// brick's circumscribed ball. A voxel outside every such brick has none of its clip samples (within a cell
+// diagonal of the centre, less than R) in a mesh, so step IV would write exactly its unclipped opacity, and no
+// V_o its LAO reads (within R less a cell diagonal) changed, so step V would write V_PAO; its centre may still
+// lie in a dilated shape where the separable kernel reaches past the ball (dilation.comp), but its category
+// is read only at visited voxels and next to visited clipped ones, which lie within a cell diagonal of the
+// mesh. Several meshes: the union.
 BrickSet bricksAroundMeshes(const VolumeGeometry& geometry, const clip::ClipMeshSet& clip);
 // ... of mesh `index` alone.
 BrickSet bricksAroundMesh(const VolumeGeometry& geometry, const clip::ClipMeshSet& clip, int index);

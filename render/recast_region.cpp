@@ -75,18 +75,13 @@ ClipSnapshot ClipSnapshot::of(const clip::ClipMeshSet& set, double cellDiagonalM
         set.dilatedBoxLocal(i, m.ambientLo, m.ambientHi);
         m.ambientLo -= cellDiagonalMm;
         m.ambientHi += cellDiagonalMm;
-        // The balls: around the centre of the mesh's bounds, holding every (scaled) vertex, so the mesh's hull.
-        // A point the depth maps call inside lies on a map pixel's centre line inside that hull, within half a
-        // pixel's diagonal of it: the depth box's growth across the map (a whole pixel, the slack and margin)
-        // covers that. The dilated box's growth across the map (the kernel radius, more than R, and half a pixel)
-        // covers R on top.
-        const clip::ClippingCamera& camera = set.camera(i);
-        m.centre = 0.5 * (camera.localMin + camera.localMax);
-        double hull = 0.0;
-        glm::dvec3 scale = set.scale(i);
-        for (const glm::vec3& p : set.geometry(i)->positions) hull = std::max(hull, glm::length(scale * glm::dvec3(p) - m.centre));
-        m.clipRadius = hull + (depthHi.x - camera.localMax.x);
-        m.ambientRadius = hull + (m.ambientHi.x - camera.localMax.x);
+        // The balls (clip::ClipMeshSet::depthBallLocal, reachBallLocal): the depth ball holds every point the
+        // depth maps call inside; the reach ball every point within R of one, and so every voxel whose V_AO the
+        // mesh can change; a cell diagonal more, like the box, for the samples that read it.
+        clip::ClipMeshSet::Ball depthBall = set.depthBallLocal(i), reachBall = set.reachBallLocal(i);
+        m.centre = depthBall.centre;
+        m.clipRadius = depthBall.radius;
+        m.ambientRadius = reachBall.radius + cellDiagonalMm;
         s.meshes.push_back(m);
     }
     return s;

@@ -74,7 +74,7 @@ struct ModeResult {
     double msSpread = 0;                   // half the range of the frame times (min..max) around the median
     std::map<std::string, double> stepMs;  // median per step name
     double recomputedFraction = 0;
-    double visitedFraction = 0;   // voxels steps IV and V visited (the bricks the meshes' dilated boxes reach)
+    double visitedFraction = 0;   // voxels steps IV and V visited (the bricks where the meshes' dilated boxes and reach balls meet)
     double visitedVoxels = 0;     // the same as a count, mean over frames
     double laoBrickFraction = 0;  // of the visited bricks, those where LAO can change (render/lao_reach.h)
     std::vector<std::uint64_t> aoHashes, imageHashes;

@@ -45,11 +45,18 @@ std::vector<std::uint32_t> probe(const clip::ClipMeshSet& set, const std::vector
     return results;
 }
 
-// Conservative: every voxel the GPU's own maps can touch (its centre in a dilated shape, or one of its nine
-// clip samples, clip_coverage.glsl, inside a mesh) lies in a visited brick, and so does every voxel centre
-// in a dilated box. Tight: every visited brick holds a voxel centre within a cell diagonal of a dilated box
-// (the separating axis test is exact for the parallelepiped of the brick's voxel centres). On an oblique,
-// anisotropic grid with turned meshes, the bricks hold far fewer voxels than the axis-aligned box.
+// Distance from world point p to mesh i's reach ball (clip::ClipMeshSet::reachBallLocal).
+double distanceToReachBall(const clip::ClipMeshSet& set, int i, glm::dvec3 p) {
+    clip::ClipMeshSet::Ball ball = set.reachBallLocal(i);
+    glm::dvec3 centre(set.pose(i).matrix() * glm::dvec4(ball.centre, 1.0));
+    return std::max(glm::length(p - centre) - ball.radius, 0.0);
+}
+
+// Conservative: every voxel whose V_o or LAO a mesh can change lies in a visited brick, by the GPU's own maps:
+// one of its nine clip samples (clip_coverage.glsl) inside a mesh, or its centre within R (the dilation radius)
+// of a voxel centre the maps call inside. Tight: every visited brick holds a voxel centre within a cell
+// diagonal of a dilated box, and near that mesh's reach ball. On an oblique, anisotropic grid with turned
+// meshes, the bricks hold far fewer voxels than the axis-aligned box, and fewer than the dilated boxes'.
 TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
     glContext();
     glm::ivec3 dims(48, 44, 40);
@@ -61,9 +68,12 @@ TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
     clip::ClipMeshSet& set = renderer.clipMeshes();
     auto rod = std::make_shared<const clip::TriangleMesh>(clip::makeCylinder(2.5, 30.0, 24));
     auto ball = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 2));
+    const double reachMm = 4.0;
+    // The brick's circumradius: half the diagonal of its voxel centres' parallelepiped.
+    const double brickCircumradius = 0.5 * (kVisitBrickSize - 1) * g.cellDiagonalMm();
     std::mt19937 random(7);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    std::uint64_t visitedVoxels = 0, boxVoxels = 0, touched = 0;
+    std::uint64_t visitedVoxels = 0, boxVoxels = 0, dilatedBoxVoxels = 0, touched = 0, reached = 0;
     for (int round = 0; round < 10; ++round) {
         set.clear();
         int meshes = 1 + round % 2;
@@ -72,7 +82,7 @@ TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
             clip::RigidPose pose{16.0 * glm::dvec3(u(random), u(random), u(random)), glm::angleAxis(3.14159 * u(random), axis)};
             set.add(m == 0 ? rod : ball, glm::dvec3(1.0), pose, m == 0 ? "rod" : "ball");
         }
-        set.setDilationRadiusMm(4.0);
+        set.setDilationRadiusMm(reachMm);
         set.setDilatedMapsNeeded(true);
         set.update();
         BrickSet bricks = bricksAroundMeshes(g, set);
@@ -80,18 +90,22 @@ TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
         boxVoxels += voxelBoxAroundMeshes(g, set).voxelCount();
         std::vector<glm::vec4> points;
         std::vector<glm::ivec3> voxels;
-        std::vector<double> brickNearest(bricks.brickCount(), 1e300);
-        std::uint64_t outsideBricks = 0, touchedOutside = 0;
+        std::vector<double> brickNearest(bricks.brickCount(), 1e300), brickNearestBall(bricks.brickCount(), 1e300);
         for (int k = 0; k < dims.z; ++k)
             for (int j = 0; j < dims.y; ++j)
                 for (int i = 0; i < dims.x; ++i) {
                     glm::dvec3 p(g.indexToWorld * glm::dvec4(i, j, k, 1.0));
-                    double nearest = 1e300;
-                    for (int m = 0; m < set.count(); ++m) nearest = std::min(nearest, distanceToDilatedBox(set, m, p));
-                    if (nearest == 0.0 && !bricks.visits({i, j, k})) ++outsideBricks;
+                    double nearest = 1e300, nearestBall = 1e300;
+                    for (int m = 0; m < set.count(); ++m) {
+                        double box = distanceToDilatedBox(set, m, p);
+                        nearest = std::min(nearest, box);
+                        if (box <= g.cellDiagonalMm()) nearestBall = std::min(nearestBall, distanceToReachBall(set, m, p));
+                    }
+                    dilatedBoxVoxels += nearest == 0.0;
                     glm::ivec3 b = glm::ivec3(i, j, k) / kVisitBrickSize;
-                    double& n = brickNearest[std::size_t(b.x) + std::size_t(bricks.grid.x) * (std::size_t(b.y) + std::size_t(bricks.grid.y) * std::size_t(b.z))];
-                    n = std::min(n, nearest);
+                    std::size_t brick = std::size_t(b.x) + std::size_t(bricks.grid.x) * (std::size_t(b.y) + std::size_t(bricks.grid.y) * std::size_t(b.z));
+                    brickNearest[brick] = std::min(brickNearest[brick], nearest);
+                    brickNearestBall[brick] = std::min(brickNearestBall[brick], nearestBall);
                     // The voxel centre and its eight corner samples, as step IV takes them.
                     for (int c = 0; c < 9; ++c) {
                         glm::dvec3 offset = c == 0 ? glm::dvec3(0.0) : glm::dvec3((c - 1) & 1 ? 1 : -1, (c - 1) & 2 ? 1 : -1, (c - 1) & 4 ? 1 : -1);
@@ -100,23 +114,47 @@ TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
                     }
                 }
         std::vector<std::uint32_t> results = probe(set, points);
+        std::uint64_t touchedOutside = 0, reachedOutside = 0;
+        std::vector<glm::ivec3> inside;
         for (std::size_t p = 0; p < points.size(); ++p) {
-            bool centre = p % 9 == 0;
-            if ((results[p] & 1u) || (centre && (results[p] & 2u))) {
-                ++touched;
-                touchedOutside += !bricks.visits(voxels[p]);
-            }
+            if (!(results[p] & 1u)) continue;
+            ++touched;
+            touchedOutside += !bricks.visits(voxels[p]);
+            if (p % 9 == 0) inside.push_back(voxels[p]);
+        }
+        // Every voxel centre within R of a centre the maps call inside.
+        glm::dvec3 spacing(glm::length(glm::dvec3(g.indexToWorld[0])), glm::length(glm::dvec3(g.indexToWorld[1])),
+                           glm::length(glm::dvec3(g.indexToWorld[2])));
+        glm::ivec3 around(glm::ceil(reachMm / spacing));
+        std::vector<std::uint8_t> withinReach(std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z), 0);
+        for (glm::ivec3 v : inside) {
+            glm::dvec3 from(g.indexToWorld * glm::dvec4(glm::dvec3(v), 1.0));
+            glm::ivec3 lo = glm::max(v - around, glm::ivec3(0)), hi = glm::min(v + around, dims - 1);
+            for (int k = lo.z; k <= hi.z; ++k)
+                for (int j = lo.y; j <= hi.y; ++j)
+                    for (int i = lo.x; i <= hi.x; ++i) {
+                        std::size_t n = std::size_t(i) + std::size_t(dims.x) * (std::size_t(j) + std::size_t(dims.y) * std::size_t(k));
+                        if (withinReach[n] || glm::length(glm::dvec3(g.indexToWorld * glm::dvec4(i, j, k, 1.0)) - from) > reachMm) continue;
+                        withinReach[n] = 1;
+                        ++reached;
+                        reachedOutside += !bricks.visits({i, j, k});
+                    }
         }
         ASSERT_EQ(touchedOutside, 0u) << "round " << round << ": the maps touch voxels whose bricks are not visited";
-        ASSERT_EQ(outsideBricks, 0u) << "round " << round << ": voxel centres in a dilated box whose bricks are not visited";
+        ASSERT_EQ(reachedOutside, 0u) << "round " << round << ": voxels within R of a clipped point whose bricks are not visited";
         for (std::size_t b = 0; b < bricks.brickCount(); ++b)
             if (bricks.visited[b]) {
                 ASSERT_LE(brickNearest[b], g.cellDiagonalMm()) << "round " << round << ": brick " << b << " is visited but no voxel centre in it is near a dilated box";
+                ASSERT_LE(brickNearestBall[b], brickCircumradius + g.cellDiagonalMm())
+                    << "round " << round << ": brick " << b << " is visited but no voxel centre in it is near its mesh's reach ball";
             }
     }
-    std::printf("[ visit bricks ] turned meshes: %llu voxel touches checked; bricks hold %.1f%% of the voxels of the axis-aligned boxes\n",
-                static_cast<unsigned long long>(touched), 100.0 * double(visitedVoxels) / double(boxVoxels));
+    std::printf("[ visit bricks ] turned meshes: %llu voxel touches and %llu voxels within reach checked; bricks hold %.1f%% of the voxels of the "
+                "axis-aligned boxes, %.1f%% of those of the dilated boxes\n",
+                static_cast<unsigned long long>(touched), static_cast<unsigned long long>(reached), 100.0 * double(visitedVoxels) / double(boxVoxels),
+                100.0 * double(visitedVoxels) / double(dilatedBoxVoxels));
     EXPECT_GT(touched, 10000u);
+    EXPECT_GT(reached, 10000u);
     EXPECT_LT(visitedVoxels, boxVoxels / 2) << "turned meshes: the oriented boxes' bricks must hold well under the axis-aligned box";
 }
 
