@@ -25,6 +25,7 @@ struct TransferFunction {
     // Phong material carried by Slicer .vp files; used by `phong` shading when present.
     struct Material {
         double ambient = 0.2, diffuse = 0.8, specular = 0.3, specularPower = 20.0;
+        bool operator==(const Material&) const = default;
     };
 
     std::string name;

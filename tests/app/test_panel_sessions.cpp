@@ -350,11 +350,11 @@ TEST(PanelSessions, LightsAddedAndRemovedReplayAndSaveToTheSameImages) {
     auto session = dir / "lights.jsonl";
     Script script;
     script.frames = 10;
-    script.edits = [](int f, const InteractionState& state, const Scene& scene) -> std::vector<SettingEdit> {
+    script.edits = [](int f, const InteractionState& state, const Scene& sceneNow) -> std::vector<SettingEdit> {
         switch (f) {
             case 1: return {{Setting::LightAdd, -1, json(R"({"direction": [-1, 0.2, 0.6], "color": [0.3, 0.5, 1], "intensity": 1.5})")}};
             case 4: {
-                nlohmann::json light = state.keyJson(scene, "lights[2]");
+                nlohmann::json light = state.keyJson(sceneNow, "lights[2]");
                 light["color"] = {0.2, 1, 0.4};
                 return {{Setting::Light, 2, light}};
             }

@@ -312,7 +312,7 @@ TEST(Cao, TurnedMeshesVisitOnlyTheirOrientedBoxesAndStayEqualToFullLao) {
     CaoAgainstFreshLao pair(spec);
     const VolumeGeometry& g = pair.cao.renderer->geometry();
     auto rod = std::make_shared<const clip::TriangleMesh>(clip::makeCylinder(2.5, 30.0, 24));
-    auto box = std::make_shared<const clip::TriangleMesh>(clip::makeBox(glm::dvec3(4.0, 5.0, 12.0)));
+    auto boxMesh = std::make_shared<const clip::TriangleMesh>(clip::makeBox(glm::dvec3(4.0, 5.0, 12.0)));
     pair.meshes([&](clip::ClipMeshSet& set) { set.add(rod, glm::dvec3(1.0), {}, "rod"); });
     auto turnFromZ = [](glm::dvec3 to) {   // the turn taking local +z (the rod's axis, its map box's depth) to `to`
         glm::dvec3 from(0, 0, 1);
@@ -332,7 +332,7 @@ TEST(Cao, TurnedMeshesVisitOnlyTheirOrientedBoxesAndStayEqualToFullLao) {
         glm::dquat wobble = glm::angleAxis(0.15 * u(random), glm::normalize(glm::dvec3(u(random), u(random), u(random)) + glm::dvec3(1e-9)));
         clip::RigidPose pose{position, wobble * (frame < 16 ? diagonal : otherDiagonal)};
         pair.meshes([&](clip::ClipMeshSet& set) {
-            if (frame == 6) set.add(box, glm::dvec3(1.0), {}, "box");
+            if (frame == 6) set.add(boxMesh, glm::dvec3(1.0), {}, "box");
             if (frame == 18) set.remove(1);
             set.setPose(0, pose);
             if (set.count() > 1) set.setPose(1, {position + glm::dvec3(-7, 6, -3), wobble * otherDiagonal});
@@ -729,7 +729,9 @@ TEST(Cao, LaoOnlyWhereASampleSeesItChangesNoPixel) {
             // Voxels whose LAO is below 1 but which hold 1: were a pixel to read one, it would change.
             EXPECT_GT(unseen, 200u);
             EXPECT_LT(a.recomputed, b.recomputed);
-            if (mode == ShadingMode::Lao) EXPECT_GT(b.recomputed - a.recomputed, a.ambient.size() / 5) << "rays saved";
+            if (mode == ShadingMode::Lao) {
+                EXPECT_GT(b.recomputed - a.recomputed, a.ambient.size() / 5) << "rays saved";
+            }
             EXPECT_EQ(0, std::memcmp(a.image.pixels.data(), b.image.pixels.data(), a.image.pixels.size() * sizeof(glm::vec4))) << "image";
         }
     }

@@ -114,7 +114,8 @@ TEST(RecastRegion, TheProjectionOfABallCoversEveryPixelWhoseRayMeetsItAndLittleM
             ++measured;
             std::int64_t rows = 0;
             for (glm::ivec2 run : region->rows) rows += run.y > run.x;
-            EXPECT_LE(region->area(), 1.1 * meeting + 4.0 * rows) << "trial " << trial << ": the region is loose";
+            EXPECT_LE(static_cast<double>(region->area()), 1.1 * static_cast<double>(meeting) + 4.0 * static_cast<double>(rows))
+                << "trial " << trial << ": the region is loose";
         }
     }
     EXPECT_GT(measured, 30);
