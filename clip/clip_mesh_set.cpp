@@ -20,8 +20,9 @@ struct CameraGpu {  // std140 layout of ClipMeshGpu in shaders/clip_test.glsl
     std::int32_t info[4];
     float mapBox[4];
     float depthBoxLo[4], depthBoxHi[4];
+    float depthBall[4];
 };
-static_assert(sizeof(CameraGpu) == 128);
+static_assert(sizeof(CameraGpu) == 144);
 
 // Whether any pixel of the resolution x resolution corner of a 2-D texture is finite.
 bool anyFinite(GLuint texture, int resolution) {
@@ -449,6 +450,11 @@ void ClipMeshSet::uploadCameras() {
             cameras[i].depthBoxHi[k] = static_cast<float>(mapHi[k]);
         }
         cameras[i].depthBoxLo[3] = cameras[i].depthBoxHi[3] = 0.0f;
+        // The depth ball (depthBallLocal) in world millimetres.
+        Ball ball = depthBallLocal(static_cast<int>(i));
+        glm::dvec3 centre(meshes_[i].pose.matrix() * glm::dvec4(ball.centre, 1.0));
+        for (int k = 0; k < 3; ++k) cameras[i].depthBall[k] = static_cast<float>(centre[k]);
+        cameras[i].depthBall[3] = static_cast<float>(ball.radius);
     }
     if (!cameras.empty())
         glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());

@@ -18,6 +18,8 @@ struct ClipMeshGpu {
                        // Outside the box no map answers "inside".
     vec4 depthBoxLo;   // xyz: the depth box (ClipMeshSet::depthBoxLocal) in map coordinates (x, y over the
     vec4 depthBoxHi;   // map side, z the local depth in mm): outside it no depth map answers "inside"
+    vec4 depthBall;    // xyz: the depth ball's world centre, w: its radius (mm; ClipMeshSet::depthBallLocal):
+                       // outside it no depth map answers "inside" either
 };
 
 // A uniform block, not a storage buffer: the array is small and every invocation reads the same entries,
@@ -96,7 +98,14 @@ ClipSpan rayClipSpan(vec3 origin, vec3 direction) {
         vec3 a = (mesh.depthBoxLo.xyz - o) / safe, b = (mesh.depthBoxHi.xyz - o) / safe;
         vec3 nearAxes = min(a, b), farAxes = max(a, b);
         float tNear = max(max(nearAxes.x, nearAxes.y), nearAxes.z), tFar = min(min(farAxes.x, farAxes.y), farAxes.z);
-        if (tFar >= tNear) {
+        // And where it meets the depth ball: |origin + t direction - centre| <= radius.
+        vec3 fromCentre = origin - mesh.depthBall.xyz;
+        float half_b = dot(fromCentre, direction);
+        float discriminant = half_b * half_b - (dot(fromCentre, fromCentre) - mesh.depthBall.w * mesh.depthBall.w);
+        float root = sqrt(max(discriminant, 0.0));
+        tNear = max(tNear, -half_b - root);
+        tFar = min(tFar, -half_b + root);
+        if (discriminant >= 0.0 && tFar >= tNear) {
             span.near = min(span.near, tNear);
             span.far = max(span.far, tFar);
             span.meshes |= 1u << uint(i);
@@ -105,13 +114,14 @@ ClipSpan rayClipSpan(vec3 origin, vec3 direction) {
     return span;
 }
 
-// Whether mesh i's depth box comes within `margin` (mm) of `world`: if not, no point within `margin` of `world`
-// is inside its depth maps. Measured in the map's frame with x and y scaled to mm (rigid).
+// Whether mesh i's depth box and its depth ball both come within `margin` (mm) of `world`: if not, no point
+// within `margin` of `world` is inside its depth maps. The box is measured in the map's frame with x and y
+// scaled to mm (rigid).
 bool nearDepthBox(int i, vec3 world, float margin) {
     ClipMeshGpu mesh = clipMeshes[i];
     vec3 m = (mesh.worldToMap * vec4(world, 1.0)).xyz;
     vec3 outside = max(max(mesh.depthBoxLo.xyz - m, m - mesh.depthBoxHi.xyz), 0.0) * vec3(mesh.mapBox.x, mesh.mapBox.x, 1.0);
-    return dot(outside, outside) <= margin * margin;
+    return dot(outside, outside) <= margin * margin && distance(world, mesh.depthBall.xyz) <= mesh.depthBall.w + margin;
 }
 
 bool insideSpan(ClipSpan span, float t) { return t >= span.near && t <= span.far; }
