@@ -91,7 +91,8 @@ public:
     void depthBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const;
     // Balls in the pose's local frame, around the centre of the mesh's bounds (derivations in the .cpp). Valid
     // after update().
-    //  - depthBallLocal: holds every point the depth maps call inside, like the depth box (and grown as much);
+    //  - depthBallLocal: holds every point the depth maps call inside, like the depth box (and grown as much;
+    //    the passes test both, clip_test.glsl rayClipSpan and nearDepthBox);
     //  - reachBallLocal: holds every point within R (dilationRadiusMm) of such a point, grown as the dilated box
     //    is across the map. Where a mesh can change a voxel's V_o (a clip sample inside) or its LAO (a changed
     //    V_o within reach) lies in both its reach ball and its dilated box (render/mesh_voxel_box.h). Unlike the
