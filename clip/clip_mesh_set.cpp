@@ -391,20 +391,24 @@ ClipMeshSet::Ball ClipMeshSet::depthBallLocal(int index) const {
     // a pixel's diagonal (across the map) of a point of the mesh's hull, which lies within hullRadiusMm of the
     // bounds' centre. The depth box's growth across the map (a whole pixel, the slack and the margin) covers the
     // half diagonal.
-    const ClippingCamera& c = camera(index);
     glm::dvec3 lo, hi;
     depthBoxLocal(index, lo, hi);
-    return {0.5 * (c.localMin + c.localMax), c.hullRadiusMm + (hi.x - c.localMax.x)};
+    return hullBallGrownAs(index, hi);
 }
 
 ClipMeshSet::Ball ClipMeshSet::reachBallLocal(int index) const {
     // Every point within R of a point the depth maps call inside lies within hullRadiusMm + px / sqrt(2) + R of
     // the centre (depthBallLocal). The dilated box's growth across the map, K + px / 2 + slack with
     // K = R + sqrt(2) px + rounding (kernelRadiusMm), is more than px / sqrt(2) + R.
-    const ClippingCamera& c = camera(index);
     glm::dvec3 lo, hi;
     dilatedBoxLocal(index, lo, hi);
-    return {0.5 * (c.localMin + c.localMax), c.hullRadiusMm + (hi.x - c.localMax.x)};
+    return hullBallGrownAs(index, hi);
+}
+
+ClipMeshSet::Ball ClipMeshSet::hullBallGrownAs(int index, glm::dvec3 boxHi) const {
+    // A box's growth across the map is the same along x and y (depthBoxLocal, dilatedBoxLocal).
+    const ClippingCamera& c = camera(index);
+    return {0.5 * (c.localMin + c.localMax), c.hullRadiusMm + (boxHi.x - c.localMax.x)};
 }
 
 ClipMeshSet::WorldBox ClipMeshSet::mapBoxWorldBounds(int index) const {

@@ -157,6 +157,8 @@ private:
         double hullRadius = 0.0;   // the farthest scaled vertex from the centre of localMin..localMax
     };
     void uploadGeometry(Mesh& mesh);
+    // The ball around mesh `index`'s hull grown as a box with upper corner `boxHi` is grown across the map.
+    Ball hullBallGrownAs(int index, glm::dvec3 boxHi) const;
     void allocateArrays(int layers);
     void renderMaps(int index);
     void dilateMaps(int index);

@@ -111,16 +111,12 @@ bool mayIntersect(const Parallelepiped& a, const Parallelepiped& b) {
     return true;
 }
 
-// Whether the parallelepiped may meet the ball: its centre lies within the radius plus the parallelepiped's
-// circumradius (its farthest corner from its centre) of the ball's. Conservative by the rounding margin of
-// mayIntersect, and by at most the circumradius.
-bool mayMeetBall(const Parallelepiped& p, glm::dvec3 centre, double radius) {
-    double circumradius = 0.0;
-    for (int signs = 0; signs < 4; ++signs)
-        circumradius = std::max(circumradius, glm::length(p.half[0] * p.axis[0] + ((signs & 1) ? -1.0 : 1.0) * p.half[1] * p.axis[1] +
-                                                          ((signs & 2) ? -1.0 : 1.0) * p.half[2] * p.axis[2]));
-    double reach = radius + circumradius;
-    return glm::length(p.centre - centre) <= reach + 1e-9 * reach + 1e-9;
+// Whether a brick centred at `brickCentre` may meet the ball: within the radius plus `brickCircumradius` (no corner
+// of a brick lies farther from its centre) of the ball's centre. Conservative by the rounding margin of
+// mayIntersect.
+bool mayMeetBall(glm::dvec3 brickCentre, double brickCircumradius, glm::dvec3 centre, double radius) {
+    double reach = radius + brickCircumradius;
+    return glm::length(brickCentre - centre) <= reach + 1e-9 * reach + 1e-9;
 }
 
 }  // namespace
@@ -141,6 +137,8 @@ BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip
     glm::dmat4 toWorld = clip.pose(i).matrix();
     clip::ClipMeshSet::Ball ball = clip.reachBallLocal(i);
     glm::dvec3 ballCentre(toWorld * glm::dvec4(ball.centre, 1.0));
+    // A whole brick's voxel centres span kVisitBrickSize - 1 cells along each axis; a partial one's fewer.
+    const double brickCircumradius = 0.5 * (kVisitBrickSize - 1) * g.cellDiagonalMm();
     Parallelepiped box;
     box.centre = glm::dvec3(toWorld * glm::dvec4(0.5 * (lo + hi), 1.0));
     for (int a = 0; a < 3; ++a) {
@@ -171,7 +169,7 @@ BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip
                     brick.axis[a] = linear[a];
                     brick.half[a] = 0.5 * (size[a] - 1.0);
                 }
-                if (mayMeetBall(brick, ballCentre, ball.radius) && mayIntersect(box, brick)) set.visited[b] = 1;
+                if (mayMeetBall(brick.centre, brickCircumradius, ballCentre, ball.radius) && mayIntersect(box, brick)) set.visited[b] = 1;
             }
     return set;
 }
