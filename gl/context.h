@@ -7,7 +7,7 @@
 //    opened directly; the only headless path on NVIDIA's and AMD's vendor drivers. Mesa lists its software
 //    renderer here too (EGL_MESA_device_software), and every DRM device it drives;
 //  - Mesa's surfaceless platform (EGL_MESA_platform_surfaceless): Mesa picks the GPU (llvmpipe without one).
-// --gpu (GpuChoice, parsed by app/command_line.h) picks one; the automatic choice is the first hardware
+// --gpu (GpuChoice, parsed by tools/command_line.h) picks one; the automatic choice is the first hardware
 // device of the device platform, else the surfaceless platform, else the first (software) device.
 
 #include <glm/glm.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 // What input asks of the scene. Input never touches the scene (DESIGN.md): it emits these, and the app
-// applies them (app/interaction.h). Camera-frame motion stays camera-frame here, because input never reads
+// applies them (session/interaction.h). Camera-frame motion stays camera-frame here, because input never reads
 // render state; the app turns it into world motion with the frame's camera.
 
 #include <glm/glm.hpp>
@@ -41,7 +41,7 @@ struct RemoveMesh {
 // Lights (any shading mode; ismos shadows follow them): turn the light's direction in the camera frame, yaw
 // about the camera's up axis (+: towards the right of the screen) and pitch towards it (+: up), in radians.
 // light -1: the selected light (NextLight selects the next one). The app applies it (turnedLight in
-// app/interaction.h), with the frame's camera for world-space lights.
+// session/interaction.h), with the frame's camera for world-space lights.
 struct MoveLight {
     int light = -1;
     glm::dvec2 yawPitchRad{0.0};

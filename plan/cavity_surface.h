@@ -9,7 +9,7 @@
 // tetrahedra has no ambiguous cases, so the result is always a closed, consistently oriented 2-manifold
 // (clip::validateClosed passes) unless it is empty.
 
-#include "clip/triangle_mesh.h"
+#include "mesh/triangle_mesh.h"
 #include "plan/removal_field.h"
 
 #include <cstdint>

@@ -1,7 +1,7 @@
 #include "plan/removal_field.h"
 
 #include "base/error.h"
-#include "clip/coverage.h"
+#include "mesh/coverage.h"
 
 #include <cmath>
 #include <limits>

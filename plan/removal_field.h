@@ -5,8 +5,8 @@
 // the visible fraction Algorithm 2 line 10 scales the opacity by. The GPU pass writes exactly this (same
 // samples, same clip test as the renderer); removalFieldCpu is its CPU oracle through clip::insideSampleCount.
 
-#include "clip/rigid_pose.h"
-#include "clip/triangle_mesh.h"
+#include "mesh/rigid_pose.h"
+#include "mesh/triangle_mesh.h"
 
 #include <glm/glm.hpp>
 

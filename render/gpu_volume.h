@@ -6,7 +6,7 @@
 #include "gl/context.h"
 #include "gl/objects.h"
 #include "base/volume.h"
-#include "render/volume_geometry.h"
+#include "render/model/volume_geometry.h"
 
 #include <algorithm>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // Label volumes on the GPU (the binder of shaders/labels.glsl): one R16UI 3-D texture of label ids on the
 // scan grid and a 1-D RGBA32F table of styles per id (rgb, opacity per unit length; 0 hides the label).
-// Several label sets share one id space (app/scene_labels.h assigns each set a range). Attached to the
+// Several label sets share one id space (scene/scene_labels.h assigns each set a range). Attached to the
 // TransferFunctionTexture, whose binder adds LABELS and binds these: every pass that classifies samples
 // (ray cast, slab pass, step IV) carries the labels, and a scene without labels compiles none of it.
 

@@ -4,12 +4,6 @@
 
 namespace curette {
 
-glm::dvec3 worldLightDirection(const Light& l, const OrbitCamera& camera) {
-    glm::dvec3 d = l.cameraSpace ? l.direction.x * camera.right() + l.direction.y * camera.up() - l.direction.z * camera.forward()
-                                 : l.direction;
-    return glm::normalize(d);
-}
-
 void setLightingUniforms(gl::Program& p, const FrameDescription& frame, const TransferFunction::Material& m) {
     int count = std::min<int>(static_cast<int>(frame.lights.size()), 4);
     glm::vec3 directions[4], colors[4];

@@ -17,8 +17,8 @@
 // when its centre ray can meet one. Anything else that changed (camera, size, mode, settings, volume, TF, LAO
 // settings, the meshes' geometry, scale, number or maps, tubes in the frame) casts every pixel.
 
-#include "clip/clip_mesh_set.h"
-#include "render/frame.h"
+#include "render/passes/clip_mesh_set.h"
+#include "render/model/frame.h"
 
 #include <cstdint>
 #include <optional>

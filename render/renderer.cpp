@@ -1,10 +1,10 @@
 #include "render/renderer.h"
 
-#include "render/gpu_tube_builder.h"
+#include "render/passes/gpu_tube_builder.h"
 
 #include "base/error.h"
 #include "gl/bindings.h"
-#include "render/brick_distance.h"
+#include "render/model/brick_distance.h"
 #include "render/lighting.h"
 #include "render/shader_pieces.h"
 
@@ -97,7 +97,7 @@ void uploadBricks(gl::Texture& texture, glm::ivec3 grid, const std::vector<std::
 void Renderer::updateOccupancy() {
     glm::ivec3 grid = volume_.brickGrid();
     std::vector<std::uint8_t> occupied = occupiedBricks(*tf_, labels_.get(), volume_.brickRanges(), grid, GpuVolume::brickSize);
-    // Stored as the distance to the nearest occupied brick (render/brick_distance.h), so a ray jumps over
+    // Stored as the distance to the nearest occupied brick (render/model/brick_distance.h), so a ray jumps over
     // every empty brick around it at once.
     std::vector<bool> flags(occupied.begin(), occupied.end());
     uploadBricks(occupancy_, grid, chebyshevBrickDistance(flags, grid, 255), "occupancy (empty-space skipping)");

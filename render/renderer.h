@@ -1,25 +1,25 @@
 #pragma once
 // The renderer of one scene: it owns the GPU resources the scene needs (allocated when a pass first needs
-// them, only those its shading modes use) and runs each frame as the plan of passes render/frame_plan.h
+// them, only those its shading modes use) and runs each frame as the plan of passes render/model/frame_plan.h
 // makes from the frame, what the scene has and what is up to date (docs/architecture.md, "The frame plan").
 
-#include "clip/clip_mesh_set.h"
+#include "render/passes/clip_mesh_set.h"
 #include "gl/context.h"
 #include "gl/program.h"
 #include "gl/timer.h"
-#include "render/ambient_occlusion.h"
-#include "render/frame.h"
-#include "render/frame_plan.h"
-#include "render/gpu_resources.h"
+#include "render/passes/ambient_occlusion.h"
+#include "render/model/frame.h"
+#include "render/model/frame_plan.h"
+#include "render/model/gpu_resources.h"
 #include "render/gpu_volume.h"
-#include "render/image.h"
-#include "render/ismos_pass.h"
+#include "render/model/image.h"
+#include "render/passes/ismos_pass.h"
 #include "render/recast_region.h"
 #include "render/shader_pieces.h"
-#include "render/slab_pass.h"
+#include "render/passes/slab_pass.h"
 #include "render/transfer_function_texture.h"
-#include "render/tube_geometry.h"
-#include "render/tube_set.h"
+#include "render/model/tube_geometry.h"
+#include "render/passes/tube_set.h"
 
 #include <memory>
 #include <optional>
@@ -41,7 +41,7 @@ public:
     // LAO settings for lao/cao shading; a change recomputes V_PAO on the next AO frame.
     void setLaoSettings(const LaoSettings& settings);
     const LaoSettings& laoSettings() const { return laoSettings_; }
-    // The clip meshes; the session step (app/session_step.h) makes them match the interaction state.
+    // The clip meshes; the session step (session/session_step.h) makes them match the interaction state.
     clip::ClipMeshSet& clipMeshes() { return clip_; }
     const clip::ClipMeshSet& clipMeshes() const { return clip_; }
     // The AO pipeline, allocated at the first lao/cao frame (null before: a scene allocates what it uses).
@@ -50,12 +50,12 @@ public:
     // The ISMOS passes' state (layers, light samples), allocated at the first ismos frame (null before).
     const IsmosPass* ismos() const { return ismos_.get(); }
     IsmosPass* ismos() { return ismos_.get(); }
-    // The frame's ISMOS texture-space box (render/ismos_model.h).
+    // The frame's ISMOS texture-space box (render/model/ismos_model.h).
     IsmosSpace ismosSpaceOf(const FrameDescription& frame) const;
     // Tubes (or illuminated lines) in world millimetres; a scene with tubes in view renders through the
     // G-buffer, the slab pass and the compositor in every shading mode.
     void setTubes(const TubeVertices& vertices, const TubeShading& shading);
-    // Tubes expanded from their swept rings on the GPU (render/gpu_tube_builder.h): setTubes(expandTubeRings(
+    // Tubes expanded from their swept rings on the GPU (render/passes/gpu_tube_builder.h): setTubes(expandTubeRings(
     // rings)) within float rounding, with no vertex stream on the CPU.
     void setTubeRings(const TubeRings& rings, const TubeShading& shading);
     const TubeSet* tubes() const { return tubes_.get(); }
@@ -120,7 +120,7 @@ public:
     double advancePrecompute(double budgetMs, std::uint32_t sliceBricks = 0);
     double precomputeProgress() const;
     // A number that changes whenever step I's inputs (volume, TF and labels, LAO settings) change: the frame loop
-    // holds step I back while they are being edited (app/view_frame_loop.h).
+    // holds step I back while they are being edited (viewer/view_frame_loop.h).
     std::uint64_t precomputeInputsVersion() const { return versions_.volume + versions_.transferFunction + versions_.laoSettings; }
     // Waits until the GPU has finished every pass submitted so far (for wall-clock timing).
     void finish() const;
@@ -151,7 +151,7 @@ public:
 
     // Time per pass of the frames rendered since the last call.
     FrameTimings collectTimings();
-    // Every GPU resource allocated now, named by the descriptor table (render/gpu_resources.h).
+    // Every GPU resource allocated now, named by the descriptor table (render/model/gpu_resources.h).
     std::vector<GpuAllocation> gpuAllocations() const;
 
 private:

@@ -1,7 +1,7 @@
 #include "render/shader_pieces.h"
 
 #include "gl/bindings.h"
-#include "render/worker_deal.h"
+#include "render/model/worker_deal.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 

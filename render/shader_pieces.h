@@ -11,15 +11,15 @@
 //   classify_sample.glsl         (no uniforms: volume.glsl + transfer_function.glsl)
 //   shade_sample.glsl            SampleShadingPiece (below)
 //   phong.glsl                   setLightingUniforms (render/lighting.h)
-//   clip_test.glsl               clip::ClipMeshSet::apply (clip/clip_mesh_set.h)
+//   clip_test.glsl               clip::ClipMeshSet::apply (render/passes/clip_mesh_set.h)
 //   tile_order.glsl              TileOrderPiece (below; it also dispatches)
-//   ismos_layers.glsl            IsmosPass::applyLayers (render/ismos_pass.h); ismos_occlusion.comp: IsmosPass
+//   ismos_layers.glsl            IsmosPass::applyLayers (render/passes/ismos_pass.h); ismos_occlusion.comp: IsmosPass
 
 #include "gl/program.h"
-#include "render/frame.h"
+#include "render/model/frame.h"
 #include "render/gpu_volume.h"
 #include "render/recast_region.h"
-#include "render/shading_mode.h"
+#include "render/model/shading_mode.h"
 
 #include <vector>
 
@@ -48,7 +48,7 @@ struct TileOrderPiece {
     int rowsPerBand = defaultRowsPerBand();
     const TileSpans* spans = nullptr;
     GLuint spanBuffer = 0;
-    // One row per llvmpipe worker thread (render/worker_deal.h): each thread then gets one row of every band.
+    // One row per llvmpipe worker thread (render/model/worker_deal.h): each thread then gets one row of every band.
     static int defaultRowsPerBand();
     // The bands of rowsPerBand rows of tiles the dispatch covers (the image's, the last may be partly past it;
     // with spans, from the band of their first row to that of their last).

@@ -1,11 +1,11 @@
 #pragma once
-// Renders stereo pairs (render/stereo.h): both eyes of the off-axis rig through one renderer, each cropped to
+// Renders stereo pairs (render/model/stereo.h): both eyes of the off-axis rig through one renderer, each cropped to
 // its asymmetric frustum. The viewer's picture (StereoView) also lives here, on a texture for the Presenter.
 
 #include "gl/objects.h"
-#include "render/image.h"
+#include "render/model/image.h"
 #include "render/renderer.h"
-#include "render/stereo.h"
+#include "render/model/stereo.h"
 
 #include <optional>
 

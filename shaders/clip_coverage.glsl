@@ -1,7 +1,7 @@
 // How much of a voxel the clip meshes cover: the sample pattern of CAO Algorithm 2 (lines 3-10), one
 // definition for step IV (voxel_clip.comp: the visible fraction scales V_o) and for the removal report
 // (removal_count.comp: the removed fraction is what the carve takes away). The CPU twin is
-// clip::insideSampleCount (clip/coverage.h).
+// clip::insideSampleCount (mesh/coverage.h).
 // Nine samples, the centre and the eight corners one index step away along the diagonals; only where they
 // disagree, N more at fixed offsets in [-1, 1]^3 (antiAliasingOffsets, clip::antiAliasingOffsets).
 // Binder: the pass sets indexToWorld and antiAliasingSamples and binds SSBO_ANTIALIASING; clip_test.glsl's

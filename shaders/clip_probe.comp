@@ -1,6 +1,6 @@
 #version 450
 // The clip probe: evaluates clip_test.glsl at arbitrary world points: the removal report asks which tract
-// points a carve cuts (render/removal_probe.h), and tests compare the shader's inside
+// points a carve cuts (render/passes/removal_probe.h), and tests compare the shader's inside
 // test (and dilated test) with analytic shapes.
 #include "bindings.glsl"
 #include "clip_test.glsl"

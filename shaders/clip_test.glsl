@@ -4,7 +4,7 @@
 // only worldToMap) and depth maps rendered once per geometry: interval 1 = (front 1, back 1), and for concave
 // meshes interval 2 = (front 2, back 2) from depth peeling. Empty pixels hold +inf (front) / -inf (back).
 // The dilated maps hold the same intervals grown by the LAO reach (step III). Lookups use the nearest map
-// pixel, the rule clip/clip_mesh_set.cpp's dilation radius derivation assumes.
+// pixel, the rule render/passes/clip_mesh_set.cpp's dilation radius derivation assumes.
 #include "bindings.glsl"
 
 #define MAX_CLIP_MESHES 16

@@ -1,6 +1,6 @@
 // Phong lighting of lines (codimension 2), seed 004 eq. 3.12-3.15: the normal is the one coplanar with the
 // light and the tangent, so everything is expressed with L.T and V.T. Mirrors
-// curette::illuminatedLineColor (render/tube_geometry.cpp), its CPU oracle.
+// curette::illuminatedLineColor (render/model/tube_geometry.cpp), its CPU oracle.
 // Sign conventions: here L (toLight) and V (toViewer) both point away from the line. Eq. 3.13 is written with
 // L the incident direction (towards the line) and V towards the viewer; with L flipped, R = 2 (L.N) N - L
 // and the highlight term becomes

@@ -5,7 +5,7 @@
 //    ISMOS_SOLID when the ray terminated inside it (the layer is opaque to the back of the box);
 //  - (ISMOS_FIT) eq. 8-10's two running sums over the samples with opacity, stored as beta.
 // z is the paper's 1 - depth; depth is the view depth normalised over the volume's bounding sphere.
-// Binder: IsmosPass::applyLayers (render/ismos_pass.h).
+// Binder: IsmosPass::applyLayers (render/passes/ismos_pass.h).
 
 layout(rgba32f, binding = IMAGE_ISMOS_LAYER_FRONT) uniform writeonly image2D ismosLayerFront;
 layout(rgba32f, binding = IMAGE_ISMOS_LAYER_ALPHA) uniform writeonly image2D ismosLayerAlpha;

@@ -54,7 +54,7 @@ ivec3 voxelFromIndex(uint index, ivec3 size) {
 uint indexFromVoxel(ivec3 v, ivec3 size) { return uint(v.x) + uint(size.x) * (uint(v.y) + uint(size.y) * uint(v.z)); }
 
 // Invocation id of a 1-D job spread over a 2-D dispatch of groups of 64 (work-group counts are limited per
-// dimension; render/ambient_occlusion.cpp sizes the grid).
+// dimension; render/passes/ambient_occlusion.cpp sizes the grid).
 #define LAO_GROUP_SIZE 64u
 uint linearInvocation() {
     uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;

@@ -18,7 +18,7 @@ uniform uint maxGroupsX;
 
 void main() {
     if (prepareDispatch == 1) {
-        // workGroupGrid's grid (render/worker_deal.h): as few rows as maxGroupsX allows, each as narrow as it
+        // workGroupGrid's grid (render/model/worker_deal.h): as few rows as maxGroupsX allows, each as narrow as it
         // can be, so fewer groups than rows lie past the list and llvmpipe's per-thread runs split the list.
         uint groups = (listCount + 63u) / 64u;
         uint rows = (groups + maxGroupsX - 1u) / maxGroupsX;

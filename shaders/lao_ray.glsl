@@ -6,7 +6,7 @@
 //   A(x)   = 1/K * sum_{k=1..K} w_k A_k(x)                        (eq. 3)
 //
 // Sample i lies i * step millimetres from the voxel centre along direction k, so term M needs samples 1..M-1
-// only: the farthest sample is (M - 1) * step away (render/ambient_occlusion.cpp derives the dilation radius
+// only: the farthest sample is (M - 1) * step away (render/passes/ambient_occlusion.cpp derives the dilation radius
 // from this). a_i is V_o (opacity per TF unit length, trilinear, zero outside the volume) corrected to the
 // step length.
 //

@@ -2,7 +2,7 @@
 // Step VI: perspective ray casting of the volume, one invocation per pixel. Front-to-back compositing with
 // early termination; entry/exit from the volume box; empty bricks skipped without moving the sample
 // lattice, so skipping never changes the image: the occupancy texture holds each empty brick's Chebyshev
-// distance d to the nearest brick with a visible value (render/brick_distance.h), so the ray jumps out of
+// distance d to the nearest brick with a visible value (render/model/brick_distance.h), so the ray jumps out of
 // the cube of (2d - 1)^3 empty bricks around it at once. Samples lie at t = (k + jitter) * stepMm along each ray,
 // t measured in millimetres from the eye, so the segment length of every sample is stepMm exactly, except
 // with CUT_FACES: where the ray leaves a clip mesh, one extra segment from the crossing to the next lattice

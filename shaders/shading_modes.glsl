@@ -1,4 +1,4 @@
-// Shading modes, mirrored by curette::ShadingMode (render/shading_mode.h). The ray caster is compiled once
+// Shading modes, mirrored by curette::ShadingMode (render/model/shading_mode.h). The ray caster is compiled once
 // per mode with SHADING set to one of these.
 #define SHADING_SOLID 0   // emission-absorption with the TF colour
 #define SHADING_PHONG 1   // Blinn-Phong with gradient normals

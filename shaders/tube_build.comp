@@ -1,8 +1,8 @@
 #version 450
-// Tubes expanded on the GPU (render/gpu_tube_builder.h): one invocation per swept ring writes its `sides`
+// Tubes expanded on the GPU (render/passes/gpu_tube_builder.h): one invocation per swept ring writes its `sides`
 // vertices (centre + radius (cos a N + sin a B), B = T x N, a = 2 pi k / sides), the 6 * sides indices of the
 // quads to the next ring, and at an end ring with caps the cap's centre, rim and fan. The layout and the
-// triangle order are expandTubeRings' (render/tube_geometry.cpp), the CPU oracle this is tested against.
+// triangle order are expandTubeRings' (render/model/tube_geometry.cpp), the CPU oracle this is tested against.
 #include "bindings.glsl"
 
 layout(local_size_x = 64) in;

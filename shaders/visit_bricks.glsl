@@ -1,8 +1,8 @@
 // The voxels steps IV and V visit: a list of bricks of 4^3 voxels (render/mesh_voxel_box.h, kVisitBrickSize),
 // one work group of 64 invocations per brick, the work groups numbered over a 2-D dispatch (work-group
-// counts are limited per dimension; render/ambient_occlusion.cpp sizes the grid). Step I and full LAO list
+// counts are limited per dimension; render/passes/ambient_occlusion.cpp sizes the grid). Step I and full LAO list
 // every brick; a CAO update the bricks the meshes' dilated boxes reach, now or at the last update.
-// Each entry also carries two flags (render/ambient_occlusion.cpp, "Which LAO can change"):
+// Each entry also carries two flags (render/passes/ambient_occlusion.cpp, "Which LAO can change"):
 //   VISIT_OPACITY_CHANGED  set by step IV when a voxel of the brick gets a clipped V_o unlike its unclipped one;
 //   VISIT_LAO_CAN_CHANGE   set (on the CPU, between steps IV and V) when a brick holding such a voxel lies
 //                          within the LAO reach plus the trilinear footprint: elsewhere every V_o a voxel's LAO

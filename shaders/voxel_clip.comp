@@ -46,7 +46,7 @@ void main() {
     // The meshes a clip sample of this voxel can lie in.
     //  - With the dilated maps (cao): those whose dilated shape holds the centre. A dilated shape holds every
     //    point within R of a point its depth maps call inside (step III; R = reach + 2 cell diagonals,
-    //    render/ambient_occlusion.cpp), and every clip sample lies within a cell diagonal of the centre, so a
+    //    render/passes/ambient_occlusion.cpp), and every clip sample lies within a cell diagonal of the centre, so a
     //    mesh whose dilated shape misses the centre holds none of the samples: leaving it out changes no
     //    count. (The visited bricks lie at the meshes, so no far test first: the dilated lookup answers
     //    "outside" for a far centre as quickly.)

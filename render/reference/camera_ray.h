@@ -2,7 +2,7 @@
 // The CPU twin of shaders/pixel_ray.glsl: the camera ray through a pixel centre (row 0 at the top), one
 // definition for every CPU reference (ray casting, DOS, ISMOS).
 
-#include "render/frame.h"
+#include "render/model/frame.h"
 
 #include <glm/glm.hpp>
 

@@ -1,8 +1,8 @@
 #include "render/reference/dos_reference.h"
 #include "render/reference/camera_ray.h"
 
-#include "render/slice_lattice.h"
-#include "render/volume_geometry.h"
+#include "render/model/slice_lattice.h"
+#include "render/model/volume_geometry.h"
 
 #include <cmath>
 #include <numbers>

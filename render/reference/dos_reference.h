@@ -6,7 +6,7 @@
 // Fibonacci) directions. The primary ray uses the slab pass's sample positions and segment lengths, so
 // the difference to the GPU is the slab pass's approximation of V (blur of the previous slice's buffer).
 
-#include "render/frame.h"
+#include "render/model/frame.h"
 #include "render/reference/lao_reference.h"
 #include "base/transfer_function.h"
 #include "base/volume.h"

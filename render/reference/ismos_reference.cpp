@@ -3,7 +3,7 @@
 
 #include "render/reference/random.h"
 #include "render/reference/volume_sampler.h"
-#include "render/volume_geometry.h"
+#include "render/model/volume_geometry.h"
 
 #include <algorithm>
 #include <cmath>

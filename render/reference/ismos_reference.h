@@ -10,9 +10,9 @@
 
 #include "base/transfer_function.h"
 #include "base/volume.h"
-#include "render/frame.h"
-#include "render/ismos_model.h"
-#include "render/tube_vertices.h"
+#include "render/model/frame.h"
+#include "render/model/ismos_model.h"
+#include "render/model/tube_vertices.h"
 
 #include <functional>
 #include <vector>

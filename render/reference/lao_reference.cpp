@@ -1,7 +1,7 @@
 #include "render/reference/lao_reference.h"
 
-#include "clip/coverage.h"
-#include "render/volume_geometry.h"
+#include "mesh/coverage.h"
+#include "render/model/volume_geometry.h"
 
 #include <cmath>
 
@@ -32,7 +32,7 @@ VoxelClipping clipVoxels(const VolumeData& volume, const TransferFunction& tf, c
                                  texel(v + glm::ivec3(0, 0, 1)) - texel(v - glm::ivec3(0, 0, 1)));
                     alpha *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
                 }
-                // Algorithm 2 lines 3-10 through the one CPU definition of the sample count (clip/coverage.h).
+                // Algorithm 2 lines 3-10 through the one CPU definition of the sample count (mesh/coverage.h).
                 const int samples = static_cast<int>(offsets.size()) + 9;
                 int visible = samples - clip::insideSampleCount(inside, volume.indexToWorld, c, offsets);
                 if (visible == 0) {

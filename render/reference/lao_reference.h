@@ -2,7 +2,7 @@
 // CPU double-precision twins of step IV (shaders/voxel_clip.comp) and of the LAO ray
 // (shaders/lao_ray.glsl, CAO eq. 2 and 3), and the CPU ground truth of the benchmark (K = 512 Fibonacci).
 
-#include "render/lao_directions.h"
+#include "render/model/lao_directions.h"
 #include "render/reference/volume_sampler.h"
 #include "base/transfer_function.h"
 #include "base/volume.h"

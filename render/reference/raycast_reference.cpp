@@ -1,10 +1,10 @@
 #include "render/reference/raycast_reference.h"
 #include "render/reference/camera_ray.h"
 
-#include "render/lighting.h"
+#include "render/model/frame.h"
 #include "render/reference/random.h"
 #include "render/reference/volume_sampler.h"
-#include "render/volume_geometry.h"
+#include "render/model/volume_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -73,7 +73,7 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
     long k = static_cast<long>(std::ceil(std::max(tNear, 0.0) / stepMm - jitter));
     long kLast = static_cast<long>(std::floor(tFar / stepMm - jitter));
     glm::dvec4& acc = result.rgba;
-    // Cut faces (the rules of shaders/raycast.comp and shade_sample.glsl, render/frame.h CutFaceSettings): the
+    // Cut faces (the rules of shaders/raycast.comp and shade_sample.glsl, render/model/frame.h CutFaceSettings): the
     // first visible lattice sample after clipped ones is taken at the crossing (here by bisection with the
     // exact inside test), standing for the ray to the end of its half step; phong lights the layer behind the
     // face with the face normal, blended into the gradient normal over normalDepthMm.

@@ -3,7 +3,7 @@
 // lattice, trilinear sampling, the exact (unbaked) transfer function, opacity correction, Blinn-Phong and
 // early termination. Tests compare the GPU image against it pixel by pixel.
 
-#include "render/frame.h"
+#include "render/model/frame.h"
 #include "base/transfer_function.h"
 #include "base/volume.h"
 
@@ -18,7 +18,7 @@ struct RaycastResult {
     glm::dvec4 rgba{0.0};   // premultiplied
     int samples = 0;        // samples with non-zero opacity composited
     // Distance from the eye (mm, along the ray) of the first sample after which the accumulated opacity is at
-    // least 0.5: where the pixel's surface is (render/stereo_match.h); negative when it never gets there.
+    // least 0.5: where the pixel's surface is (render/reference/stereo_match.h); negative when it never gets there.
     double halfOpacityDistanceMm = -1.0;
 };
 

@@ -1,7 +1,7 @@
 // libFuzzer target: a DICOM file from arbitrary bytes, through GDCM's scanner and image reader and curette's
 // series placement and decoding. Input errors are expected; anything else (a crash, a sanitizer report, an
 // uncaught exception) is a bug.
-#include "app/io/dicom.h"
+#include "io/dicom.h"
 #include "base/error.h"
 
 #include <cstdlib>

@@ -1,6 +1,6 @@
-// libFuzzer target: label tables (app/io/label_table.h): mricron names, plain colour tables, 3D Slicer's
+// libFuzzer target: label tables (io/label_table.h): mricron names, plain colour tables, 3D Slicer's
 // table and CSV forms. The first byte picks the file name the detection sees (.txt or .ctbl).
-#include "app/io/label_table.h"
+#include "io/label_table.h"
 #include "base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

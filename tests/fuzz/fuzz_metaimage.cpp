@@ -1,5 +1,5 @@
 // libFuzzer target: MetaImage headers and LOCAL data (raw and zlib/gzip compressed) from arbitrary bytes.
-#include "app/io/metaimage.h"
+#include "io/metaimage.h"
 #include "base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

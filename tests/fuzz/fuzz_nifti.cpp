@@ -1,6 +1,6 @@
 // libFuzzer target: NIfTI-1 headers and data from arbitrary bytes. Input errors are expected; anything else
 // (a crash, a sanitizer report, an uncaught exception) is a bug.
-#include "app/io/nifti.h"
+#include "io/nifti.h"
 #include "base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,5 +1,5 @@
 // libFuzzer target: attached NRRD headers (raw, gzip, ascii encodings) from arbitrary bytes.
-#include "app/io/nrrd.h"
+#include "io/nrrd.h"
 #include "base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

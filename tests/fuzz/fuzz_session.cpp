@@ -1,6 +1,6 @@
 // libFuzzer target: session files (JSON Lines), strict or lenient by the first byte. Only InputError may
 // leave the parser; a lenient parse of anything with a valid header returns its valid prefix.
-#include "app/session.h"
+#include "session/session.h"
 #include "base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

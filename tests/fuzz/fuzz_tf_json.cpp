@@ -1,5 +1,5 @@
 // libFuzzer target: transfer-function JSON through the strict JSON reader.
-#include "app/io/transfer_function_file.h"
+#include "io/transfer_function_file.h"
 #include "base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,5 +1,5 @@
 // libFuzzer target: TrackVis .trk headers and tracks from arbitrary bytes.
-#include "app/io/tract_file.h"
+#include "io/tract_file.h"
 #include "base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,6 +1,6 @@
 // libFuzzer target: TRX zip archives (libzip directory, entry data, header.json, positions, offsets) from
 // arbitrary bytes.
-#include "app/io/trx.h"
+#include "io/trx.h"
 #include "base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,5 +1,5 @@
 // libFuzzer target: 3D Slicer volume-property (.vp) text.
-#include "app/io/transfer_function_file.h"
+#include "io/transfer_function_file.h"
 #include "base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

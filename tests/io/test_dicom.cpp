@@ -2,8 +2,8 @@
 // 2.3.1), every transfer syntax of MR_small, and series the tests write with GDCM (shuffled files, oblique
 // planes, several series, missing slices, gantry tilt, localizers, rescale, stored bits, enhanced
 // multi-frame), and that patient identifiers stay out of everything unless asked for.
-#include "app/io/dicom.h"
-#include "app/io/volume_file.h"
+#include "io/dicom.h"
+#include "io/volume_file.h"
 #include "base/error.h"
 #include "tests/io/dicom_test_writer.h"
 #include "tests/io/io_test_support.h"

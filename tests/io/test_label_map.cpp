@@ -1,8 +1,8 @@
 // Label maps (base/label_map.h): volumes read by io::readVolume become integer ids (the mricron atlases as
 // Debian ships them, mricron-data), non-integer volumes are refused naming the voxel, and nearest-label
 // resampling keeps ids exact (identity, a 90-degree turn) and structures in place (JHU onto the ch2 grid).
-#include "app/io/label_table.h"
-#include "app/io/volume_file.h"
+#include "io/label_table.h"
+#include "io/volume_file.h"
 #include "base/error.h"
 #include "base/label_map.h"
 #include "tests/io/io_test_support.h"

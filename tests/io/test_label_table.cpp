@@ -1,7 +1,7 @@
-// Label tables (app/io/label_table.h): the mricron atlases as Debian ships them (mricron-data: aal.nii.txt with
+// Label tables (io/label_table.h): the mricron atlases as Debian ships them (mricron-data: aal.nii.txt with
 // its planar .lut, the JHU tab form), Slicer's .ctbl and CSV forms, the plain `index name r g b [a]` table, the
 // detection rules, generated colours, and malformed tables (errors name the line).
-#include "app/io/label_table.h"
+#include "io/label_table.h"
 #include "base/error.h"
 #include "tests/io/io_test_support.h"
 

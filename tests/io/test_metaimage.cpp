@@ -6,8 +6,8 @@
 // by hand from the MetaIO convention: ITK's MetaImageIO takes row i of TransformMatrix (file order) as the
 // direction of index axis i, in LPS; world_LPS = Offset + sum_i index_i * ElementSpacing_i * row_i; RAS negates
 // x and y.
-#include "app/io/metaimage.h"
-#include "app/io/volume_file.h"
+#include "io/metaimage.h"
+#include "io/volume_file.h"
 #include "base/error.h"
 #include "tests/io/io_test_support.h"
 

@@ -10,8 +10,8 @@
 // file (functional.nii, scl_slope 0.0754...) to 1e-9 relative, because curette folds the scaling into its
 // storage map in another order than nibabel's raw * slope + inter; sums of float data to 1e-12 relative
 // (numpy sums pairwise).
-#include "app/io/nifti.h"
-#include "app/io/volume_file.h"
+#include "io/nifti.h"
+#include "io/volume_file.h"
 #include "base/error.h"
 #include "tests/io/io_test_support.h"
 

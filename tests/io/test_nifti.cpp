@@ -1,7 +1,7 @@
 // NIfTI-1 reading: every supported type, both endians, gzip, the affine rules, the real MNI head, and
 // malformed files (each error names its field).
-#include "app/io/nifti.h"
-#include "app/io/volume_file.h"
+#include "io/nifti.h"
+#include "io/volume_file.h"
 #include "base/error.h"
 #include "tests/io/io_test_support.h"
 

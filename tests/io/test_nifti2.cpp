@@ -1,7 +1,7 @@
 // NIfTI-2 reading (nifti2.h layout: 540-byte header, 64-bit dims, double pixdim/quatern/srow), and what both
 // versions share: 4-D and 5-D files read one 3-D volume by index, and NaN/Inf voxels are "no data".
-#include "app/io/nifti.h"
-#include "app/io/volume_file.h"
+#include "io/nifti.h"
+#include "io/volume_file.h"
 #include "base/error.h"
 #include "tests/io/io_test_support.h"
 

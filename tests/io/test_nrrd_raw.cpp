@@ -1,6 +1,6 @@
 // NRRD (attached and detached; raw, gzip, ascii; both endians; space directions, LPS) and raw volumes.
-#include "app/io/nrrd.h"
-#include "app/io/volume_file.h"
+#include "io/nrrd.h"
+#include "io/volume_file.h"
 #include "base/error.h"
 #include "tests/io/io_test_support.h"
 

@@ -1,20 +1,20 @@
 // The plan's exports, each read back by curette's own readers: NIfTI-1 label maps (io::readVolume, and the
 // qform through io::niftiQformAffine), Slicer .seg.nrrd (io::readNrrd, LPS back to RAS; key lines checked as
 // text), binary STL (parsed here), glTF/.glb (clip::loadGltf) and MRtrix .tck (io::readTractogram).
-#include "app/io/gzip.h"
-#include "app/io/mesh_writers.h"
-#include "app/io/nifti.h"
-#include "app/io/nifti_writer.h"
-#include "app/io/nrrd.h"
-#include "app/io/seg_nrrd_writer.h"
-#include "app/io/tck_writer.h"
-#include "app/io/tract_file.h"
-#include "app/io/volume_file.h"
+#include "io/gzip.h"
+#include "io/mesh_writers.h"
+#include "io/nifti.h"
+#include "io/nifti_writer.h"
+#include "io/nrrd.h"
+#include "io/seg_nrrd_writer.h"
+#include "io/tck_writer.h"
+#include "io/tract_file.h"
+#include "io/volume_file.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "base/label_map.h"
-#include "clip/gltf_mesh.h"
-#include "clip/primitives.h"
+#include "mesh/gltf_mesh.h"
+#include "mesh/primitives.h"
 #include "tests/io/io_test_support.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Transfer functions: JSON (strict: unknown keys, types and ranges), Slicer .vp, round trip, every preset.
-#include "app/io/transfer_function_file.h"
+#include "io/transfer_function_file.h"
 #include "base/error.h"
 
 #include <gtest/gtest.h>

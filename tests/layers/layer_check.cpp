@@ -1,35 +1,47 @@
 #include "layer_check.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
 
 namespace curette::layers {
 
-namespace {
-
-// Lowest first. A folder may include itself and the folders listed for it; input sits beside gl, clip and
-// render and sees only base; plan (the carve as a surgical plan, CPU only) sees base and clip's CPU geometry,
-// never gl or render, and render sees plan (its removal probe produces plan's removal field); tests see
-// everything.
-const std::map<std::string, std::set<std::string>>& allowed() {
-    static const std::map<std::string, std::set<std::string>> table{
-        {"base", {"base"}},
-        {"gl", {"base", "gl"}},
-        {"clip", {"base", "gl", "clip"}},
-        {"plan", {"base", "clip", "plan"}},
-        {"render", {"base", "gl", "clip", "plan", "render"}},
-        {"input", {"base", "input"}},
-        {"app", {"base", "gl", "clip", "plan", "render", "input", "app"}},
-        {"tests", {"base", "gl", "clip", "plan", "render", "input", "app", "tests"}},
+const std::vector<Layer>& layerTable() {
+    // Each layer lists what it may include, besides itself. GL-free layers are linked without GL as well.
+    static const std::vector<Layer> table{
+        {"base", {}, true, false},
+        {"mesh", {"base"}, true, false},
+        {"io", {"base", "mesh"}, true, false},
+        {"gl", {"base"}, false, true},
+        {"plan", {"base", "mesh"}, true, false},
+        {"render/model", {"base", "mesh", "plan"}, true, false},
+        {"render/reference", {"base", "mesh", "plan", "render/model"}, true, false},
+        {"render", {"base", "mesh", "gl", "plan", "render/model"}, false, true},
+        {"input", {"base"}, true, false},
+        {"scene", {"base", "mesh", "io", "plan", "render/model"}, true, false},
+        {"session", {"base", "mesh", "io", "gl", "plan", "render/model", "render", "input", "scene"}, false, false},
+        {"viewer", {"base", "mesh", "io", "gl", "plan", "render/model", "render", "input", "scene", "session"}, false, false},
+        {"tools",
+         {"base", "mesh", "io", "gl", "plan", "render/model", "render/reference", "render", "input", "scene", "session", "viewer"},
+         false, false},
+        {"tests",
+         {"base", "mesh", "io", "gl", "plan", "render/model", "render/reference", "render", "input", "scene", "session", "viewer",
+          "tools"},
+         false, true},
     };
     return table;
 }
 
-std::string folderOf(const std::string& path) { return path.substr(0, path.find('/')); }
+namespace {
+
+const Layer* find(const std::string& folder) {
+    for (const Layer& l : layerTable())
+        if (l.folder == folder) return &l;
+    return nullptr;
+}
 
 std::string withoutLineComment(const std::string& line) {
     std::size_t comment = line.find("//");
@@ -38,13 +50,21 @@ std::string withoutLineComment(const std::string& line) {
 
 }  // namespace
 
+std::string layerOf(const std::string& path) {
+    std::string best;
+    for (const Layer& l : layerTable())
+        if (path.size() > l.folder.size() && path.compare(0, l.folder.size(), l.folder) == 0 && path[l.folder.size()] == '/' &&
+            l.folder.size() > best.size())
+            best = l.folder;
+    return best;
+}
+
 std::vector<Violation> checkFile(const std::string& path, const std::string& text) {
     std::vector<Violation> out;
-    const std::string folder = folderOf(path);
-    auto rule = allowed().find(folder);
-    if (rule == allowed().end()) return {{path, 0, "folder \"" + folder + "\" is not in the layer table"}};
+    const Layer* rule = find(layerOf(path));
+    if (!rule) return {{path, 0, "\"" + path + "\" lies in no folder of the layer table"}};
     static const std::regex quoted(R"re(^\s*#\s*include\s*"([^"]+)")re");
-    static const std::regex angled(R"(^\s*#\s*include\s*<(epoxy/|GL/|EGL/)[^>]*>)");
+    static const std::regex angled(R"(^\s*#\s*include\s*<(epoxy/|GL/|EGL/|GLFW/)[^>]*>)");
     static const std::regex glCall(R"re((^|[^A-Za-z0-9_.>])gl[A-Z][A-Za-z0-9_]*\s*\()re");
     std::istringstream in(text);
     std::string line;
@@ -55,20 +75,20 @@ std::vector<Violation> checkFile(const std::string& path, const std::string& tex
         std::smatch m;
         if (std::regex_search(line, m, quoted)) {
             std::string target = m[1];
-            std::size_t slash = target.find('/');
-            if (slash == std::string::npos) continue;  // a file beside this one
-            std::string targetFolder = target.substr(0, slash);
-            if (!allowed().count(targetFolder)) {
-                out.push_back({path, number, "includes \"" + target + "\" from folder \"" + targetFolder + "\", which is not in the layer table"});
-            } else if (!rule->second.count(targetFolder)) {
-                out.push_back({path, number, folder + "/ may not include " + targetFolder + "/ (\"" + target + "\"): it is above " + folder +
-                                                 "/ in the layer order (docs/architecture.md, Layers)"});
+            if (target.find('/') == std::string::npos) continue;  // a file beside this one
+            std::string targetLayer = layerOf(target);
+            if (targetLayer.empty()) {
+                out.push_back({path, number, "includes \"" + target + "\", which lies in no folder of the layer table"});
+            } else if (targetLayer != rule->folder &&
+                       std::find(rule->includes.begin(), rule->includes.end(), targetLayer) == rule->includes.end()) {
+                out.push_back({path, number, rule->folder + "/ may not include " + targetLayer + "/ (\"" + target +
+                                                 "\"): it is not below " + rule->folder + "/ in the layer order (docs/architecture.md, Layers)"});
             }
             continue;
         }
-        if (folder != "app") continue;
+        if (rule->glCalls) continue;
         if (std::regex_search(line, angled))
-            out.push_back({path, number, "app/ includes a GL header; GL calls belong to gl/ and render/"});
+            out.push_back({path, number, rule->folder + "/ includes a GL or window header; GL calls belong to gl/ and render/"});
         // Block comments: skip their lines (good enough for this tree's style of /* */-free code).
         if (line.find("/*") != std::string::npos) inBlockComment = true;
         if (inBlockComment) {
@@ -77,28 +97,35 @@ std::vector<Violation> checkFile(const std::string& path, const std::string& tex
         }
         std::string code = withoutLineComment(line);
         if (std::regex_search(code, m, glCall))
-            out.push_back({path, number, "app/ calls GL directly (" + std::string(m[0]).substr(m[1].length()) +
+            out.push_back({path, number, rule->folder + "/ calls GL directly (" + std::string(m[0]).substr(m[1].length()) +
                                              "...); GL calls belong to gl/ and render/"});
     }
     return out;
 }
 
 namespace {
+
+bool isSource(const std::filesystem::path& p) {
+    std::string ext = p.extension().string();
+    return ext == ".h" || ext == ".cpp" || ext == ".in";
+}
+
 template <typename F>
 void forEachSource(const std::string& root, F&& f) {
     namespace fs = std::filesystem;
-    for (const auto& [folder, unused] : allowed()) {
-        fs::path dir = fs::path(root) / folder;
+    std::set<std::string> tops;
+    for (const Layer& l : layerTable()) tops.insert(l.folder.substr(0, l.folder.find('/')));
+    for (const std::string& top : tops) {
+        fs::path dir = fs::path(root) / top;
         if (!fs::is_directory(dir)) continue;
         for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir)) {
-            if (!e.is_regular_file()) continue;
-            std::string ext = e.path().extension().string();
-            if (ext != ".h" && ext != ".cpp" && ext != ".in") continue;
+            if (!e.is_regular_file() || !isSource(e.path())) continue;
             if (e.path().string().find("/fuzz/corpus/") != std::string::npos) continue;
             f(e.path(), fs::relative(e.path(), root).generic_string());
         }
     }
 }
+
 }  // namespace
 
 std::vector<Violation> checkTree(const std::string& root) {
@@ -116,6 +143,21 @@ int filesChecked(const std::string& root) {
     int n = 0;
     forEachSource(root, [&](const std::filesystem::path&, const std::string&) { ++n; });
     return n;
+}
+
+std::vector<std::string> foldersOutsideTheTable(const std::string& root) {
+    namespace fs = std::filesystem;
+    std::set<std::string> outside;
+    for (const fs::directory_entry& top : fs::directory_iterator(root)) {
+        std::string name = top.path().filename().string();
+        if (!top.is_directory() || name.starts_with(".") || name.starts_with("build")) continue;
+        for (const fs::directory_entry& e : fs::recursive_directory_iterator(top.path())) {
+            if (!e.is_regular_file() || !isSource(e.path())) continue;
+            std::string relative = fs::relative(e.path(), root).generic_string();
+            if (layerOf(relative).empty()) outside.insert(fs::relative(e.path().parent_path(), root).generic_string());
+        }
+    }
+    return {outside.begin(), outside.end()};
 }
 
 }  // namespace curette::layers

@@ -1,7 +1,7 @@
 // The cavity surface: closed and outward on random fields (several seeds, mirrored affines too) and on a
 // sphere, whose enclosed volume is within 3 % of 4/3 pi r^3 at r = 10 voxels (measured -1.9 %: the 0.5 level of
 // the removed fraction, a coverage of two-voxel boxes, lies slightly inside a convex surface).
-#include "clip/coverage.h"
+#include "mesh/coverage.h"
 #include "plan/cavity_surface.h"
 #include "plan_test_support.h"
 

@@ -2,7 +2,7 @@
 // in the brain, two carves (a sphere and a rotated box) and three bundles of 3000 curved streamlines. Checks
 // the figures agree with each other and with direct counts; the timings land in the test's XML properties
 // (speed is measured by benches, not asserted here).
-#include "clip/coverage.h"
+#include "mesh/coverage.h"
 #include "plan/cavity_surface.h"
 #include "plan/removal_report.h"
 #include "plan/report_output.h"

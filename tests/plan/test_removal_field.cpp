@@ -1,9 +1,9 @@
-// Step IV's sample count (clip/coverage.h) and the removal field: the removed volume of analytic shapes
+// Step IV's sample count (mesh/coverage.h) and the removal field: the removed volume of analytic shapes
 // through removalFieldCpu with the renderer's 32 anti-aliasing offsets, on an isotropic and an anisotropic
 // grid; the mesh inside test and the box around posed meshes.
 #include "base/error.h"
-#include "clip/coverage.h"
-#include "clip/primitives.h"
+#include "mesh/coverage.h"
+#include "mesh/primitives.h"
 #include "plan/removal_field.h"
 #include "plan/removal_report.h"
 #include "plan_test_support.h"

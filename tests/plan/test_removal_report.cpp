@@ -2,7 +2,7 @@
 // intrusion depth and margins of a sphere carve beside a slab label, bundles of straight streamlines
 // through and past a sphere, and a head-sized run (181 x 217 x 181, AAL-like labels, three bundles).
 #include "base/error.h"
-#include "clip/coverage.h"
+#include "mesh/coverage.h"
 #include "plan/removal_report.h"
 #include "plan_test_support.h"
 

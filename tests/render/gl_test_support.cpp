@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <numbers>
 #include <vector>
 
 namespace curette::test {
@@ -56,6 +57,44 @@ double blobField(glm::dvec3 p) {
     double v = 0;
     for (const glm::dvec4& c : centres) v += 230.0 * std::exp(-glm::dot(p - glm::dvec3(c), p - glm::dvec3(c)) / (2 * c.w * c.w));
     return std::min(v, 255.0);
+}
+
+TubeVertices straightTube(glm::dvec3 centre, glm::dvec3 axis, double length, double radius, glm::vec4 color) {
+    TubeVertices v;
+    axis = glm::normalize(axis);
+    glm::dvec3 u = glm::normalize(glm::cross(axis, std::abs(axis.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+    glm::dvec3 w = glm::cross(axis, u);
+    const int sides = 16, rings = 8;
+    for (int r = 0; r <= rings; ++r)
+        for (int s = 0; s < sides; ++s) {
+            double a = 2 * std::numbers::pi * s / sides;
+            glm::dvec3 n = std::cos(a) * u + std::sin(a) * w;
+            v.positions.emplace_back(glm::vec3(centre + (double(r) / rings - 0.5) * length * axis + radius * n));
+            v.directions.emplace_back(glm::vec3(n));
+            v.colors.push_back(color);
+        }
+    for (int r = 0; r < rings; ++r)
+        for (int s = 0; s < sides; ++s) {
+            std::uint32_t a = static_cast<std::uint32_t>(r * sides + s), b = static_cast<std::uint32_t>(r * sides + (s + 1) % sides);
+            std::uint32_t c = a + sides, d = b + sides;
+            v.indices.insert(v.indices.end(), {a, b, d, a, d, c});
+        }
+    for (int end = 0; end < 2; ++end) {  // caps: a fan around a centre vertex
+        std::uint32_t first = static_cast<std::uint32_t>(v.positions.size());
+        glm::dvec3 n = end ? axis : -axis;
+        v.positions.emplace_back(glm::vec3(centre + (end ? 0.5 : -0.5) * length * axis));
+        v.directions.emplace_back(glm::vec3(n));
+        v.colors.push_back(color);
+        for (int s = 0; s < sides; ++s) {
+            double a = 2 * std::numbers::pi * s / sides;
+            v.positions.emplace_back(glm::vec3(centre + (end ? 0.5 : -0.5) * length * axis + radius * (std::cos(a) * u + std::sin(a) * w)));
+            v.directions.emplace_back(glm::vec3(n));
+            v.colors.push_back(color);
+        }
+        for (int s = 0; s < sides; ++s)
+            v.indices.insert(v.indices.end(), {first, first + 1 + static_cast<std::uint32_t>(s), first + 1 + static_cast<std::uint32_t>((s + 1) % sides)});
+    }
+    return v;
 }
 
 }  // namespace curette::test

@@ -5,6 +5,7 @@
 #include "gl/context.h"
 #include "base/transfer_function.h"
 #include "base/volume.h"
+#include "render/model/tube_vertices.h"
 
 #include <functional>
 
@@ -26,5 +27,9 @@ double blobField(glm::dvec3 p);
 
 // A simple TF over [0, 255]: grey ramp colour, opacity ramp from `lo` (0) to `hi` (alpha).
 TransferFunction rampTransferFunction(double lo, double hi, double alpha);
+
+// A straight capped tube along `axis` through `centre`, built directly (the tract pipeline has its own
+// tests); enough for occlusion tests.
+TubeVertices straightTube(glm::dvec3 centre, glm::dvec3 axis, double length, double radius, glm::vec4 color);
 
 }  // namespace curette::test

@@ -4,7 +4,7 @@
 // across the blobs, 5 mm a pose. The bricks its dilated box reaches (a box of about 25 mm) at poses far apart
 // differ, so an update that forgot where the mesh was would leave voxels behind. 48 x 40 pixels: 5 rows of
 // 8 x 8 tiles.
-#include "clip/primitives.h"
+#include "mesh/primitives.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
 

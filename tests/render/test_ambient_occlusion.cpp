@@ -1,5 +1,5 @@
 // LAO (steps I and V) against its CPU double twin, and the direction sets of CAO eq. 3.
-#include "render/ambient_occlusion.h"
+#include "render/passes/ambient_occlusion.h"
 #include "render/reference/lao_reference.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"

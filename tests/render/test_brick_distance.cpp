@@ -1,6 +1,6 @@
-// The empty-space distance map (render/brick_distance.h) against the definition, brute force, over random
+// The empty-space distance map (render/model/brick_distance.h) against the definition, brute force, over random
 // occupancy grids.
-#include "render/brick_distance.h"
+#include "render/model/brick_distance.h"
 
 #include <gtest/gtest.h>
 

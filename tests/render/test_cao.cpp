@@ -2,7 +2,7 @@
 // random poses, conservative dilation, the shader clip test against analytic shapes, the seam rule, rigid
 // motion without map redraws, and defined behaviour on bad poses.
 #include "base/error.h"
-#include "clip/primitives.h"
+#include "mesh/primitives.h"
 #include "gl/bindings.h"
 #include "render/label_overlay.h"
 #include "render/mesh_voxel_box.h"
@@ -361,7 +361,7 @@ TEST(Cao, TurnedMeshesVisitOnlyTheirOrientedBoxesAndStayEqualToFullLao) {
 }
 
 // A scene where the dilation radius R = reach + 2 cell diagonals and the kernel's sqrt(2) map pixels are
-// both needed, not just safe. Every term of the derivation (render/ambient_occlusion.cpp, clip/clip_mesh_set.cpp
+// both needed, not just safe. Every term of the derivation (render/passes/ambient_occlusion.cpp, render/passes/clip_mesh_set.cpp
 // kernelRadiusMm) is made to reach its bound along one line:
 //  - a 1 mm grid turned so its cell diagonal (1, 1, 1) points along world +x, and one LAO direction
 //    (Fibonacci K = 1: world +x, no jitter), M = 2, step 1.1 cell diagonals: the only LAO sample q of voxel v

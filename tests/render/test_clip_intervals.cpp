@@ -1,10 +1,10 @@
 // Meshes that need more than one depth interval from their own clipping camera (it looks along local +z,
-// clip/clipping_camera.h): the peeled second interval on the GPU, its count, the clipped region against the
+// render/model/clipping_camera.h): the peeled second interval on the GPU, its count, the clipped region against the
 // winding-number inside test, CAO == LAO on it, and a mesh with three intervals, whose third interval was
 // left unclipped (a hole) before interval 2 was made to end at the farthest back face.
-#include "clip/primitives.h"
+#include "mesh/primitives.h"
 #include "plan/removal_field.h"
-#include "render/removal_probe.h"
+#include "render/passes/removal_probe.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
 

@@ -1,17 +1,17 @@
-// Cut faces (render/frame.h CutFaceSettings; shaders/raycast.comp, clip_test.glsl, shade_sample.glsl): where a
+// Cut faces (render/model/frame.h CutFaceSettings; shaders/raycast.comp, clip_test.glsl, shade_sample.glsl): where a
 // ray leaves a clip mesh, the first segment starts at the crossing with its true partial length, phong lights
 // the layer behind the face with the clip surface's normal, and lao/cao read V_AO on the face.
 // A tilted box carves a slab of tissue; the ray leaves the box through its flat bottom face, whose depth map is
 // exact, so the crossing is known analytically. Each rule is checked against an analytic answer, and against
 // the same frame with the rules off (the sample lattice alone), which these tests were seen to fail.
-#include "clip/primitives.h"
-#include "render/cut_face_measure.h"
+#include "mesh/primitives.h"
+#include "render/model/cut_face_measure.h"
 #include "render/reference/camera_ray.h"
 #include "render/reference/raycast_reference.h"
 #include "render/reference/volume_sampler.h"
 #include "render/lighting.h"
 #include "render/renderer.h"
-#include "render/volume_geometry.h"
+#include "render/model/volume_geometry.h"
 #include "tests/render/gl_test_support.h"
 
 #include <gtest/gtest.h>

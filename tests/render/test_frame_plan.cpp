@@ -1,10 +1,10 @@
-// The frame plan (render/frame_plan.h), the descriptor tables and the checked shader interfaces.
+// The frame plan (render/model/frame_plan.h), the descriptor tables and the checked shader interfaces.
 #include "base/error.h"
 #include "gl/program.h"
-#include "render/frame_plan.h"
-#include "render/gpu_resources.h"
+#include "render/model/frame_plan.h"
+#include "render/model/gpu_resources.h"
 #include "render/renderer.h"
-#include "render/shading_mode.h"
+#include "render/model/shading_mode.h"
 #include "tests/render/gl_test_support.h"
 
 #include <gtest/gtest.h>

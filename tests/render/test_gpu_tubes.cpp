@@ -1,9 +1,9 @@
-// Tubes expanded on the GPU (render/gpu_tube_builder.h, shaders/tube_build.comp) against the CPU expansion of
+// Tubes expanded on the GPU (render/passes/gpu_tube_builder.h, shaders/tube_build.comp) against the CPU expansion of
 // the same swept rings (expandTubeRings, the oracle): identical indices and colours, positions and normals
 // within float rounding, over a few hundred curved streamlines, with and without caps, entries of different
 // radius and side count appended, and batches forced small so most start at unaligned offsets; and the
 // rendered frames of the two are the same picture.
-#include "render/gpu_tube_builder.h"
+#include "render/passes/gpu_tube_builder.h"
 
 #include "base/error.h"
 #include "render/renderer.h"

@@ -1,9 +1,9 @@
 // ISMOS (seed 003): pass 2 against its CPU twin, analytic shadows and transmittance, the model's equations,
 // the frame plan and the allocations of the mode.
 #include "gl/bindings.h"
-#include "render/ismos_model.h"
+#include "render/model/ismos_model.h"
 #include "render/reference/ismos_reference.h"
-#include "clip/primitives.h"
+#include "mesh/primitives.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
 

@@ -1,8 +1,8 @@
-// Which bricks' LAO a clipped opacity can change (render/lao_reach.h) against brute force over voxel pairs:
+// Which bricks' LAO a clipped opacity can change (render/model/lao_reach.h) against brute force over voxel pairs:
 // every pair of voxels within the LAO reach plus a cell diagonal (the trilinear footprint) lies at a listed
 // brick offset, every listed offset holds such a pair, and the row queries agree with scattering the
 // offsets from every changed brick. On isotropic, anisotropic and oblique grids.
-#include "render/lao_reach.h"
+#include "render/model/lao_reach.h"
 #include "render/mesh_voxel_box.h"
 #include "tests/render/gl_test_support.h"
 

@@ -1,7 +1,7 @@
 // The bricks steps IV and V visit (render/mesh_voxel_box.h) against a brute-force check of every voxel, on
 // an oblique anisotropic grid with turned meshes, where the axis-aligned box around the map boxes is several
 // times larger; and the brick set's bookkeeping.
-#include "clip/primitives.h"
+#include "mesh/primitives.h"
 #include "gl/bindings.h"
 #include "render/mesh_voxel_box.h"
 #include "render/renderer.h"

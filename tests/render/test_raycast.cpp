@@ -1,7 +1,7 @@
 // Ray casting (shaders/raycast.comp) against its CPU double twin and against analytic answers.
 #include "gl/bindings.h"
 #include "render/reference/raycast_reference.h"
-#include "clip/primitives.h"
+#include "mesh/primitives.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
 

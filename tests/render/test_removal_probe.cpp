@@ -1,9 +1,9 @@
-// The GPU side of the removal report (render/removal_probe.h) against its CPU oracle (plan/removal_field.h):
+// The GPU side of the removal report (render/passes/removal_probe.h) against its CPU oracle (plan/removal_field.h):
 // the same sample pattern as step IV, the clip maps against the winding-number inside test.
-#include "clip/coverage.h"
-#include "clip/primitives.h"
+#include "mesh/coverage.h"
+#include "mesh/primitives.h"
 #include "plan/removal_field.h"
-#include "render/removal_probe.h"
+#include "render/passes/removal_probe.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
 

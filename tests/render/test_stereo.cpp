@@ -1,9 +1,9 @@
-// Stereo pairs (render/stereo.h, render/stereo_render.h) and the matching of surface points between the eyes
-// (render/stereo_match.h): the off-axis rig's geometry on the CPU, the pair the GPU renders against the rig's
+// Stereo pairs (render/model/stereo.h, render/stereo_render.h) and the matching of surface points between the eyes
+// (render/reference/stereo_match.h): the off-axis rig's geometry on the CPU, the pair the GPU renders against the rig's
 // projection, and that a point the right eye cannot see is never matched.
 #include "render/reference/camera_ray.h"
-#include "render/stereo.h"
-#include "render/stereo_match.h"
+#include "render/model/stereo.h"
+#include "render/reference/stereo_match.h"
 #include "render/stereo_render.h"
 #include "tests/render/gl_test_support.h"
 

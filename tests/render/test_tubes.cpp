@@ -2,9 +2,9 @@
 // sits on +y looking along -y (azimuth 0), so "in front" means larger y.
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
-#include "clip/primitives.h"
+#include "mesh/primitives.h"
 #include "render/lighting.h"
-#include "render/tube_geometry.h"
+#include "render/model/tube_geometry.h"
 
 #include <gtest/gtest.h>
 
@@ -16,47 +16,9 @@
 namespace curette {
 namespace {
 
-using test::glContext;
+using test::straightTube;
 
-// A straight capped tube along `axis` through `centre`, built directly (the tract pipeline has its own
-// tests); enough for occlusion tests.
-TubeVertices straightTube(glm::dvec3 centre, glm::dvec3 axis, double length, double radius, glm::vec4 color) {
-    TubeVertices v;
-    axis = glm::normalize(axis);
-    glm::dvec3 u = glm::normalize(glm::cross(axis, std::abs(axis.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
-    glm::dvec3 w = glm::cross(axis, u);
-    const int sides = 16, rings = 8;
-    for (int r = 0; r <= rings; ++r)
-        for (int s = 0; s < sides; ++s) {
-            double a = 2 * std::numbers::pi * s / sides;
-            glm::dvec3 n = std::cos(a) * u + std::sin(a) * w;
-            v.positions.emplace_back(glm::vec3(centre + (double(r) / rings - 0.5) * length * axis + radius * n));
-            v.directions.emplace_back(glm::vec3(n));
-            v.colors.push_back(color);
-        }
-    for (int r = 0; r < rings; ++r)
-        for (int s = 0; s < sides; ++s) {
-            std::uint32_t a = static_cast<std::uint32_t>(r * sides + s), b = static_cast<std::uint32_t>(r * sides + (s + 1) % sides);
-            std::uint32_t c = a + sides, d = b + sides;
-            v.indices.insert(v.indices.end(), {a, b, d, a, d, c});
-        }
-    for (int end = 0; end < 2; ++end) {  // caps: a fan around a centre vertex
-        std::uint32_t first = static_cast<std::uint32_t>(v.positions.size());
-        glm::dvec3 n = end ? axis : -axis;
-        v.positions.emplace_back(glm::vec3(centre + (end ? 0.5 : -0.5) * length * axis));
-        v.directions.emplace_back(glm::vec3(n));
-        v.colors.push_back(color);
-        for (int s = 0; s < sides; ++s) {
-            double a = 2 * std::numbers::pi * s / sides;
-            v.positions.emplace_back(glm::vec3(centre + (end ? 0.5 : -0.5) * length * axis + radius * (std::cos(a) * u + std::sin(a) * w)));
-            v.directions.emplace_back(glm::vec3(n));
-            v.colors.push_back(color);
-        }
-        for (int s = 0; s < sides; ++s)
-            v.indices.insert(v.indices.end(), {first, first + 1 + static_cast<std::uint32_t>(s), first + 1 + static_cast<std::uint32_t>((s + 1) % sides)});
-    }
-    return v;
-}
+using test::glContext;
 
 TubeVertices merge(TubeVertices a, const TubeVertices& b) {
     std::uint32_t offset = static_cast<std::uint32_t>(a.positions.size());
@@ -316,7 +278,7 @@ TEST(Tubes, ClipMeshCutsTubesOnlyWhenAskedTo) {
 }
 
 // The illuminated-lines shader (shaders/illuminated_lines.glsl via the compositor) mirrors its CPU oracle,
-// seed 004 eq. 3.12-3.15 (render/tube_geometry.cpp), at every pixel a line covers.
+// seed 004 eq. 3.12-3.15 (render/model/tube_geometry.cpp), at every pixel a line covers.
 TEST(Tubes, IlluminatedLinesMatchTheirCpuOracle) {
     glContext();
     glm::ivec3 dims(16);

@@ -1,8 +1,8 @@
-// The order of a dispatch's work groups on llvmpipe (render/worker_deal.h): the deal is a permutation, and
+// The order of a dispatch's work groups on llvmpipe (render/model/worker_deal.h): the deal is a permutation, and
 // llvmpipe's split of the dealt list (one contiguous run of floor(n / T) groups per thread, the rest one at a
 // time, lp_cs_tpool.c) gives every thread an even share of a list whose cost sits in one part of it, which the
 // list in its own order does not. The grid holds fewer groups than rows past the jobs.
-#include "render/worker_deal.h"
+#include "render/model/worker_deal.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // TrackVis and MRtrix files: every variant the readers claim, the real dipy bundle, and malformed files.
-#include "app/io/tract_file.h"
+#include "io/tract_file.h"
 #include "base/error.h"
 #include "tests/io/io_test_support.h"
 

@@ -2,8 +2,8 @@
 // counts and coordinates nibabel gives, or refused where nibabel refuses), a .tck with a stale count, the
 // gzip-compressed variants, and TRX (zip stored or deflated, or a folder; every positions and offsets dtype;
 // both offsets lengths the spec versions disagree on; malformed archives).
-#include "app/io/trx.h"
-#include "app/io/tract_file.h"
+#include "io/trx.h"
+#include "io/tract_file.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "base/log.h"

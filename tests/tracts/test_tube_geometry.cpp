@@ -1,6 +1,6 @@
 // Tube and illuminated-line geometry on hard inputs: no NaN anywhere, unit normals, orthonormal frames,
 // zero twist (parallel transport), watertight tubes with caps, colour by direction.
-#include "render/tube_geometry.h"
+#include "render/model/tube_geometry.h"
 
 #include <gtest/gtest.h>
 

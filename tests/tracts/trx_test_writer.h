@@ -1,5 +1,5 @@
 #pragma once
-// Writing TRX tractograms for the tests, independently of the reader (app/io/trx.cpp): the members as the
+// Writing TRX tractograms for the tests, independently of the reader (io/trx.cpp): the members as the
 // spec lays them out (header.json, positions.3.<dtype>, offsets.<dtype>, dpv/, dps/, groups/), zipped with
 // libzip (stored or deflated) or written as a folder. Nothing in curette writes TRX; this is test-only.
 

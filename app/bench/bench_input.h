@@ -1,7 +1,0 @@
-#pragma once
-#include "app/command_line.h"
-
-namespace curette::bench {
-// curette bench input [--reports N] [--frames N] [--json FILE]
-int benchInput(const CommandLine& cl);
-}  // namespace curette::bench

@@ -1,8 +1,0 @@
-#pragma once
-#include "app/command_line.h"
-
-namespace curette::bench {
-// curette bench ismos --scene S [--size WxH] [--frames N] [--reference-pixels N] [--reference-points N]
-//                     [--json FILE]
-int benchIsmos(const CommandLine& cl);
-}  // namespace curette::bench

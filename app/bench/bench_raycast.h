@@ -1,7 +1,0 @@
-#pragma once
-#include "app/command_line.h"
-
-namespace curette::bench {
-// curette bench raycast --scene S [--size WxH] [--frames N] [--reference-pixels N] [--json FILE]
-int benchRaycast(const CommandLine& cl);
-}  // namespace curette::bench

@@ -1,0 +1,53 @@
+#include "render/model/camera.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace curette {
+
+glm::dvec3 OrbitCamera::forward() const {
+    double az = glm::radians(azimuthDeg), el = glm::radians(std::clamp(elevationDeg, -89.9, 89.9));
+    glm::dvec3 towardsCamera(std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el));
+    return -towardsCamera;
+}
+
+glm::dvec3 OrbitCamera::position() const { return target - forward() * distanceMm; }
+
+glm::dvec3 OrbitCamera::right() const { return glm::normalize(glm::cross(forward(), glm::dvec3(0, 0, 1))); }
+
+glm::dvec3 OrbitCamera::up() const { return glm::cross(right(), forward()); }
+
+glm::dmat4 OrbitCamera::view() const { return glm::lookAt(position(), target, up()); }
+
+glm::dmat4 OrbitCamera::projection(double aspect) const {
+    return glm::perspective(glm::radians(fovYDeg), aspect, nearMm, farMm);
+}
+
+void OrbitCamera::fit(glm::dvec3 center, double radiusMm) {
+    target = center;
+    distanceMm = 1.05 * radiusMm / std::sin(glm::radians(fovYDeg) / 2.0);
+    nearMm = std::max(0.1, distanceMm - 4.0 * radiusMm);
+    farMm = distanceMm + 4.0 * radiusMm;
+}
+
+OrbitCamera OrbitCamera::movedRight(double mm) const {
+    OrbitCamera moved = *this;
+    moved.target += mm * right();
+    return moved;
+}
+
+void OrbitCamera::orbit(double dAz, double dEl) {
+    azimuthDeg = std::fmod(azimuthDeg + dAz, 360.0);
+    elevationDeg = std::clamp(elevationDeg + dEl, -89.0, 89.0);
+}
+
+void OrbitCamera::zoom(double factor) {
+    double d = std::clamp(distanceMm * factor, 1.0, 1e5);
+    nearMm *= d / distanceMm;
+    farMm *= d / distanceMm;
+    distanceMm = d;
+}
+
+}  // namespace curette

@@ -1,0 +1,37 @@
+#pragma once
+// The perspective orbit camera: it circles `target` at `distanceMm`, at an azimuth around world +z
+// (superior) and an elevation above the axial plane. Azimuth 0 looks at the face (camera anterior, +y),
+// 90 from the right (+x). World space is RAS millimetres.
+
+#include <glm/glm.hpp>
+
+namespace curette {
+
+struct OrbitCamera {
+    glm::dvec3 target{0.0};
+    double distanceMm = 400.0;
+    double azimuthDeg = 0.0;
+    double elevationDeg = 0.0;
+    double fovYDeg = 30.0;
+    double nearMm = 1.0;
+    double farMm = 10000.0;
+    bool operator==(const OrbitCamera&) const = default;
+
+    glm::dvec3 position() const;
+    glm::dvec3 forward() const;  // unit vector from the camera towards the target
+    glm::dvec3 up() const;       // unit vector, orthogonal to forward
+    glm::dvec3 right() const;
+    glm::dmat4 view() const;
+    glm::dmat4 projection(double aspect) const;
+
+    // Places the camera so a sphere of `radiusMm` around `center` fills the view with a small margin.
+    void fit(glm::dvec3 center, double radiusMm);
+    // The same camera moved `mm` along its right axis (negative: to the left), target and all: its view axis
+    // stays parallel to this one's (an eye of an off-axis stereo pair, render/model/stereo.h).
+    OrbitCamera movedRight(double mm) const;
+    // Mouse-style orbit/zoom (degrees, multiplicative factor).
+    void orbit(double deltaAzimuthDeg, double deltaElevationDeg);
+    void zoom(double factor);
+};
+
+}  // namespace curette

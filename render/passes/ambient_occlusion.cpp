@@ -1,0 +1,485 @@
+#include "render/passes/ambient_occlusion.h"
+
+#include "base/error.h"
+#include "base/progress.h"
+#include "gl/bindings.h"
+#include "render/model/worker_deal.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <limits>
+
+namespace curette {
+
+namespace {
+
+gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label, bool zeroBorder) {
+    gl::Texture t = gl::createTexture(GL_TEXTURE_3D);
+    glTextureStorage3D(t.name(), 1, format, dims.x, dims.y, dims.z);
+    bool integer = format == GL_R8UI;
+    glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, integer ? GL_NEAREST : GL_LINEAR);
+    glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, integer ? GL_NEAREST : GL_LINEAR);
+    GLenum wrap = zeroBorder ? GL_CLAMP_TO_BORDER : GL_CLAMP_TO_EDGE;
+    for (GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(t.name(), axis, wrap);
+    const float border[4] = {0, 0, 0, 0};
+    glTextureParameterfv(t.name(), GL_TEXTURE_BORDER_COLOR, border);
+    glObjectLabel(GL_TEXTURE, t.name(), -1, label);
+    if (glGetError() == GL_OUT_OF_MEMORY) throw SystemError(std::string("not enough GPU memory for ") + label);
+    return t;
+}
+
+}  // namespace
+
+AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings, const gl::Texture* seenBricks)
+    : volume_(volume), settings_(settings), seenBricks_(settings.onlyWhereSeen ? seenBricks : nullptr), laoReach_(volume.geometry(), reachMm(settings)) {
+    if (settings.samples < 1 || settings.samples > 1024)
+        throw InputError("<lao settings>", "samples", "an integer in [1, 1024]", std::to_string(settings.samples));
+    if (!(settings.stepMm > 0.0))
+        throw InputError("<lao settings>", "step_mm", "a positive length", std::to_string(settings.stepMm));
+    if (settings.antiAliasingSamples < 0 || settings.antiAliasingSamples > 256)
+        throw InputError("<lao settings>", "antialiasing_samples", "an integer in [0, 256]",
+                         std::to_string(settings.antiAliasingSamples));
+    glm::ivec3 dims = volume.geometry().dims;
+    // Step V numbers voxels as 32-bit uints (lao_common.glsl, the recompute list).
+    if (std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z) > 0xFFFFFFFFull)
+        throw SystemError("the volume has more than 2^32 - 1 voxels, more than step V can number; lao and cao need a smaller volume");
+    std::size_t bricks = BrickSet::none(dims).brickCount();
+    // The visited-brick list numbers bricks in 30 bits (shaders/visit_bricks.glsl).
+    if (bricks > 0x3FFFFFFFull) throw SystemError("the volume has more than 2^30 bricks of 4^3 voxels, more than steps IV and V can number");
+    opacity_ = makeVolumeTexture(dims, GL_R16, "V_o (clipped opacity)", true);
+    mask_ = makeVolumeTexture(dims, GL_R8UI, "V_m (categories)", false);
+    precomputed_ = makeVolumeTexture(dims, GL_R16, "V_PAO (unclipped LAO)", false);
+    ambient_ = makeVolumeTexture(dims, GL_R16, "V_AO", false);
+
+    std::vector<glm::vec4> aa;
+    for (const glm::dvec3& o : antiAliasingOffsets(std::max(settings.antiAliasingSamples, 1))) aa.emplace_back(glm::vec3(o), 0.0f);
+    antiAliasing_ = gl::createBuffer();
+    glNamedBufferStorage(antiAliasing_.name(), static_cast<GLsizeiptr>(aa.size() * sizeof(glm::vec4)), aa.data(), 0);
+
+    // Directions as one LAO step in texture coordinates, with w = w_k / (K * M) folding eq. 3's 1/K and
+    // eq. 2's 1/M into one factor.
+    std::vector<LaoDirection> list = settings.directions.build();
+    glm::dmat3 worldToTexture(volume.geometry().worldToTexture());
+    std::vector<glm::vec4> packed;
+    for (const LaoDirection& d : list)
+        packed.emplace_back(glm::vec3(worldToTexture * (d.direction * settings.stepMm)),
+                            static_cast<float>(d.weight / (double(list.size()) * settings.samples)));
+    directions_ = gl::createBuffer();
+    glNamedBufferStorage(directions_.name(), static_cast<GLsizeiptr>(packed.size() * sizeof(glm::vec4)), packed.data(), 0);
+
+    if (settings.dispatch == LaoSettings::Dispatch::Compacted) {
+        list_ = gl::createBuffer();
+        glNamedBufferStorage(list_.name(), static_cast<GLsizeiptr>(8 + 4 * volume.geometry().dims.x * std::size_t(dims.y) * dims.z),
+                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+        dispatch_ = gl::createBuffer();
+        glNamedBufferStorage(dispatch_.name(), 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    } else {
+        list_ = gl::createBuffer();  // holds only the counters in the full-grid variant
+        glNamedBufferStorage(list_.name(), 8, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    visitBricks_ = gl::createBuffer();
+    glNamedBufferStorage(visitBricks_.name(), static_cast<GLsizeiptr>(4 * bricks), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gl::Defines defines;
+    if (seenBricks_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
+    compactProgram_ = gl::Program::compute("lao_compact.comp", defines);
+}
+
+AmbientOcclusion::~AmbientOcclusion() = default;
+
+double AmbientOcclusion::reachMm(const LaoSettings& settings) { return (settings.samples - 1) * settings.stepMm; }
+
+double AmbientOcclusion::dilationRadiusMm(const LaoSettings& settings, const VolumeGeometry& geometry) {
+    // Derivation of the dilation radius: how far from a clipped point s can a voxel v be whose V_AO changes?
+    //  - v's LAO (lao_ray.glsl) reads V_o trilinearly at points q with |q - v| <= (M - 1) * step  (reach);
+    //  - V_o at q blends voxels u with |q - u| < 1 voxel step per axis (index space), so
+    //    |u - q| <= cell diagonal = max over sign vectors of |A (+-1, +-1, +-1)|           (trilinear footprint);
+    //  - V_o at u changes only if one of u's nine clip samples (centre, corners at +-1 step along every axis;
+    //    the N extra samples are taken only when those nine disagree) changes side:
+    //    |s - u| <= cell diagonal                                                          (anti-aliasing reach).
+    // So R = reach + 2 * cell diagonal. The maps add one more term, the map-pixel quantisation of both v and
+    // s (sqrt(2) pixels) and a rounding epsilon, in clip::ClipMeshSet::kernelRadiusMm.
+    return reachMm(settings) + 2.0 * geometry.cellDiagonalMm();
+}
+
+gl::Defines AmbientOcclusion::laoDefines(float opacityExponent) const {
+    // What lao_ray.glsl compiles in: K, M, and whether the opacity correction is the identity. The exponent is
+    // compared as the float the shader would raise to, so the identity stands in for pow(x, 1.0) only.
+    gl::Defines defines;
+    if (seenBricks_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
+    defines.emplace_back("LAO_DIRECTIONS", std::to_string(settings_.directions.count));
+    defines.emplace_back("LAO_SAMPLES", std::to_string(settings_.samples));
+    if (opacityExponent == 1.0f) defines.emplace_back("LAO_UNIT_STEP", "1");
+    return defines;
+}
+
+gl::Program& AmbientOcclusion::laoProgram(float opacityExponent) { return laoPrograms_.get(laoDefines(opacityExponent)); }
+
+void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
+    // lao_ray.glsl's uniforms (lao.comp only; the compaction pass casts no ray).
+    glm::ivec3 dims = volume_.geometry().dims;
+    p.set("laoTextureMargin", glm::vec3(0.5 / glm::dvec3(dims)));
+    p.set("laoOpacityExponent", opacityExponent);
+}
+
+std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, bool laoEverywhere) {
+    std::vector<std::uint32_t> list = dealtToWorkerThreads(bricks.visitedIndices(), llvmpipeWorkerThreads());
+    if (laoEverywhere)
+        for (std::uint32_t& entry : list) entry |= kVisitLaoCanChange;
+    laoFlagsPending_ = !laoEverywhere;
+    if (!list.empty())
+        glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * list.size()), list.data());
+    visitCount_ = static_cast<std::uint32_t>(list.size());
+    return visitCount_;
+}
+
+void AmbientOcclusion::markLaoBricks() {
+    // Step IV set kVisitOpacityChanged on the bricks where it clipped a voxel with opacity; read the list back,
+    // flag the bricks a changed brick lies within LAO reach of, and upload it for step V.
+    std::vector<std::uint32_t> list(visitCount_);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // the flags were written by shader atomics
+    glGetNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * list.size()), list.data());
+    const glm::ivec3 grid = visitBrickGrid(volume_.geometry().dims);
+    std::vector<std::uint8_t> changed(std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z), 0);
+    if (clippedBricks_.size() != changed.size()) {
+        clippedBricks_.assign(changed.size(), 0);
+        clippedBricksKnown_ = false;
+    }
+    // Where the meshes left alone reach and this update does not visit, V_o is what step IV made it when it last
+    // visited the brick, clipped or not (nothing that reaches it changed since).
+    for (std::size_t b = 0; b < changed.size() && b < stillBricks_.visited.size(); ++b)
+        if (stillBricks_.visited[b] && !(lastVisit_ && lastVisit_->visited[b]))
+            changed[b] = clippedBricksKnown_ ? clippedBricks_[b] : std::uint8_t(1);
+    // The visited bricks: what step IV just found, kept for the updates that will leave them.
+    for (std::uint32_t entry : list)
+        changed[entry & kVisitBrickNumber] = clippedBricks_[entry & kVisitBrickNumber] = (entry & kVisitOpacityChanged) ? 1 : 0;
+    if (list.size() == changed.size()) clippedBricksKnown_ = true;   // every brick visited
+    laoReach_.setChanged(grid, changed);
+    std::uint64_t lao = 0;
+    for (std::uint32_t& entry : list) {
+        std::uint32_t b = entry & kVisitBrickNumber;
+        glm::ivec3 brick(int(b % std::uint32_t(grid.x)), int((b / std::uint32_t(grid.x)) % std::uint32_t(grid.y)),
+                         int(b / (std::uint32_t(grid.x) * std::uint32_t(grid.y))));
+        bool can = laoReach_.canChange(brick);
+        entry = b | (can ? kVisitLaoCanChange : 0u);
+        lao += can;
+    }
+    stats_.laoBricks = lao;
+    glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * list.size()), list.data());
+    laoFlagsPending_ = false;
+}
+
+void AmbientOcclusion::setVisitUniforms(gl::Program& p) const {
+    p.set("visitBrickCount", visitCount_);
+    p.set("visitSlotOffset", 0u);
+    p.set("brickGrid", visitBrickGrid(volume_.geometry().dims));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboVisitBricks, visitBricks_.name());
+}
+
+void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
+    // lao_common.glsl's: the voxels no visible sample reads (ambientSeen).
+    if (!seenBricks_) return;
+    p.set("seenBrickSize", GpuVolume::seenBrickSize);
+    glBindTextureUnit(binding::occupancy, seenBricks_->name());
+}
+
+void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
+                                        std::uint32_t firstSlot, std::uint32_t slots) {
+    gl::Defines defines;
+    tf.addDefines(defines);
+    gl::Program& p = clipPrograms_.get(defines);
+    const VolumeGeometry& g = volume_.geometry();
+    tf.apply(p);
+    p.set("indexToWorld", glm::mat4(g.indexToWorld));
+    p.set("volumeSize", g.dims);
+    p.set("antiAliasingSamples", settings_.antiAliasingSamples);
+    p.set("testDilation", testDilation ? 1 : 0);
+    p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
+    if (clip) clip->apply(p);
+    else p.set("clipMeshCount", 0);
+    p.set("sampleReachMm", static_cast<float>(clipSampleReachMm(g)));
+    glBindTextureUnit(binding::volume, volume_.texture());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboAntiAliasing, antiAliasing_.name());
+    glBindImageTexture(binding::imageOpacity, opacity_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
+    glBindImageTexture(binding::imageMask, mask_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8UI);
+    setVisitUniforms(p);
+    p.set("visitSlotOffset", firstSlot);
+    glm::uvec2 grid = workGroupGrid(slots);
+    p.use();
+    glDispatchCompute(grid.x, grid.y, 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+gl::Program& AmbientOcclusion::bindLao(GLuint target, float opacityExponent) {
+    gl::Program& program = laoProgram(opacityExponent);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboRecomputeList, list_.name());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboLaoDirections, directions_.name());
+    glBindTextureUnit(binding::opacity, opacity_.name());
+    glBindTextureUnit(binding::mask, mask_.name());
+    glBindTextureUnit(binding::precomputedAo, precomputed_.name());
+    glBindImageTexture(binding::imageAmbient, target, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16);
+    setLaoUniforms(program, opacityExponent);
+    program.set("volumeSize", volume_.geometry().dims);
+    program.set("listOffset", 0u);
+    setVisitUniforms(program);
+    setDecisionUniforms(program);
+    return program;
+}
+
+void AmbientOcclusion::buildRecomputeList() {
+    // Every visited voxel's decision: copies and unreachable voxels are written here, the rest appended.
+    compactProgram_.set("volumeSize", volume_.geometry().dims);
+    compactProgram_.set("maxGroupsX", kMaxWorkGroupsX);
+    setVisitUniforms(compactProgram_);
+    setDecisionUniforms(compactProgram_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
+    compactProgram_.set("prepareDispatch", 0);
+    compactProgram_.use();
+    glm::uvec2 grid = workGroupGrid(visitCount_);
+    glDispatchCompute(grid.x, grid.y, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void AmbientOcclusion::readRecomputeCounts() {
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    std::uint32_t counts[2] = {0, 0};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // the counters were written by shader atomics
+    glGetNamedBufferSubData(list_.name(), 0, 8, counts);
+    listCount_ = counts[0];
+    stats_.recomputed = counts[1];
+}
+
+void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExponent) {
+    const std::uint32_t zero[2] = {0, 0};
+    glNamedBufferSubData(list_.name(), 0, 8, zero);
+    gl::Program& lao = bindLao(target, opacityExponent);
+    // One work group per visited brick (shaders/visit_bricks.glsl).
+    if (!compacted) {
+        glm::uvec2 grid = workGroupGrid(visitCount_);
+        lao.set("laoMode", 0);
+        lao.use();
+        glDispatchCompute(grid.x, grid.y, 1);
+    } else {
+        buildRecomputeList();
+        compactProgram_.set("prepareDispatch", 1);
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        lao.set("laoMode", 1);
+        lao.use();
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatch_.name());
+        glDispatchComputeIndirect(0);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    }
+    readRecomputeCounts();
+}
+
+std::uint32_t AmbientOcclusion::beginRecompute(const TransferFunctionTexture& tf) {
+    recomputeGroups_ = recomputeGroupsDone_ = 0;
+    if (visitCount_ == 0) return 0;
+    if (laoFlagsPending_) markLaoBricks();
+    float exponent = static_cast<float>(settings_.stepMm / tf.unitLengthMm());
+    if (settings_.dispatch != LaoSettings::Dispatch::Compacted) {
+        runLao(ambient_.name(), false, exponent);   // the full-grid baseline is not sliced
+        return 0;
+    }
+    const std::uint32_t zero[2] = {0, 0};
+    glNamedBufferSubData(list_.name(), 0, 8, zero);
+    bindLao(ambient_.name(), exponent);
+    buildRecomputeList();
+    readRecomputeCounts();   // waits for the list's length: the slices are sized on the CPU
+    recomputeExponent_ = exponent;
+    recomputeGroups_ = (listCount_ + kLaoGroupSize - 1) / kLaoGroupSize;
+    return recomputeGroups_;
+}
+
+std::uint32_t AmbientOcclusion::advanceRecompute(std::uint32_t groups) {
+    std::uint32_t n = std::min(groups, recomputeGroups_ - recomputeGroupsDone_);
+    if (n == 0) return 0;
+    // Other passes may have bound their own resources since the last slice.
+    gl::Program& lao = bindLao(ambient_.name(), recomputeExponent_);
+    lao.set("laoMode", 1);
+    lao.set("listOffset", recomputeGroupsDone_ * kLaoGroupSize);
+    lao.use();
+    glm::uvec2 grid = workGroupGrid(n);
+    glDispatchCompute(grid.x, grid.y, 1);
+    recomputeGroupsDone_ += n;
+    if (recomputeGroupsDone_ == recomputeGroups_) readRecomputeCounts();
+    else glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    return n;
+}
+
+void AmbientOcclusion::precompute(const TransferFunctionTexture& tf) {
+    // Step I is step IV without meshes (every voxel keeps its TF opacity, all category b) followed by the
+    // LAO of every voxel, written to V_PAO: one slice of each phase over the whole grid.
+    Progress progress("LAO precompute (step I)", 2);
+    beginPrecompute();
+    advancePrecompute(tf, totalBricks());
+    progress.update(1);
+    advancePrecompute(tf, totalBricks());
+    progress.finish();
+}
+
+std::uint32_t AmbientOcclusion::totalBricks() const { return static_cast<std::uint32_t>(allBricks_.size()); }
+
+void AmbientOcclusion::beginPrecompute() {
+    if (allBricks_.empty()) {
+        allBricks_ = BrickSet::all(volume_.geometry().dims).visitedIndices();
+        for (std::uint32_t& entry : allBricks_) entry |= kVisitLaoCanChange;   // every voxel is category b
+    }
+    precomputeStarted_ = true;
+    slicedBricks_ = 0;
+    lastUpdate_.reset();   // V_AO is not written from this V_PAO yet: the next update visits every brick
+    carried_.reset();
+    clippedBricksKnown_ = false;
+}
+
+int AmbientOcclusion::precomputePhase() const {
+    if (!precomputeStarted_) return 0;
+    return static_cast<int>(slicedBricks_ / std::max<std::uint32_t>(totalBricks(), 1));
+}
+
+double AmbientOcclusion::precomputeProgress() const {
+    if (!precomputeStarted_ || totalBricks() == 0) return 0.0;
+    double total = totalBricks();
+    double clipped = std::min<double>(slicedBricks_, total), lao = std::max<double>(0.0, double(slicedBricks_) - total);
+    return (1.0 - kLaoShareOfPrecompute) * clipped / total + kLaoShareOfPrecompute * lao / total;
+}
+
+void AmbientOcclusion::uploadVisitRange(std::uint32_t first, std::uint32_t count) {
+    std::vector<std::uint32_t> slice =
+        dealtToWorkerThreads(std::vector<std::uint32_t>(allBricks_.begin() + first, allBricks_.begin() + first + count), llvmpipeWorkerThreads());
+    glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * std::size_t(count)), slice.data());
+    visitCount_ = count;
+    clipSlotsDone_ = count;   // no step IV under way over this list
+    laoFlagsPending_ = false;
+}
+
+std::uint32_t AmbientOcclusion::advancePrecompute(const TransferFunctionTexture& tf, std::uint32_t bricks) {
+    if (!precomputeStarted_) beginPrecompute();
+    std::uint32_t total = totalBricks(), ran = 0;
+    // A slice never straddles the phases: the LAO of any voxel may read the V_o of any brick within reach.
+    int phase = precomputePhase();
+    if (phase >= 2 || bricks == 0) return 0;
+    std::uint32_t first = slicedBricks_ - std::uint32_t(phase) * total;
+    ran = std::min(bricks, total - first);
+    uploadVisitRange(first, ran);
+    if (phase == 0) runVoxelClipping(tf, nullptr, false, 0, visitCount_);
+    else runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
+    slicedBricks_ += ran;
+    return ran;
+}
+
+void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode) {
+    std::uint32_t bricks = beginClipVoxels(clip, mode);
+    advanceClipVoxels(tf, clip, bricks);
+}
+
+std::uint32_t AmbientOcclusion::advanceClipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, std::uint32_t bricks) {
+    std::uint32_t n = std::min(bricks, visitCount_ - clipSlotsDone_);
+    if (n == 0) return 0;
+    runVoxelClipping(tf, &clip, clipDilation_, clipSlotsDone_, n);
+    clipSlotsDone_ += n;
+    return n;
+}
+
+std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, ShadingMode mode) {
+    bool cao = mode == ShadingMode::Cao;
+    // Full LAO (the baseline) and the first update after step I visit every voxel. A CAO update visits the
+    // bricks (render/mesh_voxel_box.h) of the meshes that changed since the last update (pose, scale, geometry,
+    // or every mesh when the maps were drawn again or one was added or removed), those they reach now and those
+    // they reached then: outside a mesh's bricks nothing depends on it, so elsewhere V_o, V_m and V_AO already
+    // hold what a whole-grid pass would write. A mesh that did not change is left where it is: its bricks hold
+    // what its state, the same now, made them. A 42 mm sphere moving through the carved head then no longer
+    // clips again, and recomputes the LAO around, the still cylinder.
+    glm::ivec3 dims = volume_.geometry().dims;
+    const bool partial = cao && lastUpdate_;
+    const bool sameSet = partial && lastUpdate_->mapRenders == clip.mapRenderCount() && lastUpdate_->meshes.size() == std::size_t(clip.count());
+    UpdateMeshes now{clip.mapRenderCount(), {}};
+    BrickSet visit = partial ? BrickSet::none(dims) : BrickSet::all(dims);
+    stillBricks_ = BrickSet::none(dims);
+    for (int i = 0; i < clip.count(); ++i) {
+        MeshBricks m{clip.pose(i), clip.scale(i), clip.geometry(i), {}};
+        const MeshBricks* last = sameSet ? &lastUpdate_->meshes[std::size_t(i)] : nullptr;
+        if (last && m.sameMesh(*last)) {
+            m.bricks = last->bricks;   // the same box and ball: the same bricks
+            stillBricks_.unite(m.bricks);
+        } else {
+            m.bricks = bricksAroundMesh(volume_.geometry(), clip, i);
+            if (partial) visit.unite(m.bricks);
+            if (last) visit.unite(last->bricks);
+        }
+        now.meshes.push_back(std::move(m));
+    }
+    if (partial && !sameSet)
+        for (const MeshBricks& m : lastUpdate_->meshes) visit.unite(m.bricks);
+    if (partial && carried_) visit.unite(*carried_);
+    carried_.reset();
+    lastUpdate_ = std::move(now);
+    lastVisit_ = visit;
+    if (!cao) clippedBricksKnown_ = false;   // full LAO rewrites V_o everywhere and reads no flags back
+    stats_.voxels = std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
+    stats_.dispatched = visit.visitedVoxels();
+    stats_.recomputed = 0;
+    // Full LAO recomputes every visible voxel; CAO only where a changed V_o is within reach (markLaoBricks).
+    stats_.bricks = uploadVisit(visit, !cao);
+    stats_.laoBricks = cao ? 0 : stats_.bricks;
+    clipDilation_ = cao;
+    clipSlotsDone_ = 0;
+    return visitCount_;
+}
+
+void AmbientOcclusion::abandonUpdate() {
+    // Step IV rewrote V_o and V_m over any part of lastVisit_ (all of it unless it was abandoned in slices), step V
+    // any part of V_AO there. Visiting all of it next time (with the meshes' bricks then) rewrites every voxel this
+    // update touched or left stale; outside it nothing was touched since the update before, whose invariant holds.
+    if (lastVisit_) carried_ = std::move(*lastVisit_);
+    lastVisit_.reset();
+    recomputeGroups_ = recomputeGroupsDone_ = 0;
+    clipSlotsDone_ = visitCount_;
+}
+
+void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {
+    if (visitCount_ == 0) return;
+    if (laoFlagsPending_) markLaoBricks();
+    runLao(ambient_.name(), settings_.dispatch == LaoSettings::Dispatch::Compacted,
+           static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
+}
+
+std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
+    glm::ivec3 d = volume_.geometry().dims;
+    std::size_t n = std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z);
+    std::vector<GpuAllocation> list{{Resource::ClippedOpacity, 2 * n, {}},
+                                    {Resource::CategoryMask, n, {}},
+                                    {Resource::PrecomputedAo, 2 * n, {}},
+                                    {Resource::Ambient, 2 * n, {}},
+                                    // with the visited-brick list (4 bytes per brick)
+                                    {Resource::RecomputeList, (settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * n + 8 : 8) +
+                                                                  4 * BrickSet::none(d).brickCount(), {}},
+                                    {Resource::LaoDirections, 16u * std::size_t(settings_.directions.count), {}}};
+    return list;
+}
+
+namespace {
+template <typename T>
+std::vector<T> readTexture(GLuint texture, glm::ivec3 d, GLenum format, GLenum type) {
+    std::vector<T> values(std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // written by image stores: make them visible to the read-back
+    glGetTextureImage(texture, 0, format, type, static_cast<GLsizei>(values.size() * sizeof(T)), values.data());
+    return values;
+}
+}  // namespace
+
+std::vector<std::uint16_t> AmbientOcclusion::readAmbient() const {
+    return readTexture<std::uint16_t>(ambient_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+}
+std::vector<std::uint16_t> AmbientOcclusion::readPrecomputed() const {
+    return readTexture<std::uint16_t>(precomputed_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+}
+std::vector<std::uint16_t> AmbientOcclusion::readOpacity() const {
+    return readTexture<std::uint16_t>(opacity_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+}
+std::vector<std::uint8_t> AmbientOcclusion::readMask() const {
+    return readTexture<std::uint8_t>(mask_.name(), volume_.geometry().dims, GL_RED_INTEGER, GL_UNSIGNED_BYTE);
+}
+
+}  // namespace curette

@@ -1,0 +1,493 @@
+#include "render/passes/clip_mesh_set.h"
+
+#include "base/error.h"
+#include "base/log.h"
+#include "gl/bindings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace curette::clip {
+
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+struct CameraGpu {  // std140 layout of ClipMeshGpu in shaders/clip_test.glsl
+    float worldToMap[16];
+    std::int32_t info[4];
+    float mapBox[4];
+    float depthBoxLo[4], depthBoxHi[4];
+    float depthBall[4];
+};
+static_assert(sizeof(CameraGpu) == 144);
+
+// Whether any pixel of the resolution x resolution corner of a 2-D texture is finite.
+bool anyFinite(GLuint texture, int resolution) {
+    std::vector<float> values(static_cast<std::size_t>(resolution) * static_cast<std::size_t>(resolution));
+    glGetTextureSubImage(texture, 0, 0, 0, 0, resolution, resolution, 1, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)),
+                         values.data());
+    return std::any_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); });
+}
+
+}  // namespace
+
+ClipMeshSet::ClipMeshSet(ClipMapSettings settings) : settings_(settings) {}
+ClipMeshSet::~ClipMeshSet() = default;
+
+int ClipMeshSet::add(std::shared_ptr<const TriangleMesh> geometry, glm::dvec3 scale, const RigidPose& pose, std::string name) {
+    if (count() >= maxMeshes)
+        throw InputError(name, "clip_meshes", "at most " + std::to_string(maxMeshes) + " clip meshes at once",
+                         std::to_string(count() + 1));
+    if (!geometry || geometry->triangles.empty())
+        throw InputError(name, "mesh", "a mesh with triangles", "an empty mesh");
+    for (int a = 0; a < 3; ++a)
+        if (!(scale[a] > 0.0) || !std::isfinite(scale[a]))
+            throw InputError(name, "scale", "three positive finite factors (a zero scale has no inside)",
+                             std::to_string(scale.x) + ", " + std::to_string(scale.y) + ", " + std::to_string(scale.z));
+    Mesh mesh;
+    mesh.geometry = std::move(geometry);
+    mesh.scale = scale;
+    mesh.pose = pose;
+    mesh.name = std::move(name);
+    uploadGeometry(mesh);
+    meshes_.push_back(std::move(mesh));
+    ++version_;
+    return count() - 1;
+}
+
+void ClipMeshSet::remove(int index) {
+    meshes_.erase(meshes_.begin() + index);
+    // Later meshes move down one slot in the arrays: their maps must be redrawn there.
+    for (std::size_t i = static_cast<std::size_t>(index); i < meshes_.size(); ++i) meshes_[i].mapsDirty = true;
+    ++version_;
+}
+
+void ClipMeshSet::clear() {
+    meshes_.clear();
+    ++version_;
+}
+
+void ClipMeshSet::setPose(int index, const RigidPose& pose) {
+    Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    if (m.pose == pose) return;
+    m.pose = pose;
+    ++version_;
+}
+
+void ClipMeshSet::setScale(int index, glm::dvec3 scale) {
+    Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    for (int a = 0; a < 3; ++a)
+        if (!(scale[a] > 0.0) || !std::isfinite(scale[a]))
+            throw InputError(m.name, "scale", "three positive finite factors (a zero scale has no inside)",
+                             std::to_string(scale.x) + ", " + std::to_string(scale.y) + ", " + std::to_string(scale.z));
+    if (m.scale == scale) return;
+    m.scale = scale;
+    uploadGeometry(m);
+    ++version_;
+}
+
+void ClipMeshSet::setClipsTubes(int index, bool clips) {
+    Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    if (m.clipsTubes == clips) return;
+    m.clipsTubes = clips;
+    ++version_;
+}
+
+void ClipMeshSet::setDilationRadiusMm(double radiusMm) {
+    if (radiusMm == dilationRadiusMm_) return;
+    dilationRadiusMm_ = radiusMm;
+    for (Mesh& m : meshes_) m.mapsDirty = true;  // the margin and the dilated maps depend on it
+    ++version_;
+}
+
+void ClipMeshSet::setDilatedMapsNeeded(bool needed) {
+    if (needed == dilatedNeeded_) return;
+    dilatedNeeded_ = needed;
+    // Depth maps stay as they are; only the dilated ones appear (drawn at the next update) or go.
+    if (needed)
+        for (Mesh& m : meshes_) m.dilatedDirty = true;
+}
+
+double ClipMeshSet::kernelRadiusMm(int index) const {
+    // Derivation of the map term of the dilation radius (the volume terms are derived in
+    // AmbientOcclusion::dilationRadiusMm; docs/architecture.md "The CAO exactness contract"): a point s inside
+    // the mesh and a voxel v within R of it map to pixels at most |v - s|_xy + sqrt(2) px apart (each lies within sqrt(2)/2 px of its pixel centre),
+    // so a kernel of radius R + sqrt(2) px over pixel centres covers every such pair; a small epsilon absorbs
+    // float rounding of the map transforms and depth comparisons.
+    double px = camera(index).pixelMm();
+    return dilationRadiusMm_ + std::sqrt(2.0) * px + 1e-3 * dilationRadiusMm_ + 1e-3;
+}
+
+void ClipMeshSet::uploadGeometry(Mesh& mesh) {
+    std::vector<glm::vec3> positions(mesh.geometry->positions.size());
+    mesh.localMin = glm::dvec3(std::numeric_limits<double>::infinity());
+    mesh.localMax = -mesh.localMin;
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        glm::dvec3 p = glm::dvec3(mesh.geometry->positions[i]) * mesh.scale;
+        positions[i] = glm::vec3(p);
+        mesh.localMin = glm::min(mesh.localMin, p);
+        mesh.localMax = glm::max(mesh.localMax, p);
+    }
+    glm::dvec3 centre = 0.5 * (mesh.localMin + mesh.localMax);
+    mesh.hullRadius = 0.0;
+    for (const glm::vec3& p : positions) mesh.hullRadius = std::max(mesh.hullRadius, glm::length(glm::dvec3(p) - centre));
+    mesh.vertices = gl::createBuffer();
+    glNamedBufferStorage(mesh.vertices.name(), static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
+    mesh.indices = gl::createBuffer();
+    glNamedBufferStorage(mesh.indices.name(), static_cast<GLsizeiptr>(mesh.geometry->triangles.size() * sizeof(glm::uvec3)),
+                         mesh.geometry->triangles.data(), 0);
+    mesh.indexCount = static_cast<GLsizei>(3 * mesh.geometry->triangles.size());
+    mesh.mapsDirty = true;
+}
+
+void ClipMeshSet::allocateArrays(int layers) {
+    auto makeArray = [&](const char* label) {
+        gl::Texture t = gl::createTexture(GL_TEXTURE_2D_ARRAY);
+        glTextureStorage3D(t.name(), 1, GL_R32F, resolution_, resolution_, layers);
+        glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glObjectLabel(GL_TEXTURE, t.name(), -1, label);
+        return t;
+    };
+    depthMaps_ = makeArray("clip depth maps (Z_front, Z_back per interval)");
+    dilatedAllocated_ = dilatedNeeded_;
+    dilatedMaps_ = dilatedAllocated_ ? makeArray("clip dilated maps (D_front, D_back per interval)") : gl::Texture();
+    allocatedLayers_ = layers;
+    scratch_ = gl::createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(scratch_.name(), 1, GL_R32F, resolution_, resolution_);
+    scratchArray_ = gl::createTexture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(scratchArray_.name(), 1, GL_R32F, resolution_, resolution_, 1);
+    depthBuffer_ = gl::createRenderbuffer();
+    glNamedRenderbufferStorage(depthBuffer_.name(), GL_DEPTH_COMPONENT32F, resolution_, resolution_);
+    framebuffer_ = gl::createFramebuffer();
+    glNamedFramebufferTexture(framebuffer_.name(), GL_COLOR_ATTACHMENT0, scratch_.name(), 0);
+    glNamedFramebufferRenderbuffer(framebuffer_.name(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_.name());
+    if (glCheckNamedFramebufferStatus(framebuffer_.name(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw SystemError("clip depth-map framebuffer is incomplete");
+}
+
+int ClipMeshSet::wantedResolution() const {
+    // One resolution for all maps: enough for the largest mesh at the target pixel size.
+    int wanted = settings_.minResolution;
+    for (const Mesh& m : meshes_) {
+        double extent = std::max(m.localMax.x - m.localMin.x, m.localMax.y - m.localMin.y) + 2.0 * dilationRadiusMm_;
+        wanted = std::max(wanted, static_cast<int>(std::ceil(extent / settings_.pixelMm)) + 8);
+    }
+    return std::min(wanted, settings_.maxResolution);
+}
+
+bool ClipMeshSet::needsReallocation(int wanted, bool dilatedNeeded) const {
+    return resolution_ == 0 || wanted > resolution_ || wanted < resolution_ / 2 || allocatedLayers_ < layersPerMesh * count() ||
+           (dilatedNeeded && !dilatedAllocated_);
+}
+
+bool ClipMeshSet::mapsCurrent(bool dilatedNeeded) const {
+    if (meshes_.empty()) return true;
+    int wanted = wantedResolution();
+    if (!depthProgram_ || needsReallocation(wanted, dilatedNeeded) || wanted != mapResolution_) return false;
+    for (const Mesh& m : meshes_)
+        if (m.mapsDirty || (dilatedNeeded && m.dilatedDirty)) return false;
+    return true;
+}
+
+std::size_t ClipMeshSet::geometryBytes() const {
+    std::size_t bytes = 0;
+    for (const Mesh& m : meshes_) bytes += m.geometry->positions.size() * sizeof(glm::vec3) + m.geometry->triangles.size() * sizeof(glm::uvec3);
+    return bytes;
+}
+
+void ClipMeshSet::update() {
+    if (!depthProgram_) {
+        depthProgram_ = gl::Program::graphics("clip_depth.vert", "clip_depth.frag");
+        dilationProgram_ = gl::Program::compute("dilation.comp");
+        vertexArray_ = gl::createVertexArray();
+    }
+    if (meshes_.empty()) {
+        uploadCameras();
+        return;
+    }
+    int wanted = wantedResolution();
+    // Grow in steps of 25% so a mesh that scales up a little does not reallocate every frame.
+    bool reallocate = needsReallocation(wanted, dilatedNeeded_);
+    if (reallocate) {
+        if (resolution_ == 0 || wanted > resolution_ || wanted < resolution_ / 2)
+            resolution_ = std::min(settings_.maxResolution, std::max(wanted, resolution_ == 0 ? wanted : wanted + wanted / 4));
+        allocateArrays(layersPerMesh * std::max(count(), 4));
+        for (Mesh& m : meshes_) m.mapsDirty = true;
+    }
+    // The maps are drawn at the wanted resolution, not the allocated one, so they depend on the meshes alone
+    // and not on what the set held before: a renderer that once held a larger mesh draws what a fresh one draws.
+    if (wanted != mapResolution_) {
+        mapResolution_ = wanted;
+        for (Mesh& m : meshes_) m.mapsDirty = true;
+    }
+    for (int i = 0; i < count(); ++i) {
+        Mesh& m = meshes_[static_cast<std::size_t>(i)];
+        if (m.mapsDirty) {
+            m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, mapResolution_);
+            m.camera.hullRadiusMm = m.hullRadius;
+            renderMaps(i);
+            m.mapsDirty = false;
+            m.dilatedDirty = true;
+            ++mapRenders_;
+        }
+        if (dilatedNeeded_ && m.dilatedDirty) {
+            dilateMaps(i);
+            m.dilatedDirty = false;
+        }
+    }
+    uploadCameras();
+}
+
+void ClipMeshSet::renderMaps(int index) {
+    Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    const int base = layersPerMesh * index;
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.name());
+    glViewport(0, 0, mapResolution_, mapResolution_);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE);
+    // The camera looks along local +z with x right and y up, so faces turned towards it (normal.z < 0) wind
+    // clockwise on screen: call those front faces.
+    glFrontFace(GL_CW);
+    glDisable(GL_BLEND);
+    depthProgram_.use();
+    depthProgram_.set("localToClip", glm::mat4(m.camera.localToClip()));
+    glBindVertexArray(vertexArray_.name());
+    glVertexArrayVertexBuffer(vertexArray_.name(), 0, m.vertices.name(), 0, sizeof(glm::vec3));
+    glVertexArrayElementBuffer(vertexArray_.name(), m.indices.name());
+    glEnableVertexArrayAttrib(vertexArray_.name(), 0);
+    glVertexArrayAttribFormat(vertexArray_.name(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vertexArray_.name(), 0, 0);
+    glBindTextureUnit(binding::clipDepth, depthMaps_.name());
+
+    // Layers: 0 front 1, 1 back 1, 2 front 2 (peeled behind 0), 3 back 2 (peeled behind 1), and a probe
+    // front 3 (peeled behind 2) that tells whether the mesh needs more than two intervals (then layer 3 is
+    // redrawn as the farthest back face, below).
+    for (int layer = 0; layer < 5; ++layer) {
+        bool front = layer % 2 == 0;
+        const float clearDepth = 1.0f;
+        const float clearColor[4] = {front ? kInfinity : -kInfinity, 0, 0, 0};
+        glClearNamedFramebufferfv(framebuffer_.name(), GL_COLOR, 0, clearColor);
+        glClearNamedFramebufferfv(framebuffer_.name(), GL_DEPTH, 0, &clearDepth);
+        glCullFace(front ? GL_BACK : GL_FRONT);
+        depthProgram_.set("peelAgainst", layer >= 2 ? base + layer - 2 : -1);
+        glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+        if (layer == 2) m.intervals = anyFinite(scratch_.name(), mapResolution_) ? 2 : 1;
+        if (layer == 4) {
+            m.deeperThanTwoIntervals = anyFinite(scratch_.name(), mapResolution_);
+            if (m.deeperThanTwoIntervals) {
+                log::warn("clip mesh \"" + m.name + "\" has more than two depth intervals seen from its clipping camera "
+                          "(local +z); beyond the second it clips like its hull (CAO section 3.4, step II)");
+                // Back 2 becomes the farthest back face, so interval 2 runs from front 2 to the mesh's last
+                // exit: the third and later intervals (and the gaps between them) are clipped, as the hull would
+                // clip them, instead of being left as holes. Pixels with two intervals keep their back 2 (it
+                // is their farthest back face); pixels with one have no front 2, so no interval 2.
+                const float farthestClear = 0.0f, backClear[4] = {-kInfinity, 0, 0, 0};
+                glClearNamedFramebufferfv(framebuffer_.name(), GL_COLOR, 0, backClear);
+                glClearNamedFramebufferfv(framebuffer_.name(), GL_DEPTH, 0, &farthestClear);
+                glDepthFunc(GL_GREATER);
+                glCullFace(GL_FRONT);
+                depthProgram_.set("peelAgainst", -1);
+                glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+                glDepthFunc(GL_LESS);
+                glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
+                                   base + 3, mapResolution_, mapResolution_, 1);
+            }
+            break;
+        }
+        glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
+                           base + layer, mapResolution_, mapResolution_, 1);
+    }
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+    glFrontFace(GL_CCW);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void ClipMeshSet::dilateMaps(int index) {
+    const Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    const int base = layersPerMesh * index;
+    gl::Program& p = dilationProgram_;
+    p.set("resolution", mapResolution_);
+    p.set("radiusMm", static_cast<float>(kernelRadiusMm(index)));
+    p.set("pixelMm", static_cast<float>(m.camera.pixelMm()));
+    glm::uvec3 items(static_cast<unsigned>(mapResolution_), static_cast<unsigned>(mapResolution_), 1u);
+    for (int layer = 0; layer < layersPerMesh; ++layer) {
+        p.set("backMap", layer % 2 == 1 ? 1 : 0);
+        if (layer >= 2 * m.intervals) {
+            const float empty = layer % 2 == 0 ? kInfinity : -kInfinity;
+            glClearTexSubImage(dilatedMaps_.name(), 0, 0, 0, base + layer, mapResolution_, mapResolution_, 1, GL_RED, GL_FLOAT, &empty);
+            continue;
+        }
+        // Pass 1 along x into the scratch array, pass 2 along y into the dilated array.
+        glBindTextureUnit(binding::clipDepth, depthMaps_.name());
+        glBindImageTexture(binding::imageDilation, scratchArray_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        p.set("sourceLayer", base + layer);
+        p.set("destinationLayer", 0);
+        p.set("direction", glm::ivec2(1, 0));
+        p.dispatchCovering(items);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glBindTextureUnit(binding::clipDepth, scratchArray_.name());
+        glBindImageTexture(binding::imageDilation, dilatedMaps_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        p.set("sourceLayer", 0);
+        p.set("destinationLayer", base + layer);
+        p.set("direction", glm::ivec2(0, 1));
+        p.dispatchCovering(items);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+}
+
+void ClipMeshSet::mapBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const {
+    const ClippingCamera& c = camera(index);
+    lo = glm::dvec3(c.mapOrigin, c.localMin.z - c.marginMm);
+    hi = glm::dvec3(c.mapOrigin + c.mapSizeMm, c.localMax.z + c.marginMm);
+}
+
+double ClipMeshSet::mapBoxSlackMm(int index) const {
+    // A thousandth of the box's size, far above float rounding of the map transform, so no point a map could
+    // call inside is ever taken for far.
+    glm::dvec3 lo, hi;
+    mapBoxLocal(index, lo, hi);
+    return 1e-3 * glm::length(hi - lo) + 1e-3;
+}
+
+void ClipMeshSet::dilatedBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const {
+    // Where a map lookup (clip_test.glsl insideMeshMaps, nearest pixel) can answer "inside":
+    //  - a depth map pixel is finite only where rasterising the mesh covered its centre, so that centre lies
+    //    in the mesh's local x, y bounds; its values are local depths in [localMin.z, localMax.z];
+    //  - a dilated pixel is finite only within floor(K / px) pixels along x and along y of a finite depth
+    //    pixel (dilation.comp's two passes, K = kernelRadiusMm), and its value moves the depth by at most
+    //    k(0, 0) = 2 (K - K/2) = K;
+    //  - a point is looked up in the pixel holding it, at most half a pixel from that pixel's centre.
+    // So every point either map calls inside lies within K + px/2 of the bounds across the map and within K
+    // along the depth; the map box's float slack (mapBoxSlackMm) is added for the rounding of the lookup.
+    const ClippingCamera& c = camera(index);
+    double k = kernelRadiusMm(index), slack = mapBoxSlackMm(index);
+    glm::dvec3 grow(k + 0.5 * c.pixelMm() + slack, k + 0.5 * c.pixelMm() + slack, k + slack);
+    lo = c.localMin - grow;
+    hi = c.localMax + grow;
+}
+
+void ClipMeshSet::depthBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const {
+    // As dilatedBoxLocal without the dilation: a finite depth pixel's centre lies in the mesh's local x, y
+    // bounds and its values in its z bounds, and a point is looked up in the pixel holding it. A whole pixel
+    // (of the coarser of the camera's and the maps' resolutions) instead of half, the float slack and
+    // depthBoxMarginMm on top.
+    const ClippingCamera& c = camera(index);
+    double pixel = c.mapSizeMm / std::max(std::min(c.resolution, mapResolution_), 1);
+    double slack = mapBoxSlackMm(index) + depthBoxMarginMm;
+    glm::dvec3 grow(pixel + slack, pixel + slack, slack);
+    lo = c.localMin - grow;
+    hi = c.localMax + grow;
+}
+
+ClipMeshSet::Ball ClipMeshSet::depthBallLocal(int index) const {
+    // A point the depth maps call inside lies in a pixel whose centre's ray meets the mesh there, so within half
+    // a pixel's diagonal (across the map) of a point of the mesh's hull, which lies within hullRadiusMm of the
+    // bounds' centre. The depth box's growth across the map (a whole pixel, the slack and the margin) covers the
+    // half diagonal.
+    glm::dvec3 lo, hi;
+    depthBoxLocal(index, lo, hi);
+    return hullBallGrownAs(index, hi);
+}
+
+ClipMeshSet::Ball ClipMeshSet::reachBallLocal(int index) const {
+    // Every point within R of a point the depth maps call inside lies within hullRadiusMm + px / sqrt(2) + R of
+    // the centre (depthBallLocal). The dilated box's growth across the map, K + px / 2 + slack with
+    // K = R + sqrt(2) px + rounding (kernelRadiusMm), is more than px / sqrt(2) + R.
+    glm::dvec3 lo, hi;
+    dilatedBoxLocal(index, lo, hi);
+    return hullBallGrownAs(index, hi);
+}
+
+ClipMeshSet::Ball ClipMeshSet::hullBallGrownAs(int index, glm::dvec3 boxHi) const {
+    // A box's growth across the map is the same along x and y (depthBoxLocal, dilatedBoxLocal).
+    const ClippingCamera& c = camera(index);
+    return {0.5 * (c.localMin + c.localMax), c.hullRadiusMm + (boxHi.x - c.localMax.x)};
+}
+
+ClipMeshSet::WorldBox ClipMeshSet::mapBoxWorldBounds(int index) const {
+    glm::dvec3 lo, hi;
+    mapBoxLocal(index, lo, hi);
+    glm::dmat4 toWorld = pose(index).matrix();
+    WorldBox box{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
+    for (int corner = 0; corner < 8; ++corner) {
+        glm::dvec3 local((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+        glm::dvec3 world(toWorld * glm::dvec4(local, 1.0));
+        box.min = glm::min(box.min, world);
+        box.max = glm::max(box.max, world);
+    }
+    return box;
+}
+
+void ClipMeshSet::uploadCameras() {
+    if (!cameraBuffer_) {
+        cameraBuffer_ = gl::createBuffer();
+        glNamedBufferStorage(cameraBuffer_.name(), maxMeshes * sizeof(CameraGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    std::vector<CameraGpu> cameras(meshes_.size());
+    for (std::size_t i = 0; i < meshes_.size(); ++i) {
+        glm::mat4 m(meshes_[i].camera.worldToMap(meshes_[i].pose));
+        std::memcpy(cameras[i].worldToMap, &m[0][0], sizeof cameras[i].worldToMap);
+        cameras[i].info[0] = static_cast<std::int32_t>(layersPerMesh * i);
+        cameras[i].info[1] = meshes_[i].intervals;
+        cameras[i].info[2] = mapResolution_;
+        cameras[i].info[3] = meshes_[i].clipsTubes ? 1 : 0;
+        // The map box (x, y across the map, z over the depth range plus margin) and its slack (mapBoxSlackMm).
+        glm::dvec3 lo, hi;
+        mapBoxLocal(static_cast<int>(i), lo, hi);
+        cameras[i].mapBox[0] = static_cast<float>(meshes_[i].camera.mapSizeMm);
+        cameras[i].mapBox[1] = static_cast<float>(lo.z);
+        cameras[i].mapBox[2] = static_cast<float>(hi.z);
+        cameras[i].mapBox[3] = static_cast<float>(mapBoxSlackMm(static_cast<int>(i)));
+        // The depth box in map coordinates (x, y over the map side, z the local depth).
+        depthBoxLocal(static_cast<int>(i), lo, hi);
+        glm::dmat4 localToMap = meshes_[i].camera.localToMap();
+        glm::dvec3 mapLo(localToMap * glm::dvec4(lo, 1.0)), mapHi(localToMap * glm::dvec4(hi, 1.0));
+        for (int k = 0; k < 3; ++k) {
+            cameras[i].depthBoxLo[k] = static_cast<float>(mapLo[k]);
+            cameras[i].depthBoxHi[k] = static_cast<float>(mapHi[k]);
+        }
+        cameras[i].depthBoxLo[3] = cameras[i].depthBoxHi[3] = 0.0f;
+        // The depth ball (depthBallLocal) in world millimetres.
+        Ball ball = depthBallLocal(static_cast<int>(i));
+        glm::dvec3 centre(meshes_[i].pose.matrix() * glm::dvec4(ball.centre, 1.0));
+        for (int k = 0; k < 3; ++k) cameras[i].depthBall[k] = static_cast<float>(centre[k]);
+        cameras[i].depthBall[3] = static_cast<float>(ball.radius);
+    }
+    if (!cameras.empty())
+        glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());
+}
+
+void ClipMeshSet::addDefines(gl::Defines& defines) const {
+    if (meshes_.empty()) defines.emplace_back("NO_CLIP_MESHES", "1");
+}
+
+void ClipMeshSet::apply(gl::Program& program) const {
+    program.set("clipMeshCount", count());
+    program.set("clipDepthBoxTests", depthBoxTests_ ? 1 : 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, binding::uboClipMeshes, cameraBuffer_.name());
+    glBindTextureUnit(binding::clipDepth, depthMaps_.name());
+    glBindTextureUnit(binding::clipDilated, dilatedAllocated_ ? dilatedMaps_.name() : depthMaps_.name());
+}
+
+std::vector<float> ClipMeshSet::readMap(int index, int layer, bool dilated) const {
+    std::vector<float> values(static_cast<std::size_t>(mapResolution_) * static_cast<std::size_t>(mapResolution_));
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // the dilated maps are written by image stores
+    glGetTextureSubImage(dilated ? dilatedMaps_.name() : depthMaps_.name(), 0, 0, 0, layersPerMesh * index + layer,
+                         mapResolution_, mapResolution_, 1, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)),
+                         values.data());
+    return values;
+}
+
+std::size_t ClipMeshSet::gpuBytes() const {
+    std::size_t layer = static_cast<std::size_t>(resolution_) * static_cast<std::size_t>(resolution_) * 4u;
+    return layer * static_cast<std::size_t>(allocatedLayers_) * (dilatedAllocated_ ? 2u : 1u) + 3u * layer;
+}
+
+}  // namespace curette::clip

@@ -1,0 +1,124 @@
+#include "render/passes/slab_pass.h"
+
+#include "base/error.h"
+#include "base/log.h"
+#include "gl/bindings.h"
+#include "render/lighting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace curette {
+
+gl::Program& SlabPass::program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, gl::Defines defines) {
+    SampleShadingPiece::addDefines(defines, mode);
+    if (tubes) defines.emplace_back("HAS_TUBES", "1");
+    if (!clampOcclusion_) defines.emplace_back("OCCLUSION_UNCLAMPED", "1");
+    tf.addDefines(defines);
+    return programs_.get(defines);
+}
+
+void SlabPass::ensureBuffers(glm::ivec2 size) {
+    if (size == size_ && occlusion_[0]) return;
+    for (gl::Texture& t : occlusion_) {
+        t = gl::createTexture(GL_TEXTURE_2D);
+        glTextureStorage2D(t.name(), 1, GL_RG32F, size.x, size.y);
+        glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(t.name(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t.name(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glObjectLabel(GL_TEXTURE, t.name(), -1, "DOS occlusion buffer (all, geometry)");
+    }
+    size_ = size;
+}
+
+double SlabPass::resolveSliceDistanceMm(const DosSettings& s, const GpuVolume& volume) const {
+    return s.sliceDistanceMm > 0 ? s.sliceDistanceMm : 0.5 * volume.geometry().minSpacing();
+}
+
+void SlabPass::run(const SlabInputs& in) {
+    const FrameDescription& frame = in.frame;
+    const DosSettings& settings = frame.dos;
+    const GpuVolume& volume = in.volume;
+    GBuffer* tubes = in.tubes;
+    if (!(settings.coneAngleDeg >= 0.0 && settings.coneAngleDeg < 90.0))
+        throw InputError("<dos settings>", "cone_angle_deg", "an angle in [0, 90)", std::to_string(settings.coneAngleDeg));
+    if (settings.gridSize < 1 || settings.gridSize > 16)
+        throw InputError("<dos settings>", "grid", "an integer in [1, 16]", std::to_string(settings.gridSize));
+    ensureBuffers(frame.size);
+    const VolumeGeometry& g = volume.geometry();
+    const OrbitCamera& camera = frame.camera;
+    glm::dvec3 forward = camera.forward();
+
+    SliceLattice lattice = sliceLattice(g, camera, resolveSliceDistanceMm(settings, volume));
+    if (lattice.widened)
+        log::warn("slab pass: slice distance " + std::to_string(resolveSliceDistanceMm(settings, volume)) + " mm needs more than " +
+                  std::to_string(maxSlices) + " slices; using " + std::to_string(lattice.distanceMm) + " mm");
+    const double d = lattice.distanceMm;
+    const long first = lattice.first, last = lattice.last;
+
+    // Start: an empty eye buffer, and full visibility in both occlusion channels.
+    const float clearEye[4] = {0, 0, 0, 0}, clearOcclusion[2] = {1, 1};
+    glClearTexImage(in.eyeBuffer, 0, GL_RGBA, GL_FLOAT, clearEye);
+    glClearTexImage(occlusion_[0].name(), 0, GL_RG, GL_FLOAT, clearOcclusion);
+
+    gl::Defines clipDefines;
+    SampleShadingPiece::addCutFaceDefines(clipDefines, frame.raycast.cutFace, in.clip.count());
+    in.clip.addDefines(clipDefines);
+    gl::Program& p = program(frame.shading, tubes != nullptr, in.tf, std::move(clipDefines));
+    if (tubes) {
+        // Surfaces in front of the first slice keep full visibility.
+        const float one = 1.0f;
+        glClearTexImage(tubes->partialOcclusion(), 0, GL_RED, GL_FLOAT, &one);
+        glBindTextureUnit(binding::tubeDepth, tubes->depth());
+        glBindImageTexture(binding::imagePartialOcclusion, tubes->partialOcclusion(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        p.set("geometryOpacity", static_cast<float>(in.geometryOpacity));
+        p.set("tubeThicknessMm", static_cast<float>(std::max(in.tubeThicknessMm, 1e-3)));
+    }
+    setLightingUniforms(p, frame, in.tf.material());
+    CameraRayPiece{frame}.apply(p);
+    VolumePiece{volume}.apply(p);
+    in.tf.apply(p);
+    in.clip.apply(p);
+    in.shading.apply(p);
+    p.set("viewForward", glm::vec3(forward));
+    p.set("sliceDistance", static_cast<float>(d));
+    p.set("gridSize", settings.gridSize);
+    p.set("ambientRadiance", static_cast<float>(settings.ambientRadiance));
+    p.set("earlyTerminationAlpha", static_cast<float>(frame.raycast.earlyTerminationAlpha));
+    glBindImageTexture(binding::imageOutput, in.eyeBuffer, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+
+    // Eq. 11 and 12: the cone base radius d tan(theta) in world units, projected at the previous slice's
+    // depth into pixels (the projection scales a length at depth z by H / (2 z tan(fovy / 2))).
+    double tanTheta = std::tan(glm::radians(settings.coneAngleDeg));
+    double pixelsPerMmAtUnitDepth = frame.size.y / (2.0 * std::tan(glm::radians(camera.fovYDeg) / 2.0));
+    int current = 0;
+    for (long k = first; k <= last; ++k) {
+        double z = double(k) * d;
+        double previousDepth = std::max(z - d, 1e-3);
+        p.set("sliceDepth", static_cast<float>(z));
+        p.set("coneRadiusPixels", static_cast<float>(d * tanTheta * pixelsPerMmAtUnitDepth / previousDepth));
+        glBindTextureUnit(binding::occlusionPrevious, occlusion_[current].name());
+        glBindImageTexture(binding::imageOcclusionNext, occlusion_[1 - current].name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+        p.dispatchCovering(glm::uvec3(static_cast<unsigned>(frame.size.x), static_cast<unsigned>(frame.size.y), 1u));
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        current = 1 - current;
+    }
+    slices_ = static_cast<int>(std::max(0L, last - first + 1));
+    last_ = current;
+}
+
+std::vector<glm::vec2> SlabPass::readOcclusion() const {
+    std::vector<glm::vec2> values(static_cast<std::size_t>(size_.x) * static_cast<std::size_t>(size_.y));
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // written by image stores
+    glGetTextureImage(occlusion_[last_].name(), 0, GL_RG, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(glm::vec2)),
+                      values.data());
+    return values;
+}
+
+std::size_t SlabPass::gpuBytes() const {
+    return 2u * static_cast<std::size_t>(size_.x) * static_cast<std::size_t>(size_.y) * 8u;
+}
+
+}  // namespace curette

@@ -1,0 +1,58 @@
+#pragma once
+// The slab pass: view-aligned slices marched front to back, one compute dispatch per slice, carrying an
+// eye buffer and a ping-pong occlusion buffer (Directional Occlusion Shading, seed 001; with tubes, the
+// combined occlusion of seed 000). Used for `dos` shading and, once tubes are in a scene, for every mode.
+
+#include "render/passes/clip_mesh_set.h"
+#include "render/model/frame.h"
+#include "gl/program.h"
+#include "render/gpu_volume.h"
+#include "render/shader_pieces.h"
+#include "render/model/slice_lattice.h"
+#include "render/transfer_function_texture.h"
+#include "render/passes/tube_set.h"
+
+namespace curette {
+
+// What one run of the slab pass reads and where it writes.
+struct SlabInputs {
+    const FrameDescription& frame;        // camera, size, shading, lights, frame.dos
+    const GpuVolume& volume;
+    const TransferFunctionTexture& tf;
+    const clip::ClipMeshSet& clip;
+    SampleShadingPiece shading;           // the mode's colour; V_AO and its scale in lao/cao
+    GLuint eyeBuffer = 0;                 // RGBA32F, frame.size: the image
+    GBuffer* tubes = nullptr;             // a filled G-buffer: tubes take part, the partial occlusion is written
+    double geometryOpacity = 0.0;         // what a tube crossing absorbs in the occlusion buffer (seed 000 Algorithm 3)
+    double tubeThicknessMm = 1.0;         // the depth it absorbs that over (dos_slice.comp)
+};
+
+class SlabPass {
+public:
+    static constexpr long maxSlices = kMaxSlabSlices;
+
+    void run(const SlabInputs& in);
+
+    double resolveSliceDistanceMm(const DosSettings& settings, const GpuVolume& volume) const;
+    int slicesLastFrame() const { return slices_; }
+    // The occlusion buffer after the last slice (tests: all channels must stay in [0, 1]).
+    std::vector<glm::vec2> readOcclusion() const;
+    // Tests only: false stores the occlusion buffer without the final clamp to [0, 1] (a separate program
+    // variant; the default one is untouched), so readOcclusion() shows what the update computed.
+    void setClampOcclusion(bool clamp) { clampOcclusion_ = clamp; }
+    std::size_t gpuBytes() const;
+
+private:
+    // `clipDefines`: the clip meshes' and cut faces' (ClipMeshSet::addDefines, SampleShadingPiece::addCutFaceDefines).
+    gl::Program& program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, gl::Defines clipDefines);
+    void ensureBuffers(glm::ivec2 size);
+
+    gl::ComputeVariants programs_{"dos_slice.comp"};
+    gl::Texture occlusion_[2];
+    glm::ivec2 size_{0};
+    int slices_ = 0;
+    int last_ = 0;
+    bool clampOcclusion_ = true;
+};
+
+}  // namespace curette

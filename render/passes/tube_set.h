@@ -1,0 +1,74 @@
+#pragma once
+// Tubes (or illuminated lines) on the GPU and the G-buffer they are drawn into (seed 000 section 3.1.1):
+// colour, world normal (tubes) or tangent (lines) with the surface kind, and the view depth along the camera
+// axis. The geometry is built in world millimetres on the CPU (render/model/tube_geometry.h) or, for tubes, expanded
+// from its swept rings on the GPU (render/passes/gpu_tube_builder.h).
+
+#include "render/passes/clip_mesh_set.h"
+#include "gl/program.h"
+#include "render/model/frame.h"
+#include "render/model/tube_vertices.h"
+
+#include <vector>
+
+namespace curette {
+
+class GBuffer {
+public:
+    void ensure(glm::ivec2 size);
+    glm::ivec2 size() const { return size_; }
+    GLuint color() const { return color_.name(); }
+    GLuint normal() const { return normal_.name(); }
+    GLuint depth() const { return depth_.name(); }
+    GLuint partialOcclusion() const { return partial_.name(); }
+    GLuint framebuffer() const { return framebuffer_.name(); }
+    std::size_t gpuBytes() const;
+    std::vector<float> readDepth() const;
+
+private:
+    glm::ivec2 size_{0};
+    gl::Texture color_, normal_, depth_, partial_;
+    gl::Renderbuffer depthStencil_;
+    gl::Framebuffer framebuffer_;
+};
+
+// The vertex streams of a TubeSet on the GPU, however they were filled.
+struct TubeBuffers {
+    gl::Buffer positions, directions, colors, indices;   // vec3, vec3, vec4, uint32 (TubeVertices' layout)
+    std::size_t vertexCount = 0, indexCount = 0;
+    bool lines = false;
+    glm::dvec3 boundsMin{0.0}, boundsMax{0.0};           // a world box holding every vertex
+    std::size_t bytes() const { return vertexCount * (2 * sizeof(glm::vec3) + sizeof(glm::vec4)) + indexCount * sizeof(std::uint32_t); }
+};
+
+class TubeSet {
+public:
+    // Uploads CPU-built vertices (the box is the vertices' own).
+    explicit TubeSet(const TubeVertices& vertices);
+    explicit TubeSet(TubeBuffers buffers);
+    std::size_t vertexCount() const { return buffers_.vertexCount; }
+    // The vertex streams read back from the GPU (tests and bench tracts compare the two builders): all, or
+    // `vertexCount` vertices from `firstVertex` and `indexCount` indices from `firstIndex` (a whole-brain set
+    // is compared piece by piece).
+    TubeVertices readBack() const { return readBack(0, buffers_.vertexCount, 0, buffers_.indexCount); }
+    TubeVertices readBack(std::size_t firstVertex, std::size_t vertexCount, std::size_t firstIndex, std::size_t indexCount) const;
+    bool lines() const { return lines_; }
+    std::size_t triangleCount() const { return lines_ ? 0 : buffers_.indexCount / 3; }
+    std::size_t segmentCount() const { return lines_ ? buffers_.indexCount / 2 : 0; }
+    std::size_t gpuBytes() const { return buffers_.bytes(); }
+    // The world box around every vertex (the frame plan leaves tubes out of a frame they cannot be seen in).
+    glm::dvec3 boundsMin() const { return buffers_.boundsMin; }
+    glm::dvec3 boundsMax() const { return buffers_.boundsMax; }
+    void drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target);
+
+private:
+    TubeBuffers buffers_;
+    gl::VertexArray vertexArray_;
+    gl::Program program_;
+    bool lines_ = false;
+};
+
+// Deterministic Poisson-disk samples in the unit disk (dart throwing with a fixed seed).
+std::vector<glm::vec2> poissonDisk(int count, std::uint32_t seed = 7);
+
+}  // namespace curette

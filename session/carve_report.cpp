@@ -1,0 +1,116 @@
+#include "session/carve_report.h"
+
+#include "io/nifti_writer.h"
+#include "io/seg_nrrd_writer.h"
+#include "io/tck_writer.h"
+#include "session/plan_scene.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "plan/cavity_surface.h"
+#include "plan/report_output.h"
+#include "plan/tissue_mask.h"
+
+#include <cctype>
+#include <chrono>
+
+namespace curette {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+plan::ReportSettings resolveSettings(const LoadedScene& loaded) {
+    const ReportSpec& spec = loaded.scene.report;
+    plan::ReportSettings s;
+    s.opacityThreshold = spec.opacityThreshold;
+    s.tissue = spec.tissue == ReportSpec::Tissue::Opacity ? plan::TissueRule::Opacity
+               : spec.tissue == ReportSpec::Tissue::Labels ? plan::TissueRule::Labels
+                                                           : plan::TissueRule::All;
+    if (s.tissue == plan::TissueRule::Labels) {
+        const LabelTable& table = loaded.labels.front().table;
+        s.tissueLabelIds = resolveLabelIds(spec.tissueLabels, table, loaded.scene.file.string(), "report.tissue_labels");
+        if (spec.tissueLabels.empty())  // every label of the first set (a brain mask, say) is tissue
+            for (const LabelEntry& e : table.entries)
+                if (e.id > 0) s.tissueLabelIds.push_back(e.id);
+    }
+    return s;
+}
+
+// A file-system-friendly form of a bundle name ("AF_L" stays, "left arcuate" -> "left_arcuate").
+std::string fileName(const std::string& name) {
+    std::string out;
+    for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.') ? c : '_';
+    return out.empty() ? "bundle" : out;
+}
+
+}  // namespace
+
+CarveReporter::CarveReporter(const LoadedScene& loaded, const VolumeGeometry& geometry)
+    : loaded_(loaded), settings_(resolveSettings(loaded)), probe_(geometry, loaded.scene.lao.antiAliasingSamples) {
+    for (const LoadedLabelSet& set : loaded.labels) labelSets_.push_back({set.name, &set.onScanGrid, &set.table, set.protectedIds});
+    for (std::size_t i = 0; i < loaded.scene.tubes.size(); ++i) {
+        plan::BundleInput b;
+        b.name = loaded.scene.tubes[i].name;
+        b.tracts = &loaded.tracts[i];
+        b.isProtected = loaded.scene.tubes[i].protectedBundle;
+        b.probe.stepMm = loaded.scene.report.tractStepMm;
+        b.probe.points = plan::tractProbePoints(loaded.tracts[i], b.probe.stepMm, b.probe.streamlineOffsets);
+        bundles_.push_back(std::move(b));
+    }
+}
+
+plan::Report CarveReporter::compute(clip::ClipMeshSet& clip) {
+    using Clock = std::chrono::steady_clock;
+    auto start = Clock::now();
+    field_ = probe_.removalField(clip);
+    auto fieldDone = Clock::now();
+    for (plan::BundleInput& b : bundles_) b.probe.insideFlags = probe_.insideFlags(clip, b.probe.points);
+    fieldMs_ = std::chrono::duration<double, std::milli>(fieldDone - start).count();
+    flagsMs_ = std::chrono::duration<double, std::milli>(Clock::now() - fieldDone).count();
+    return plan::computeReport(loaded_.volume, loaded_.scene.transferFunction, settings_, field_, labelSets_, bundles_);
+}
+
+std::vector<std::uint8_t> CarveReporter::tissueInField() const {
+    if (field_.insideSamples.empty()) return {};
+    const LabelMap* firstLabels = loaded_.labels.empty() ? nullptr : &loaded_.labels.front().onScanGrid;
+    return plan::tissueInBox(loaded_.volume, loaded_.scene.transferFunction, settings_, firstLabels, field_.box());
+}
+
+void CarveReporter::write(const fs::path& dir, const plan::Report& report, const InteractionState& state,
+                          const PlanExportOptions& options) const {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw SystemError(dir.string() + ": cannot create the output directory (" + ec.message() + ")");
+    plan::writeReportFiles(report, dir);
+    if (!options.exports) return;
+    std::vector<std::uint8_t> tissue = tissueInField();
+    // The removed region R on the scan grid, 1 where removed (plan/removal_report.h).
+    LabelMap removed;
+    removed.dims = loaded_.volume.dims;
+    removed.indexToWorld = loaded_.volume.indexToWorld;
+    removed.source = loaded_.volume.source + " (removed region)";
+    std::vector<std::uint8_t> region = plan::removedRegionOnGrid(field_, tissue);  // the field's grid is the scan's
+    removed.ids.assign(region.begin(), region.end());
+    io::writeNiftiLabelmap(dir / "removed.nii.gz", removed);
+    io::writeSlicerSegmentation(dir / "removed.seg.nrrd", removed, {io::SegmentInfo{1, "removed", "removed by the carve", glm::dvec3(0.85, 0.2, 0.15)}});
+    clip::TriangleMesh cavity = plan::cavitySurface(field_, tissue);
+    if (!cavity.triangles.empty()) {
+        io::writeStl(dir / "cavity.stl", cavity, options.meshSpace);
+        io::writeGltf(dir / "cavity.gltf", cavity, options.meshSpace);
+    }
+    std::vector<std::uint8_t> sceneBytes = readFileBytes(loaded_.scene.file);
+    writeFileAtomically(dir / "plan-scene.json",
+                        planSceneJson(loaded_.scene, std::string(sceneBytes.begin(), sceneBytes.end()), state));
+    if (!report.bundles.empty()) {
+        fs::create_directories(dir / "tracts", ec);
+        if (ec) throw SystemError((dir / "tracts").string() + ": cannot create the directory (" + ec.message() + ")");
+        for (const plan::BundleRow& b : report.bundles) {
+            io::writeTck(dir / "tracts" / (fileName(b.name) + "-cut.tck"), b.cutTracts);
+            io::writeTck(dir / "tracts" / (fileName(b.name) + "-spared.tck"), b.sparedTracts);
+        }
+    }
+}
+
+std::string carveSummary(const plan::Report& report) { return plan::reportSummary(report); }
+
+}  // namespace curette

@@ -1,0 +1,71 @@
+#pragma once
+// The removal report of the current carve, as `curette report`, `replay --report` and the viewer produce it:
+// the GPU removal field and tract flags (render/passes/removal_probe.h: the renderer's own clip maps and step IV's
+// sample pattern), the report (plan/removal_report.h), and the plan's files:
+//   report.json, structures.csv, bundles.csv           plan/report_output.h
+//   removed.nii.gz       the removed region R as a labelmap on the scan grid (1 = removed)
+//   removed.seg.nrrd     the same as a 3D Slicer segmentation (segment "removed", colour, extent)
+//   cavity.stl, cavity.gltf  the surface of R (plan/cavity_surface.h), closed, RAS mm (LPS with --lps)
+//   plan-scene.json      the scene with the meshes where they are now (session/plan_scene.h)
+//   tracts/<bundle>-cut.tck, tracts/<bundle>-spared.tck
+// Every file is written atomically, so an interrupted run leaves no half-written file that looks complete.
+
+#include "session/interaction.h"
+#include "session/loaded_scene.h"
+#include "io/mesh_writers.h"
+#include "plan/removal_report.h"
+#include "render/passes/removal_probe.h"
+#include "render/renderer.h"
+
+#include <filesystem>
+#include <string>
+
+namespace curette {
+
+struct PlanExportOptions {
+    io::MeshSpace meshSpace = io::MeshSpace::Ras;
+    bool exports = true;   // false: report.json and the CSVs only (replay --report)
+};
+
+class CarveReporter {
+public:
+    // Resolves the scene's report settings against its labels and prepares each bundle's probe points
+    // (they do not move; only their inside flags change with the meshes).
+    CarveReporter(const LoadedScene& loaded, const VolumeGeometry& geometry);
+
+    // The report under the clip meshes' current poses (the renderer's ClipMeshSet, kept in sync by the
+    // session step). Keeps the field for the exports.
+    plan::Report compute(clip::ClipMeshSet& clip);
+    const plan::RemovalField& lastField() const { return field_; }
+    // Wall time of the GPU parts of the last compute(): the removal field (with the maps' update) and the
+    // tract flags (computeReport's own parts are in Report::timings).
+    double lastFieldMs() const { return fieldMs_; }
+    double lastFlagsMs() const { return flagsMs_; }
+    double lastGpuMs() const { return fieldMs_ + flagsMs_; }
+    const std::vector<plan::BundleInput>& bundles() const { return bundles_; }
+    const plan::ReportSettings& settings() const { return settings_; }
+    const std::vector<plan::LabelSet>& labelSets() const { return labelSets_; }
+
+    // Writes the report and (with options.exports) the plan's files into `directory` (created if needed);
+    // call after compute(), whose field the exports are made from.
+    // `state` is the interaction state the report was computed under (the poses for plan-scene.json).
+    void write(const std::filesystem::path& directory, const plan::Report& report, const InteractionState& state,
+               const PlanExportOptions& options) const;
+
+private:
+    // The tissue over the last field's box (plan/tissue_mask.h), as the report counted it.
+    std::vector<std::uint8_t> tissueInField() const;
+
+    const LoadedScene& loaded_;
+    plan::ReportSettings settings_;
+    std::vector<plan::LabelSet> labelSets_;
+    std::vector<plan::BundleInput> bundles_;
+    RemovalProbe probe_;
+    plan::RemovalField field_;
+    double fieldMs_ = 0, flagsMs_ = 0;
+};
+
+// `--report` and the viewer's overlay: one line per row, as the terminal summary prints it.
+std::string carveSummary(const plan::Report& report);
+
+}  // namespace curette

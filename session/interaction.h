@@ -1,0 +1,106 @@
+#pragma once
+// Applying input actions to the scene: the one place where device or keyboard motion becomes clip-mesh
+// poses and light directions. Plain data, no GL: the session step (session/session_step.h) runs it for the live viewer, `curette
+// record`, `curette replay` and the benches, so poses re-derived from recorded reports equal the recorded
+// ones bit for bit.
+
+#include "scene/scene.h"
+#include "session/session.h"
+#include "scene/setting_edit.h"
+#include "mesh/limits.h"
+#include "mesh/rigid_pose.h"
+#include "mesh/triangle_mesh.h"
+#include "input/actions.h"
+#include "render/model/camera.h"
+#include "render/model/frame.h"
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace curette {
+
+struct MeshState {
+    int id = 0;                  // stable for the session (meshes can be added and removed); scene meshes: scene index
+    std::string name;
+    std::string description;     // JSON of the mesh (as in a scene) for added meshes, so a replay can rebuild it;
+                                 // empty for scene meshes
+    std::shared_ptr<const clip::TriangleMesh> geometry;
+    clip::RigidPose pose, initialPose;
+    glm::dvec3 scale{1.0};
+    bool clipsTubes = false;     // the mesh also cuts tubes (scene key clips_tubes)
+};
+
+struct InteractionState {
+    std::vector<MeshState> meshes;
+    ShadingMode shading = ShadingMode::Phong;
+    // The frame's lights (the scene's, as MoveLight turns them; empty: SessionStep adopts its frame's) and the
+    // one MoveLight{-1} turns.
+    std::vector<Light> lights;
+    int selectedLight = 0;
+    int nextMeshId = 0;
+    // The scene's settings the panels edit (scene/setting_edit.h), from the scene and then its edits; the session
+    // step hands them to the frame (raycast, dos, ismos, lights) and the renderer (SessionStep::syncTo).
+    TransferFunction transferFunction;
+    LaoSettings lao;
+    RaycastSettings raycast;
+    DosSettings dos;
+    IsmosSettings ismos;                 // lightShapes: one per light
+    std::vector<SceneTubes> tubes;
+    TubeRendering tubeRendering;
+    std::uint64_t transferFunctionVersion = 0, tubesVersion = 0, tubeShadingVersion = 0;   // counted per edit
+    // The value of every key an edit has set, latest first wins, by the key's name in the scene file
+    // ("transfer_function", "lights[1]", "tubes[0]", ...; mesh settings live in the meshes): what the scene
+    // writer (session/plan_scene.h) writes, what the panels start from and what a session header carries.
+    // Lights added and removed: an added light's key is set as an edit sets it; a removal first sets every
+    // light's key (the scene's own JSON where no edit set one), so the lights after it move down a key.
+    std::map<std::string, nlohmann::json> editedKeys;
+    // The scene's "lights" entries as its file has them (an empty object for its default light): what a
+    // removal sets for a light no edit has set, and what settingEdits() compares the lights with.
+    std::vector<nlohmann::json> sceneLightKeys;
+    std::filesystem::path sceneDirectory = ".";   // glTF paths of edited meshes are relative to it
+    bool fromSceneSettings = false;   // the settings above are a scene's (else SessionStep adopts its frame's)
+    // One-shot requests the frame loop handles (and clears).
+    bool toggleRecording = false, screenshot = false;
+    std::vector<int> addedMeshIds, removedMeshIds;   // this frame's, for the session's mesh events
+    std::vector<SettingEdit> appliedEdits;           // this frame's, as applied (an added mesh with its id)
+
+    static InteractionState fromScene(const Scene& scene);
+    // The state a session starts from (its header), with geometry from the scene or the meshes' descriptions.
+    static InteractionState fromSessionStart(const SessionHeader& header, const Scene& scene,
+                                             const std::filesystem::path& sceneDirectory, const std::string& source);
+    std::vector<SessionMeshStart> sessionMeshes() const;   // for a session header
+    std::vector<SessionMesh> sessionPoses() const;         // for a session frame
+    std::vector<SessionLight> sessionLights() const;       // for a session header
+    std::vector<glm::dvec3> lightDirections() const;       // for a session frame
+    int indexOf(int meshId) const;  // -1 when absent
+    // Applies `actions` for a frame seen through `camera` at `viewportHeight` pixels (for drags).
+    void apply(const std::vector<input::Action>& actions, const OrbitCamera& camera, int viewportHeight);
+    // Applies setting edits (after the frame's actions): each value read by the scene reader's function for
+    // its key (scene/setting_edit.h), then set where the scene's value was. `source` names them in errors
+    // (a session line, or "<panel>"). Appends each, as applied, to appliedEdits.
+    void applyEdits(const std::vector<SettingEdit>& edits, const std::string& source);
+    // The edits that turn the scene's settings into this state's (for a session header: a recording that
+    // starts after edits), one per edited key; meshes are not among them (the header lists the meshes).
+    std::vector<SettingEdit> settingEdits() const;
+    // The scene file's current JSON of a key ("ambient_occlusion", "lights[0]", ...): the last edit's value,
+    // else the scene's own (null when the scene does not have the key).
+    nlohmann::json keyJson(const Scene& scene, const std::string& key) const;
+    // The mesh AddMesh creates: a 15 mm sphere at the camera's target.
+    static const char* addedMeshDescription();
+};
+
+// MoveLight's motion (input/actions.h): the light's direction in camera coordinates (right, up, towards the
+// viewer) as azimuth atan2(x, z) and elevation asin(y); yaw adds to the azimuth, pitch to the elevation, which
+// stays within +-89 degrees (a light does not flip over the pole). A world-space light is turned in the
+// frame of `camera` and stays in world space; its length is kept. The one definition, for live input and
+// for poses re-derived from a session's keys.
+Light turnedLight(const Light& light, glm::dvec2 yawPitchRad, const OrbitCamera& camera);
+
+// A clip mesh's geometry from its scene JSON (mesh/mesh_description.h); `source` names it in errors.
+std::shared_ptr<const clip::TriangleMesh> meshFromDescription(const std::string& json, const std::string& source,
+                                                              const std::filesystem::path& baseDirectory);
+
+}  // namespace curette

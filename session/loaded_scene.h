@@ -1,0 +1,46 @@
+#pragma once
+// A scene with its volume read from disk: the common first step of render, view, bench and replay.
+
+#include "scene/scene.h"
+#include "scene/scene_labels.h"
+#include "render/renderer.h"
+#include "base/tractogram.h"
+#include "base/volume.h"
+
+namespace curette {
+
+struct LoadedScene {
+    Scene scene;
+    VolumeData volume;
+    std::vector<Tractogram> tracts;   // one per scene.tubes entry
+    std::vector<LoadedLabelSet> labels;  // one per scene.labels entry, on the scan grid
+};
+
+LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
+
+// Hands the scene's LAO settings, labels, clip meshes (through the session step's one path, session/session_step.h) and
+// tubes to a renderer made for its volume: every command that renders a scene goes through here, so they all
+// render the same thing.
+void configureRenderer(const LoadedScene& loaded, Renderer& renderer);
+
+// Every bundle of a scene's tubes in one vertex set (tubes, or lines for the illuminated-lines mode), and
+// their shading (the depth a tube fills in the slab pass is the diameter of the largest): what
+// configureRenderer and the session step (after a tube edit) hand the renderer.
+TubeVertices sceneTubeVertices(const std::vector<SceneTubes>& tubes, bool lines, const std::vector<Tractogram>& tracts);
+TubeShading sceneTubeShading(const std::vector<SceneTubes>& tubes, const TubeShading& shading);
+// Every bundle's swept rings, for tubes expanded on the GPU ("build": "gpu", render/passes/gpu_tube_builder.h).
+TubeRings sceneTubeRings(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts);
+// The scene's tubes into the renderer as `rendering` says (lines, CPU-built or GPU-built tubes).
+void setSceneTubes(Renderer& renderer, const std::vector<SceneTubes>& tubes, const TubeRendering& rendering,
+                   const std::vector<Tractogram>& tracts);
+
+// Applies the --size/--shading/--azimuth/--elevation overrides shared by render-like commands.
+struct FrameOverrides {
+    std::optional<glm::ivec2> size;
+    std::optional<ShadingMode> shading;
+    std::optional<double> azimuthDeg, elevationDeg;
+};
+void applyOverrides(const FrameOverrides& overrides, FrameDescription& frame);
+ShadingMode parseShadingOption(const std::string& option, const std::string& text);
+
+}  // namespace curette

@@ -1,0 +1,154 @@
+#include "session/session_step.h"
+
+#include "session/loaded_scene.h"
+#include "base/error.h"
+
+#include <set>
+
+namespace curette {
+
+bool samePoses(const std::vector<SessionMesh>& a, const std::vector<SessionMesh>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].id != b[i].id || a[i].position != b[i].position || a[i].orientation != b[i].orientation || a[i].scale != b[i].scale)
+            return false;
+    return true;
+}
+
+namespace {
+
+// The frame's settings that come from the state (the rest, camera and size, the callers own).
+void frameFromState(const InteractionState& state, FrameDescription& frame) {
+    frame.shading = state.shading;
+    frame.lights = state.lights;
+    frame.raycast = state.raycast;
+    frame.dos = state.dos;
+    frame.ismos = state.ismos;
+}
+
+}  // namespace
+
+SessionStep::SessionStep(InteractionState state, FrameDescription frame) : state_(std::move(state)), frame_(std::move(frame)) {
+    if (state_.lights.empty()) state_.lights = frame_.lights;
+    if (!state_.fromSceneSettings) {   // a state made by hand (tests, benches): the frame's settings
+        state_.raycast = frame_.raycast;
+        state_.dos = frame_.dos;
+        state_.ismos = frame_.ismos;
+        state_.fromSceneSettings = true;
+    }
+    frameFromState(state_, frame_);
+    syncedTransferFunction_ = state_.transferFunctionVersion;
+    syncedTubes_ = state_.tubesVersion;
+    syncedTubeShading_ = state_.tubeShadingVersion;
+}
+
+StepChanges SessionStep::compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, const std::vector<Light>& lightsBefore,
+                                 bool meshesChanged) {
+    StepChanges c;
+    c.meshes = meshesChanged;
+    c.poses = !samePoses(before, state_.sessionPoses());
+    c.shading = state_.shading != shadingBefore;
+    c.lights = state_.lights != lightsBefore;
+    c.settings = !state_.appliedEdits.empty();
+    for (const SettingEdit& e : state_.appliedEdits) c.meshes = c.meshes || e.setting == Setting::MeshShape;
+    frameFromState(state_, frame_);
+    return c;
+}
+
+StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int viewportHeight, const std::vector<SettingEdit>& edits,
+                               const std::string& source) {
+    std::vector<SessionMesh> before = state_.sessionPoses();
+    ShadingMode shadingBefore = state_.shading;
+    std::vector<Light> lightsBefore = state_.lights;
+    state_.addedMeshIds.clear();
+    state_.removedMeshIds.clear();
+    state_.appliedEdits.clear();
+    state_.apply(actions, frame_.camera, viewportHeight);
+    state_.applyEdits(edits, source);
+    return compare(before, shadingBefore, lightsBefore, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty());
+}
+
+StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::path& sceneDirectory, const std::string& where) {
+    std::vector<SessionMesh> before = state_.sessionPoses();
+    ShadingMode shadingBefore = state_.shading;
+    std::vector<Light> lightsBefore = state_.lights;
+    state_.addedMeshIds.clear();
+    state_.removedMeshIds.clear();
+    state_.appliedEdits.clear();
+    // Meshes an edit adds or removes are also in meshes_added/meshes_removed: the edit makes them (it
+    // carries every key of the mesh), after the ones the frame's actions made, as live.
+    std::set<int> addedByEdits, removedByEdits;
+    for (const SettingEdit& e : f.edits) {
+        if (e.setting == Setting::MeshAdd) addedByEdits.insert(e.target);
+        if (e.setting == Setting::MeshRemove) removedByEdits.insert(e.target);
+    }
+    for (const SessionAddedMesh& a : f.meshesAdded) {
+        if (addedByEdits.count(a.id)) continue;
+        MeshState m;
+        m.id = a.id;
+        m.name = a.name;
+        m.description = a.description;
+        m.geometry = meshFromDescription(a.description, where + ": meshes_added.mesh", sceneDirectory);
+        state_.meshes.push_back(m);
+    }
+    for (int id : f.meshesRemoved)
+        if (int i = state_.indexOf(id); i >= 0 && !removedByEdits.count(id)) state_.meshes.erase(state_.meshes.begin() + i);
+    state_.applyEdits(f.edits, where);
+    // The lights' directions as recorded, after the edits (which may add or remove lights; a light edit
+    // carries the direction the light had then).
+    if (f.lights) {
+        if (f.lights->size() != state_.lights.size())
+            throw InputError(where, "lights", "one direction per light of the session at that frame (" + std::to_string(state_.lights.size()) + ")",
+                             std::to_string(f.lights->size()));
+        for (std::size_t i = 0; i < f.lights->size(); ++i) state_.lights[i].direction = (*f.lights)[i];
+    }
+    for (const SessionMesh& r : f.meshes) {
+        int i = state_.indexOf(r.id);
+        if (i < 0) throw InputError(where, "meshes", "ids of meshes present at that frame", std::to_string(r.id));
+        state_.meshes[static_cast<std::size_t>(i)].pose = {r.position, r.orientation};
+        state_.meshes[static_cast<std::size_t>(i)].scale = r.scale;
+    }
+    state_.shading = f.shading;
+    frame_.camera = f.camera;
+    frame_.size = f.size;
+    return compare(before, shadingBefore, lightsBefore, !f.meshesAdded.empty() || !f.meshesRemoved.empty());
+}
+
+void SessionStep::syncTo(clip::ClipMeshSet& set) const { syncClipMeshes(state_, set); }
+
+void SessionStep::syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts) {
+    syncClipMeshes(state_, renderer.clipMeshes());
+    if (syncedTransferFunction_ != state_.transferFunctionVersion) {
+        renderer.setTransferFunction(state_.transferFunction);
+        syncedTransferFunction_ = state_.transferFunctionVersion;
+    }
+    renderer.setLaoSettings(state_.lao);   // changes nothing when equal
+    if (syncedTubes_ != state_.tubesVersion || syncedTubeShading_ != state_.tubeShadingVersion) {
+        if (state_.tubes.empty() || syncedTubes_ != state_.tubesVersion) {
+            setSceneTubes(renderer, state_.tubes, state_.tubeRendering, tracts);
+        } else {
+            renderer.setTubeShading(sceneTubeShading(state_.tubes, state_.tubeRendering.shading));
+        }
+        syncedTubes_ = state_.tubesVersion;
+        syncedTubeShading_ = state_.tubeShadingVersion;
+    }
+}
+
+void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set) {
+    const std::vector<MeshState>& meshes = state.meshes;
+    bool same = set.count() == static_cast<int>(meshes.size());
+    for (std::size_t i = 0; same && i < meshes.size(); ++i)
+        same = set.name(static_cast<int>(i)) == meshes[i].name && set.geometry(static_cast<int>(i)) == meshes[i].geometry.get();
+    if (!same) {
+        set.clear();
+        for (const MeshState& m : meshes) set.add(m.geometry, m.scale, m.pose, m.name);
+    }
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        int index = static_cast<int>(i);
+        set.setPose(index, meshes[i].pose);
+        set.setScale(index, meshes[i].scale);
+        set.setClipsTubes(index, meshes[i].clipsTubes);
+    }
+}
+
+}  // namespace curette

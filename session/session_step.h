@@ -1,0 +1,77 @@
+#pragma once
+// One step of a session, the same for `view`, `record`, `replay` and the benches: a frame's input (live
+// actions, actions re-derived from recorded reports, or recorded poses) -> the interaction state -> the
+// FrameDescription and, through syncTo, the renderer's clip-mesh set. The only path by which meshes reach a
+// renderer, so every per-mesh setting (geometry, scale, pose, clips_tubes) arrives by every command alike;
+// and the only definition of "the poses changed".
+
+#include "session/interaction.h"
+#include "session/session.h"
+#include "base/tractogram.h"
+#include "render/passes/clip_mesh_set.h"
+#include "input/actions.h"
+#include "render/model/frame.h"
+#include "render/renderer.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace curette {
+
+struct StepChanges {
+    bool poses = false;    // a position, an orientation or a scale
+    bool meshes = false;   // a mesh added or removed
+    bool shading = false;
+    bool lights = false;   // a light (MoveLight, a recorded frame's lights, a light edit)
+    bool settings = false; // a setting edit (scene/setting_edit.h)
+    bool any() const { return poses || meshes || shading || lights || settings; }
+};
+
+// SessionStep::syncTo for a state without a step (a scene's first frame: render, bench raycast/dos).
+void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set);
+
+// Pose equality, for every command: same ids in the same order, positions, orientations and scales.
+bool samePoses(const std::vector<SessionMesh>& a, const std::vector<SessionMesh>& b);
+
+class SessionStep {
+public:
+    SessionStep(InteractionState state, FrameDescription frame);
+
+    InteractionState& state() { return state_; }
+    const InteractionState& state() const { return state_; }
+    // The frame to render: the camera, size, shading and lights of the last step (callers move the camera and
+    // size). A state without lights adopts the frame's (a scene's first frame has the scene's).
+    FrameDescription& frame() { return frame_; }
+    const FrameDescription& frame() const { return frame_; }
+
+    // Live input, or input re-derived from recorded reports: the actions applied through the interaction
+    // state with the frame's camera, for a viewport `viewportHeight` pixels high (drags).
+    // Then the frame's setting edits (the panels', or a session's recorded ones), `source` naming them in errors.
+    StepChanges apply(const std::vector<input::Action>& actions, int viewportHeight, const std::vector<SettingEdit>& edits = {},
+                      const std::string& source = "<panel>");
+    // A recorded frame followed as recorded (replay without --from-reports): meshes added and removed, every
+    // pose and scale, the lights' directions, the setting edits, the shading, camera and image size. `where`
+    // names the line in errors.
+    StepChanges follow(const SessionFrame& recorded, const std::filesystem::path& sceneDirectory, const std::string& where);
+
+    // Makes `set` match the state's meshes (index i = state().meshes[i]). Poses, scales and clips_tubes are set
+    // (cheap: a rigid motion only changes a camera matrix); meshes are re-added only when the list changed.
+    void syncTo(clip::ClipMeshSet& set) const;
+    // Makes a renderer match the state: the clip meshes as above, and the transfer function, the LAO
+    // settings and the tubes (rebuilt from `tracts`, one per scene bundle) when an edit changed them. The one
+    // path by which edited settings reach a renderer (the frame's raycast, dos, ismos and lights reach it in
+    // frame()).
+    void syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts);
+
+private:
+    StepChanges compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, const std::vector<Light>& lightsBefore,
+                        bool meshesChanged);
+
+    InteractionState state_;
+    FrameDescription frame_;
+    // The state's setting versions the renderer was last given (those of the scene: configureRenderer).
+    std::uint64_t syncedTransferFunction_ = 0, syncedTubes_ = 0, syncedTubeShading_ = 0;
+};
+
+}  // namespace curette

@@ -1,0 +1,124 @@
+// Scene files: every key read strictly, errors naming the key, relative paths, clip meshes.
+#include "scene/scene.h"
+#include "base/error.h"
+#include "base/json_reader.h"
+#include "tests/app/run_curette.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace curette {
+namespace {
+
+const std::filesystem::path kScenes = std::filesystem::path(CURETTE_SOURCE_DIR) / "assets" / "scenes";
+
+Scene parse(const std::string& text) { return parseScene(text, kScenes / "test.json"); }
+
+void expectError(const std::string& text, const std::string& field) {
+    try {
+        parse(text);
+        FAIL() << "expected an error naming " << field;
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), field) << e.what();
+    }
+}
+
+const std::string kVolume = R"("volume": {"path": "/usr/share/mricron/templates/ch2.nii.gz"}, "transfer_function": "../tf/mri_t1.json")";
+
+TEST(Scene, ShippedScenesParse) {
+    for (const auto& entry : std::filesystem::directory_iterator(kScenes)) {
+        if (entry.path().extension() != ".json") continue;
+        Scene s = loadScene(entry.path());
+        EXPECT_FALSE(s.transferFunction.opacity.empty()) << entry.path();
+    }
+    Scene carved = loadScene(kScenes / "head-carved.json");
+    EXPECT_EQ(carved.shading, ShadingMode::Cao);
+    ASSERT_EQ(carved.clipMeshes.size(), 2u);
+    EXPECT_EQ(carved.clipMeshes[0].name, "sphere");
+    EXPECT_EQ(carved.lao.directions.count, 26);
+}
+
+TEST(Scene, TubesAreBuiltOnTheCpuUnlessTheSceneAsksForTheGpu) {
+    EXPECT_FALSE(parse("{" + kVolume + "}").tubesBuiltOnGpu);
+    EXPECT_TRUE(parse("{" + kVolume + R"(, "tube_rendering": {"build": "gpu"}})").tubesBuiltOnGpu);
+    EXPECT_FALSE(parse("{" + kVolume + R"(, "tube_rendering": {"build": "cpu"}})").tubesBuiltOnGpu);
+    EXPECT_THROW(parse("{" + kVolume + R"(, "tube_rendering": {"build": "fpga"}})"), InputError);
+    EXPECT_TRUE(loadScene(kScenes / "tracts-100k.json").tubesBuiltOnGpu);
+}
+
+TEST(Scene, EveryKeyIsReadAndRelativePathsFollowTheSceneFile) {
+    Scene s = parse("{" + kVolume + R"(, "camera": {"target": [1,2,3], "distance_mm": 300, "azimuth_deg": 10, "elevation_deg": -20, "fov_deg": 40},
+        "shading": "lao", "lights": [{"direction": [0,0,1], "color": [1,0.5,0.5], "intensity": 2, "space": "world"}],
+        "image": {"width": 64, "height": 32, "background": [0,0,0,0]},
+        "raycast": {"step_mm": 0.25, "early_termination": 0.95, "jitter_seed": 7, "skip_empty_space": false},
+        "ambient_occlusion": {"rays": "fibonacci:64", "samples": 12, "step_mm": 0.5, "antialiasing_samples": 8, "jitter": 0,
+                              "weights": "sky", "ambient_scale": 1.5, "dispatch": "full_grid"},
+        "clip_meshes": [{"name": "t", "mesh": {"shape": "torus", "major_radius_mm": 20, "minor_radius_mm": 5},
+                         "position_mm": [0, 0, 40], "rotation_deg": [90, 0, 0], "scale": [1, 2, 1], "clips_tubes": true}]})");
+    EXPECT_EQ(s.camera.target, glm::dvec3(1, 2, 3));
+    EXPECT_EQ(*s.camera.distanceMm, 300.0);
+    EXPECT_EQ(s.shading, ShadingMode::Lao);
+    EXPECT_EQ(s.lights[0].color, glm::dvec3(2, 1, 1));
+    EXPECT_FALSE(s.lights[0].cameraSpace);
+    EXPECT_EQ(s.imageSize, glm::ivec2(64, 32));
+    EXPECT_EQ(s.raycast.jitterSeed, 7u);
+    EXPECT_FALSE(s.raycast.skipEmptySpace);
+    EXPECT_EQ(s.lao.directions.count, 64);
+    EXPECT_EQ(s.lao.dispatch, LaoSettings::Dispatch::FullGrid);
+    EXPECT_TRUE(s.lao.directions.skyWeighting);
+    EXPECT_EQ(s.clipMeshes[0].scale, glm::dvec3(1, 2, 1));
+    EXPECT_TRUE(s.clipMeshes[0].clipsTubes);
+    EXPECT_EQ(s.transferFunctionSource, (kScenes / "../tf/mri_t1.json").string());
+}
+
+TEST(Scene, BadKeysTypesAndValuesNameTheKey) {
+    expectError(R"({"volume": {"path": "x.nii"}})", "transfer_function");
+    expectError("{" + kVolume + R"(, "shadng": "phong"})", "shadng");
+    expectError("{" + kVolume + R"(, "shading": "toon"})", "shading");
+    expectError("{" + kVolume + R"(, "camera": {"fov_deg": 500}})", "camera.fov_deg");
+    expectError("{" + kVolume + R"(, "camera": {"target": "middle"}})", "camera.target");
+    expectError("{" + kVolume + R"(, "image": {"width": -1}})", "image.width");
+    expectError("{" + kVolume + R"(, "image": {"width": 1.5}})", "image.width");
+    expectError("{" + kVolume + R"(, "lights": [{"direction": [0,0,0]}]})", "lights[0].direction");
+    expectError("{" + kVolume + R"(, "ambient_occlusion": {"rays": "7"}})", "ambient_occlusion.rays");
+    expectError("{" + kVolume + R"(, "clip_meshes": [{"mesh": {"shape": "sphere", "radius_mm": -3}}]})", "clip_meshes[0].mesh.radius_mm");
+    expectError("{" + kVolume + R"(, "clip_meshes": [{"mesh": {"shape": "blob"}}]})", "clip_meshes[0].mesh.shape");
+    expectError("{" + kVolume + R"(, "clip_meshes": [{"mesh": {"shape": "sphere", "radius_mm": 3}, "scale": 0}]})", "clip_meshes[0].scale");
+    expectError(R"({"volume": {"path": "x.raw", "format": "raw"}, "transfer_function": "../tf/mri_t1.json"})", "volume.raw");
+    expectError(R"({"volume": {"path": "x.nii"}, "transfer_function": "missing.json"})", "");
+    expectError("[1, 2]", "(top level)");
+    expectError("{" + kVolume + ",}", "line 1, column 106");
+}
+
+// A hostile scene nested hundreds of thousands of levels deep used to overflow the stack in the parser (and in
+// the code quoting the bad value); now it is refused before parsing with the usual one-line error, and the
+// binary exits 2. Ordinary nesting (a scene's deepest is four levels) still parses.
+TEST(Scene, DeeplyNestedFilesAreRefusedNotACrash) {
+    std::string deep = std::string(300000, '[') + std::string(300000, ']');
+    expectError(deep, "line 1, column 65");
+    std::string objects;
+    for (int i = 0; i < 200000; ++i) objects += "{\"a\":";
+    objects += "1" + std::string(200000, '}');
+    expectError(objects, "line 1, column 321");
+    std::string scene = "{" + kVolume + R"(, "lights": [{"direction": [0, 0, 1], "color": [1, 1, 1]}]})";
+    EXPECT_NO_THROW(parse(scene));
+    // Brackets inside strings are not nesting.
+    EXPECT_NO_THROW(parseJson("[\"" + std::string(1000, '[') + "\"]", "test"));
+
+    std::filesystem::path file = std::filesystem::temp_directory_path() / "curette-deep-scene.json";
+    {
+        std::ofstream out(file);
+        out << deep;
+    }
+    testing::Invocation r = testing::runCurette("render --scene " + file.string() + " --out " +
+                                                (std::filesystem::temp_directory_path() / "curette-deep.png").string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("nested at most 64 levels"), std::string::npos) << r.output;
+    EXPECT_LT(r.output.size(), 400u) << "one line, not the value";
+    std::filesystem::remove(file);
+}
+
+}  // namespace
+}  // namespace curette

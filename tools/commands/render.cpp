@@ -1,0 +1,138 @@
+// curette render --scene S --out FILE.png: one frame of a scene, headless (EGL), written atomically.
+// --plan prints the frame plan (the passes, in order, with what each reads and writes); without --out it
+// renders nothing. --stereo side-by-side|anaglyph renders an off-axis stereo pair (render/model/stereo.h);
+// --turntable N writes N frames around the scene's vertical axis into the folder --out names, and an MP4 of
+// them when ffmpeg is on PATH (tools/movie.h).
+#include "tools/command_line.h"
+#include "tools/commands/commands.h"
+#include "session/loaded_scene.h"
+#include "tools/movie.h"
+#include "base/error.h"
+#include "base/progress.h"
+#include "render/renderer.h"
+#include "render/stereo_render.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace curette::commands {
+
+namespace {
+
+// The picture of one frame: mono, or the stereo pair composed.
+Image renderPicture(Renderer& renderer, const FrameDescription& frame, StereoMode stereo, double eyeSeparationMm, glm::vec4 background) {
+    if (stereo == StereoMode::Off) {
+        renderer.render(frame);
+        return renderer.readImage();
+    }
+    StereoPair pair = renderStereoPair(renderer, frame, eyeSeparationMm);
+    return composeStereo(stereo, pair.left, pair.right, background);
+}
+
+}  // namespace
+
+int render(const Arguments& args) {
+    CommandLine cl(args, withGpuOption({{"scene", true, "scene file (JSON)"},
+                                        {"out", true, "output PNG (written atomically); with --turntable a folder"},
+                                        {"size", true, "image size WxH (default: the scene's; with --stereo, of each eye)"},
+                                        {"shading", true, "solid|phong|lao|cao|dos|ismos (default: the scene's)"},
+                                        {"azimuth", true, "camera azimuth in degrees (default: the scene's)"},
+                                        {"elevation", true, "camera elevation in degrees (default: the scene's)"},
+                                        {"stereo", true, "side-by-side|anaglyph: an off-axis stereo pair (side-by-side: 2W x H)"},
+                                        {"eye-separation", true, "stereo eye separation in mm (default 65: orthostereo, render/model/stereo.h)"},
+                                        {"turntable", true, "N frames turning the camera once about the vertical axis, into the --out folder"},
+                                        {"fps", true, "with --turntable: frames per second of the MP4 (default 30)"},
+                                        {"timings", false, "print the GPU time of every pass and the GPU memory of every resource"},
+                                        {"plan", false, "print the frame plan: each pass in order, what it reads and writes (without --out: only that)"}}));
+    if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no positional arguments for render");
+    std::optional<int> turntable;
+    if (auto n = cl.value("turntable")) turntable = CommandLine::parseInt("turntable", *n, 1, 100000);
+    bool planOnly = cl.flag("plan") && !cl.value("out");
+    std::string out = planOnly ? std::string() : cl.required("out");
+    bool pngName = out.size() >= 4 && out.substr(out.size() - 4) == ".png";
+    if (!planOnly && !turntable && !pngName) throw InputError("<command line>", "--out", "a file name ending in .png", "\"" + out + "\"");
+    if (turntable && pngName)
+        throw InputError("<command line>", "--out", "with --turntable a folder for the frames (frame_000000.png, ...), not a .png", "\"" + out + "\"");
+    if (cl.value("fps") && !turntable) throw InputError("<command line>", "--fps", "together with --turntable N (the movie's frame rate)");
+    double fps = CommandLine::parseDouble("fps", cl.valueOr("fps", "30"), 0.1, 1000);
+    StereoMode stereo = StereoMode::Off;
+    if (auto s = cl.value("stereo")) {
+        std::optional<StereoMode> mode = parseStereoMode(*s);
+        if (!mode || *mode == StereoMode::Off) throw InputError("<command line>", "--stereo", "side-by-side or anaglyph", "\"" + *s + "\"");
+        stereo = *mode;
+    }
+    if (cl.value("eye-separation") && stereo == StereoMode::Off)
+        throw InputError("<command line>", "--eye-separation", "together with --stereo side-by-side|anaglyph");
+    double eyeSeparationMm = CommandLine::parseDouble("eye-separation", cl.valueOr("eye-separation", "65"), 0, 1000);
+    FrameOverrides overrides;
+    if (auto s = cl.value("size")) overrides.size = CommandLine::parseSize("size", *s);
+    if (auto s = cl.value("shading")) overrides.shading = parseShadingOption("shading", *s);
+    if (auto a = cl.value("azimuth")) overrides.azimuthDeg = CommandLine::parseDouble("azimuth", *a, -360, 360);
+    if (auto e = cl.value("elevation")) overrides.elevationDeg = CommandLine::parseDouble("elevation", *e, -89.9, 89.9);
+    gl::GpuChoice gpu = gpuChoice(cl);
+
+    LoadedScene loaded = loadSceneWithVolume(cl.required("scene"));
+    auto context = gl::createHeadlessContext(gpu);
+    Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, renderer);
+    FrameDescription frame = initialFrame(loaded.scene, renderer.geometry());
+    applyOverrides(overrides, frame);
+    if (cl.flag("plan")) {
+        std::printf("frame plan: %s shading, %dx%d, %d clip meshes, %s\n%s", shadingModeName(frame.shading), frame.size.x, frame.size.y,
+                    renderer.clipMeshes().count(), renderer.hasTubes() ? "tubes" : "no tubes", renderer.plan(frame).describe().c_str());
+        if (planOnly) return 0;
+    }
+    const glm::vec4 background(loaded.scene.background);
+    if (stereo != StereoMode::Off) {
+        StereoRig rig = stereoRig(frame, eyeSeparationMm);
+        std::printf("stereo %s: eyes %.1f mm apart, off-axis (parallel axes), zero parallax at %.1f mm, %d extra columns per eye\n",
+                    stereoModeName(stereo), eyeSeparationMm, rig.convergenceMm, 2 * rig.marginColumns);
+    }
+    auto start = std::chrono::steady_clock::now();
+    if (turntable) {
+        // The camera turns about the world's superior axis (+z, the orbit camera's azimuth) through its target.
+        std::filesystem::path dir = out;
+        std::error_code ec;
+        std::filesystem::create_directories(dir, ec);
+        if (ec) throw SystemError(dir.string() + ": cannot create the output folder (" + ec.message() + ")");
+        Progress progress("turntable", *turntable);
+        std::vector<std::string> frames;
+        for (int i = 0; i < *turntable; ++i) {
+            FrameDescription f = frame;
+            f.camera.azimuthDeg = turntableAzimuthDeg(frame.camera.azimuthDeg, i, *turntable);
+            frames.push_back(movieFrameName(static_cast<std::size_t>(i)));
+            writePng(dir / frames.back(), renderPicture(renderer, f, stereo, eyeSeparationMm, background), background);
+            progress.update(i + 1);
+        }
+        progress.finish();
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        std::printf("%s: %d frames %s .. %s, %dx%d, %s shading, %.1f ms per frame\n", dir.c_str(), *turntable, movieFrameName(0).c_str(),
+                    movieFrameName(static_cast<std::size_t>(*turntable - 1)).c_str(), frame.size.x, frame.size.y, shadingModeName(frame.shading),
+                    ms / *turntable);
+        std::filesystem::path mp4 = dir / "turntable.mp4";
+        if (encodeMovie(dir, frames, fps, mp4)) std::printf("%s: %d frames at %g fps\n", mp4.c_str(), *turntable, fps);
+        else std::printf("no ffmpeg on PATH: the frames only (apt-get install ffmpeg makes %s too)\n", mp4.c_str());
+    } else {
+        Image image = renderPicture(renderer, frame, stereo, eyeSeparationMm, background);
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        writePng(out, image, background);
+        std::printf("%s: %dx%d, %s shading, %.1f ms\n", out.c_str(), image.width, image.height, shadingModeName(frame.shading), ms);
+    }
+    if (cl.flag("timings")) {
+        const char* kind = context->info().softwareRenderer ? "wall time, llvmpipe" : "GPU timer";
+        for (const FrameTimings::Entry& e : renderer.collectTimings().passes)
+            std::printf("  %-28s %10.1f ms (%s)\n", passInfo(e.pass).name, e.ms, kind);
+        std::size_t total = 0;
+        for (const GpuAllocation& a : renderer.gpuAllocations()) {
+            std::printf("  %-40s %-28s %10.2f MiB\n", a.name(), a.formatText().c_str(), static_cast<double>(a.bytes) / 1048576.0);
+            total += a.bytes;
+        }
+        std::printf("  %-40s %-28s %10.2f MiB\n", "total", "", static_cast<double>(total) / 1048576.0);
+        if (const AmbientOcclusion* ao = renderer.ambientOcclusion())
+            std::printf("  recomputed %.2f %% of %llu voxels in step V\n", 100.0 * ao->lastStats().recomputedFraction(),
+                        static_cast<unsigned long long>(ao->lastStats().voxels));
+    }
+    return 0;
+}
+
+}  // namespace curette::commands

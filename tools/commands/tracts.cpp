@@ -1,0 +1,52 @@
+// curette tracts synth --from <files or folders> --count N --seed S --jitter MM --out F.tck: a whole-brain-
+// scale tractogram (issue 12) from a few bundles by jittered copies (tools/tract_synthesis.h), written as MRtrix
+// .tck (atomically). scripts/setup makes /usr/local/share/curette/tracts-100k.tck with it from dipy's bundles.
+#include "tools/command_line.h"
+#include "tools/commands/commands.h"
+#include "io/tck_writer.h"
+#include "io/tract_file.h"
+#include "tools/tract_synthesis.h"
+#include "base/error.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace curette::commands {
+
+int tracts(const Arguments& args) {
+    if (args.empty() || args[0] != "synth")
+        throw InputError("<command line>", "tracts", "a tracts sub-command: synth (curette tracts synth --from DIR --count N --out F.tck)",
+                         args.empty() ? "nothing" : "\"" + args[0] + "\"");
+    CommandLine cl(Arguments(args.begin() + 1, args.end()),
+                   {{"from", true, "tract files or folders of them (comma-separated; folders are searched recursively)"},
+                    {"count", true, "streamlines to write (default 100000)"},
+                    {"seed", true, "seed of the jitter (default 1)"},
+                    {"jitter", true, "bound on each point's displacement, mm (default 3)"},
+                    {"out", true, "the .tck file to write"}});
+    if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no positional arguments for tracts synth");
+    std::filesystem::path out = cl.required("out");
+    if (out.extension() != ".tck") throw InputError("<command line>", "--out", "a .tck file name", "\"" + out.string() + "\"");
+    TractSynthesisSettings settings;
+    settings.count = static_cast<std::size_t>(CommandLine::parseInt("count", cl.valueOr("count", "100000"), 1, 50'000'000));
+    settings.seed = static_cast<std::uint64_t>(CommandLine::parseInt("seed", cl.valueOr("seed", "1"), 0, 2147483647));
+    settings.jitterMm = CommandLine::parseDouble("jitter", cl.valueOr("jitter", "3"), 0.0, 100.0);
+    std::vector<Tractogram> sources;
+    std::stringstream list(cl.required("from"));
+    std::size_t sourceStreamlines = 0;
+    for (std::string item; std::getline(list, item, ',');) {
+        if (item.empty()) continue;
+        for (const std::filesystem::path& file : tractFilesUnder(item)) {
+            sources.push_back(io::readTractogram(file));
+            sourceStreamlines += sources.back().streamlineCount();
+        }
+    }
+    if (sources.empty()) throw InputError("<command line>", "--from", "at least one tract file or folder", "\"" + cl.required("from") + "\"");
+    Tractogram result = synthesiseTracts(sources, settings);
+    io::writeTck(out, result);
+    std::printf("%s: %zu streamlines, %zu points, jittered copies (seed %llu, jitter <= %.3g mm) of %zu streamlines from %zu files\n",
+                out.c_str(), result.streamlineCount(), result.points.size(), static_cast<unsigned long long>(settings.seed), settings.jitterMm,
+                sourceStreamlines, sources.size());
+    return 0;
+}
+
+}  // namespace curette::commands

@@ -1,0 +1,30 @@
+#include "viewer/view_frame_inputs.h"
+
+namespace curette {
+
+FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& loop, const FrameDescription& frame, double now,
+                                bool moved) {
+    FrameLoopInputs in;
+    in.now = now;
+    in.moved = moved;
+    in.precomputePending = renderer.precomputePending(frame);
+    in.precomputeInputs = renderer.precomputeInputsVersion();
+    in.exactSize = frame.size;
+    double stepMm = renderer.resolveStepMm(frame.raycast);
+    in.shown = [&renderer, &loop, frame, stepMm](FrameKind kind, glm::ivec2 size) {
+        FrameDescription f = decidedFrame(frame, kind, size, loop.settings().previewStepScale, stepMm);
+        return kind == FrameKind::Exact ? renderer.showing(f) : renderer.showingPreview(f);
+    };
+    return in;
+}
+
+bool renderDecidedImage(Renderer& renderer, const FrameDecision& decision, const FrameDescription& decided) {
+    if (decision.render == FrameKind::Preview) renderer.renderPreview(decided);
+    if (decision.render == FrameKind::Exact) {
+        if (decision.exactBudgetMs > 0) return renderer.advanceExact(decided, decision.exactBudgetMs);
+        renderer.render(decided);
+    }
+    return decision.render != FrameKind::None;
+}
+
+}  // namespace curette
