@@ -5,7 +5,7 @@
 #include "input/devices/encoders.h"
 #include "input/hid/fake_backend.h"
 
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 
 #include <gtest/gtest.h>
 
