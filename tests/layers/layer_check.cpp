@@ -64,7 +64,8 @@ std::vector<Violation> checkFile(const std::string& path, const std::string& tex
     const Layer* rule = find(layerOf(path));
     if (!rule) return {{path, 0, "\"" + path + "\" lies in no folder of the layer table"}};
     static const std::regex quoted(R"re(^\s*#\s*include\s*"([^"]+)")re");
-    static const std::regex angled(R"(^\s*#\s*include\s*<(epoxy/|GL/|EGL/|GLFW/)[^>]*>)");
+    static const std::regex angled(R"(^\s*#\s*include\s*<(epoxy/|GL/|EGL/)[^>]*>)");
+    static const std::regex window(R"(^\s*#\s*include\s*<GLFW/[^>]*>)");   // a window: GL-free layers have none
     static const std::regex glCall(R"re((^|[^A-Za-z0-9_.>])gl[A-Z][A-Za-z0-9_]*\s*\()re");
     std::istringstream in(text);
     std::string line;
@@ -87,7 +88,7 @@ std::vector<Violation> checkFile(const std::string& path, const std::string& tex
             continue;
         }
         if (rule->glCalls) continue;
-        if (std::regex_search(line, angled))
+        if (std::regex_search(line, angled) || (rule->glFree && std::regex_search(line, window)))
             out.push_back({path, number, rule->folder + "/ includes a GL or window header; GL calls belong to gl/ and render/"});
         // Block comments: skip their lines (good enough for this tree's style of /* */-free code).
         if (line.find("/*") != std::string::npos) inBlockComment = true;

@@ -43,6 +43,7 @@ TEST(Layers, CheckerFlagsGlInGlFreeFolders) {
         EXPECT_EQ(checkFile(path, "#include <epoxy/gl.h>\n").size(), 1u) << path;
         EXPECT_EQ(checkFile(path, "void f() { glFinish(); }\n").size(), 1u) << path;
         EXPECT_EQ(checkFile(path, "#include \"gl/program.h\"\n").size(), 1u) << path;
+        EXPECT_EQ(checkFile(path, "#include <GLFW/glfw3.h>\n").size(), 1u) << path;
     }
 }
 
@@ -53,6 +54,7 @@ TEST(Layers, CheckerFlagsGlCallsAboveRender) {
     EXPECT_TRUE(checkFile("render/x.cpp", "void f() { glFinish(); }\n").empty());
     EXPECT_TRUE(checkFile("render/passes/x.cpp", "void f() { glFinish(); }\n").empty());
     EXPECT_EQ(checkFile("viewer/x.cpp", "#include <epoxy/gl.h>\n").size(), 1u);
+    EXPECT_TRUE(checkFile("tools/commands/x.cpp", "#include <GLFW/glfw3.h>\n").empty()) << "the window's keys and events";
     EXPECT_EQ(checkFile("session/x.cpp", "void f() { glFinish(); }\n").size(), 1u);
 }
 
