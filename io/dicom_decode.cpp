@@ -92,6 +92,76 @@ std::vector<std::uint8_t> widen(const std::vector<std::uint8_t>& samples) {
     return out;
 }
 
+// The sample type curette stores a GDCM pixel format in (INT8 is widened and UINT32 converted later).
+ScalarType storedType(const gdcm::PixelFormat& format, const std::string& name) {
+    switch (format.GetScalarType()) {
+        case gdcm::PixelFormat::UINT8: return ScalarType::UInt8;
+        case gdcm::PixelFormat::INT8: return ScalarType::UInt8;  // widened to int16 below
+        case gdcm::PixelFormat::UINT12:
+        case gdcm::PixelFormat::UINT16: return ScalarType::UInt16;
+        case gdcm::PixelFormat::INT12:
+        case gdcm::PixelFormat::INT16: return ScalarType::Int16;
+        case gdcm::PixelFormat::UINT32: return ScalarType::Int32;  // converted to float32 below
+        case gdcm::PixelFormat::INT32: return ScalarType::Int32;
+        case gdcm::PixelFormat::FLOAT32: return ScalarType::Float32;
+        case gdcm::PixelFormat::FLOAT64: return ScalarType::Float64;
+        default:
+            throw InputError(name, "BitsAllocated", "8, 16 or 32-bit integer or float samples",
+                             std::to_string(format.GetBitsAllocated()) + " bits (" + format.GetScalarTypeAsString() + ")");
+    }
+}
+
+// What the file holds must be able to give `bytes`, before they are allocated: the whole native pixel data,
+// or compressed data within kMaxCompressionRatio of it.
+void checkPixelDataCanHold(const gdcm::Image& image, std::uint64_t bytes, int columns, int rows, unsigned frames, const std::string& name) {
+    const gdcm::DataElement& pixelData = image.GetDataElement();
+    if (!image.GetTransferSyntax().IsEncapsulated()) {
+        const gdcm::ByteValue* value = pixelData.GetByteValue();
+        std::uint64_t have = value ? static_cast<std::uint64_t>(static_cast<std::uint32_t>(value->GetLength())) : 0;
+        if (have < bytes)
+            throw InputError(name, "PixelData", std::to_string(bytes) + " bytes (" + std::to_string(columns) + " x " + std::to_string(rows) +
+                                                    " x " + std::to_string(frames) + " samples)",
+                             std::to_string(have) + " bytes");
+    } else {
+        const gdcm::SequenceOfFragments* fragments = pixelData.GetSequenceOfFragments();
+        double have = fragments ? static_cast<double>(fragments->ComputeByteLength()) : 0.0;
+        if (bytes > kAlwaysAcceptedBytes && static_cast<double>(bytes) > kMaxCompressionRatio * have)
+            throw InputError(name, "PixelData", "compressed data that can hold " + std::to_string(bytes) + " bytes",
+                             fmt(have) + " bytes (a ratio above " + fmt(kMaxCompressionRatio) + ")");
+    }
+}
+
+// Keeps the value bits of the decoded samples and brings them to the type curette stores; returns that type.
+ScalarType keepValueBits(std::vector<std::uint8_t>& samples, const gdcm::PixelFormat& format, ScalarType type) {
+    const unsigned bitsStored = format.GetBitsStored();
+    const bool isSigned = format.GetPixelRepresentation() == 1;
+    switch (format.GetScalarType()) {
+        case gdcm::PixelFormat::UINT8:
+            keepStoredBits<std::uint8_t>(samples, bitsStored, false);
+            break;
+        case gdcm::PixelFormat::INT8:
+            keepStoredBits<std::int8_t>(samples, bitsStored, true);
+            samples = widen<std::int8_t, std::int16_t>(samples);
+            return ScalarType::Int16;
+        case gdcm::PixelFormat::UINT12:
+        case gdcm::PixelFormat::UINT16:
+        case gdcm::PixelFormat::INT12:
+        case gdcm::PixelFormat::INT16:
+            keepStoredBits<std::int16_t>(samples, bitsStored, isSigned);
+            break;
+        case gdcm::PixelFormat::UINT32:
+            keepStoredBits<std::uint32_t>(samples, bitsStored, false);
+            // Exact up to 2^24, like every value curette stores as float32.
+            samples = widen<std::uint32_t, float>(samples);
+            return ScalarType::Float32;
+        case gdcm::PixelFormat::INT32:
+            keepStoredBits<std::int32_t>(samples, bitsStored, true);
+            break;
+        default: break;
+    }
+    return type;
+}
+
 DecodedImage decodeFile(const fs::path& file, int columns, int rows, unsigned framesNeeded) {
     const std::string name = file.string();
     gdcm::ImageReader reader;
@@ -117,83 +187,24 @@ DecodedImage decodeFile(const fs::path& file, int columns, int rows, unsigned fr
     const std::uint64_t pixels = static_cast<std::uint64_t>(columns) * static_cast<std::uint64_t>(rows) * frames;
     const std::uint64_t bytes = image.GetBufferLength();
     std::uint64_t sampleBytes = pixels ? bytes / pixels : 0;
-    ScalarType type = ScalarType::UInt8;
-    switch (format.GetScalarType()) {
-        case gdcm::PixelFormat::UINT8: type = ScalarType::UInt8; break;
-        case gdcm::PixelFormat::INT8: type = ScalarType::UInt8; break;  // widened to int16 below
-        case gdcm::PixelFormat::UINT12:
-        case gdcm::PixelFormat::UINT16: type = ScalarType::UInt16; break;
-        case gdcm::PixelFormat::INT12:
-        case gdcm::PixelFormat::INT16: type = ScalarType::Int16; break;
-        case gdcm::PixelFormat::UINT32: type = ScalarType::Int32; break;  // converted to float32 below
-        case gdcm::PixelFormat::INT32: type = ScalarType::Int32; break;
-        case gdcm::PixelFormat::FLOAT32: type = ScalarType::Float32; break;
-        case gdcm::PixelFormat::FLOAT64: type = ScalarType::Float64; break;
-        default:
-            throw InputError(name, "BitsAllocated", "8, 16 or 32-bit integer or float samples",
-                             std::to_string(format.GetBitsAllocated()) + " bits (" + format.GetScalarTypeAsString() + ")");
-    }
+    const ScalarType type = storedType(format, name);
     if (sampleBytes != scalarTypeSize(type) || bytes != pixels * sampleBytes)
         throw InputError(name, "PixelData", std::to_string(pixels) + " samples of " + std::to_string(scalarTypeSize(type)) + " bytes",
                          std::to_string(bytes) + " bytes");
-
-    // What the file holds must be able to give that many bytes, before they are allocated.
-    const gdcm::TransferSyntax& syntax = image.GetTransferSyntax();
-    const gdcm::DataElement& pixelData = image.GetDataElement();
-    if (!syntax.IsEncapsulated()) {
-        const gdcm::ByteValue* value = pixelData.GetByteValue();
-        std::uint64_t have = value ? static_cast<std::uint64_t>(static_cast<std::uint32_t>(value->GetLength())) : 0;
-        if (have < bytes)
-            throw InputError(name, "PixelData", std::to_string(bytes) + " bytes (" + std::to_string(columns) + " x " + std::to_string(rows) +
-                                                    " x " + std::to_string(frames) + " samples)",
-                             std::to_string(have) + " bytes");
-    } else {
-        const gdcm::SequenceOfFragments* fragments = pixelData.GetSequenceOfFragments();
-        double have = fragments ? static_cast<double>(fragments->ComputeByteLength()) : 0.0;
-        if (bytes > kAlwaysAcceptedBytes && static_cast<double>(bytes) > kMaxCompressionRatio * have)
-            throw InputError(name, "PixelData", "compressed data that can hold " + std::to_string(bytes) + " bytes",
-                             fmt(have) + " bytes (a ratio above " + fmt(kMaxCompressionRatio) + ")");
-    }
+    checkPixelDataCanHold(image, bytes, columns, rows, frames, name);
 
     // JPEG-LS: GDCM 3.0.21's codec asserts (aborts the process) when a stream's own frame header (SOF55, ITU-T
     // T.87 C.2.2) promises more samples than Rows x Columns. Every frame's header must describe this image.
+    const gdcm::TransferSyntax& syntax = image.GetTransferSyntax();
     if (syntax == gdcm::TransferSyntax::JPEGLSLossless || syntax == gdcm::TransferSyntax::JPEGLSNearLossless)
-        checkJpegLsFrames(pixelData, columns, rows, frames, format.GetSamplesPerPixel(), format.GetBitsAllocated(), name);
+        checkJpegLsFrames(image.GetDataElement(), columns, rows, frames, format.GetSamplesPerPixel(), format.GetBitsAllocated(), name);
 
     DecodedImage decoded;
     decoded.samples.resize(bytes);
     if (!image.GetBuffer(reinterpret_cast<char*>(decoded.samples.data())))
         throw InputError(name, "PixelData", "pixel data GDCM can decode",
                          std::string("decoding failed (transfer syntax ") + (syntax.GetString() ? syntax.GetString() : "unknown") + ")");
-    const unsigned bitsStored = format.GetBitsStored();
-    const bool isSigned = format.GetPixelRepresentation() == 1;
-    switch (format.GetScalarType()) {
-        case gdcm::PixelFormat::UINT8:
-            keepStoredBits<std::uint8_t>(decoded.samples, bitsStored, false);
-            break;
-        case gdcm::PixelFormat::INT8:
-            keepStoredBits<std::int8_t>(decoded.samples, bitsStored, true);
-            decoded.samples = widen<std::int8_t, std::int16_t>(decoded.samples);
-            type = ScalarType::Int16;
-            break;
-        case gdcm::PixelFormat::UINT12:
-        case gdcm::PixelFormat::UINT16:
-        case gdcm::PixelFormat::INT12:
-        case gdcm::PixelFormat::INT16:
-            keepStoredBits<std::int16_t>(decoded.samples, bitsStored, isSigned);
-            break;
-        case gdcm::PixelFormat::UINT32:
-            keepStoredBits<std::uint32_t>(decoded.samples, bitsStored, false);
-            // Exact up to 2^24, like every value curette stores as float32.
-            decoded.samples = widen<std::uint32_t, float>(decoded.samples);
-            type = ScalarType::Float32;
-            break;
-        case gdcm::PixelFormat::INT32:
-            keepStoredBits<std::int32_t>(decoded.samples, bitsStored, true);
-            break;
-        default: break;
-    }
-    decoded.type = type;
+    decoded.type = keepValueBits(decoded.samples, format, type);
     return decoded;
 }
 

@@ -182,6 +182,25 @@ std::string pixelModuleProblem(const Text& text) {
     return {};
 }
 
+// RT dose frames lie at offsets along the normal from IPP; a first offset of 0 means relative offsets,
+// otherwise they are z coordinates (only with IOP 1\0\0\0\1\0). Both are IPP + (o_f - o_0) N
+// (PS3.3 C.8.8.3.2).
+void placeDoseFrames(FileHeader& h, const FrameGeometry& g, const std::vector<double>& offsets) {
+    if (offsets.size() != static_cast<std::size_t>(h.frameCount)) {
+        h.geometryProblem = "GridFrameOffsetVector (3004,000C) with " + std::to_string(offsets.size()) +
+                            " values for NumberOfFrames " + std::to_string(h.frameCount);
+        return;
+    }
+    const auto& o = *g.orientation;
+    glm::dvec3 normal = glm::cross(glm::dvec3(o[0], o[1], o[2]), glm::dvec3(o[3], o[4], o[5]));
+    if (glm::length(normal) > 0) normal = glm::normalize(normal);
+    for (double offset : offsets) {
+        FrameGeometry frame = g;
+        frame.position = *g.position + (offset - offsets.front()) * normal;
+        h.frames.push_back(frame);
+    }
+}
+
 // The header of one scanned file; nothing when the file is not an image of a series (a DICOMDIR, a
 // structure set, a report: no Rows/Columns, PS3.3 C.7.6.3).
 std::optional<FileHeader> headerOf(const gdcm::Scanner& scanner, const std::string& file, bool readIdentifiers) {
@@ -237,22 +256,7 @@ std::optional<FileHeader> headerOf(const gdcm::Scanner& scanner, const std::stri
     }
     std::optional<std::vector<double>> offsets = numbers(text(kGridFrameOffsetVector));
     if (h.frameCount > 1 && offsets && g.position && g.orientation) {
-        // RT dose frames lie at offsets along the normal from IPP; a first offset of 0 means relative offsets,
-        // otherwise they are z coordinates (only with IOP 1\0\0\0\1\0). Both are IPP + (o_f - o_0) N
-        // (PS3.3 C.8.8.3.2).
-        if (offsets->size() != static_cast<std::size_t>(h.frameCount)) {
-            h.geometryProblem = "GridFrameOffsetVector (3004,000C) with " + std::to_string(offsets->size()) +
-                                " values for NumberOfFrames " + std::to_string(h.frameCount);
-            return h;
-        }
-        const auto& o = *g.orientation;
-        glm::dvec3 normal = glm::cross(glm::dvec3(o[0], o[1], o[2]), glm::dvec3(o[3], o[4], o[5]));
-        if (glm::length(normal) > 0) normal = glm::normalize(normal);
-        for (double offset : *offsets) {
-            FrameGeometry frame = g;
-            frame.position = *g.position + (offset - offsets->front()) * normal;
-            h.frames.push_back(frame);
-        }
+        placeDoseFrames(h, g, *offsets);
         return h;
     }
     if (h.frameCount > 1) {
