@@ -157,17 +157,19 @@ std::vector<std::uint8_t> removedRegionOnGrid(const RemovalField& field, const s
     return region;
 }
 
-Report computeReport(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
-                     const RemovalField& field, const std::vector<LabelSet>& labelSets,
-                     const std::vector<BundleInput>& bundles) {
-    const Clock::time_point start = Clock::now();
+namespace {
+
+void checkInputs(const VolumeData& volume, const RemovalField& field, const std::vector<LabelSet>& labelSets) {
     field.validate();
     checkSameGrid("<removal field>", field.gridDims, field.indexToWorld, volume);
     for (const LabelSet& set : labelSets) {
         if (!set.labels) throw InputError("<label set " + set.name + ">", "labels", "a label map");
         checkSameGrid(set.labels->source, set.labels->dims, set.labels->indexToWorld, volume);
     }
+}
 
+// The grid and the settings the report is computed on.
+Report reportOf(const VolumeData& volume, const ReportSettings& settings, const RemovalField& field) {
     Report report;
     report.volumeSource = volume.source;
     report.tissue = settings.tissue;
@@ -177,155 +179,207 @@ Report computeReport(const VolumeData& volume, const TransferFunction& tf, const
     report.voxelVolumeMl = std::abs(glm::determinant(glm::dmat3(volume.indexToWorld))) / 1000.0;
     report.samplesPerVoxel = field.samplesPerVoxel;
     report.fieldBox = field.box();
+    return report;
+}
 
-    // Tissue and the removed fraction over the field box (nothing is removed outside it).
-    Clock::time_point phase = Clock::now();
-    const VoxelBox box = field.box();
-    const std::vector<std::uint8_t> tissue =
-        tissueInBox(volume, tf, settings, labelSets.empty() ? nullptr : labelSets.front().labels, box);
-    const std::vector<std::uint8_t> removedRegion = removedRegionOnGrid(field, tissue);
+// What every later stage reads: the tissue over the field box and the removed region R on the whole grid.
+struct Removal {
+    VoxelBox box;
+    std::vector<std::uint8_t> tissue;         // over the field box
+    std::vector<std::uint8_t> removedRegion;  // R, on the grid
+    std::vector<double> distanceToRemoved2;   // squared mm to R on the grid; empty when nothing needs it
+};
+
+// Tissue and the removed fraction over the field box (nothing is removed outside it).
+Removal measureTissue(Report& report, const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
+                      const RemovalField& field, const std::vector<LabelSet>& labelSets) {
+    Removal removal;
+    removal.box = field.box();
+    const VoxelBox& box = removal.box;
+    removal.tissue = tissueInBox(volume, tf, settings, labelSets.empty() ? nullptr : labelSets.front().labels, box);
+    removal.removedRegion = removedRegionOnGrid(field, removal.tissue);
     std::uint64_t removedSamples = 0;  // sum of t(v) * count(v): the total in units of voxel / (9 + N)
-    {
-        std::size_t at = 0;
-        for (int k = box.origin.z; k < box.origin.z + box.size.z; ++k)
-            for (int j = box.origin.y; j < box.origin.y + box.size.y; ++j)
-                for (int i = box.origin.x; i < box.origin.x + box.size.x; ++i, ++at) {
-                    if (!tissue[at] || field.insideSamples[at] == 0) continue;
-                    removedSamples += field.insideSamples[at];
-                    ++report.touchedVoxels;
-                    report.removedRegionVoxels += removedRegion[volume.linearIndex(i, j, k)];
-                }
-    }
-    report.removedMl = double(removedSamples) / double(field.samplesPerVoxel) * report.voxelVolumeMl;
-    report.timings.tissueMs = msSince(phase);
-
-    // One distance transform of R over the whole grid serves every margin.
-    phase = Clock::now();
-    std::vector<double> distanceToRemoved2;
-    if (report.removedRegionVoxels > 0 && (!labelSets.empty() || !bundles.empty()))
-        distanceToRemoved2 = squaredDistanceTransformMm(volume.dims, report.spacingMm, removedRegion);
-    report.timings.distanceMs = msSince(phase);
-
-    // Per label set: counts and closest approach in one pass over the grid, removal sums in one over the box.
-    for (const LabelSet& set : labelSets) {
-        phase = Clock::now();
-        const LabelMap& labels = *set.labels;
-        int maxId = 0;
-        for (std::uint16_t id : labels.ids) maxId = std::max(maxId, int(id));
-        for (int id : set.protectedIds) maxId = std::max(maxId, id);
-        const std::size_t ids = static_cast<std::size_t>(maxId) + 1;
-        std::vector<std::uint64_t> voxels(ids, 0), touched(ids, 0), removedSamplesOf(ids, 0);
-        std::vector<double> closest2(ids, kInfinity);
-        std::vector<glm::ivec3> regionLo(ids, glm::ivec3(std::numeric_limits<int>::max())), regionHi(ids, glm::ivec3(-1));
-        if (distanceToRemoved2.empty()) {
-            for (std::uint16_t id : labels.ids) ++voxels[id];
-        } else {
-            for (std::size_t v = 0; v < labels.ids.size(); ++v) {
-                const std::uint16_t id = labels.ids[v];
-                ++voxels[id];
-                closest2[id] = std::min(closest2[id], distanceToRemoved2[v]);
+    std::size_t at = 0;
+    for (int k = box.origin.z; k < box.origin.z + box.size.z; ++k)
+        for (int j = box.origin.y; j < box.origin.y + box.size.y; ++j)
+            for (int i = box.origin.x; i < box.origin.x + box.size.x; ++i, ++at) {
+                if (!removal.tissue[at] || field.insideSamples[at] == 0) continue;
+                removedSamples += field.insideSamples[at];
+                ++report.touchedVoxels;
+                report.removedRegionVoxels += removal.removedRegion[volume.linearIndex(i, j, k)];
             }
-        }
-        std::size_t at = 0;
-        for (int k = box.origin.z; k < box.origin.z + box.size.z; ++k)
-            for (int j = box.origin.y; j < box.origin.y + box.size.y; ++j)
-                for (int i = box.origin.x; i < box.origin.x + box.size.x; ++i, ++at) {
-                    if (!tissue[at] || field.insideSamples[at] == 0) continue;
-                    const std::size_t index = labels.linearIndex(i, j, k);
-                    const std::uint16_t id = labels.ids[index];
-                    removedSamplesOf[id] += field.insideSamples[at];
-                    ++touched[id];
-                    if (removedRegion[index]) {
-                        regionLo[id] = glm::min(regionLo[id], glm::ivec3(i, j, k));
-                        regionHi[id] = glm::max(regionHi[id], glm::ivec3(i, j, k));
-                    }
-                }
-        std::vector<StructureRow> rows;
-        std::vector<bool> isProtected(ids, false);
-        for (int id : set.protectedIds)
-            if (id > 0) isProtected[static_cast<std::size_t>(id)] = true;
-        for (std::size_t id = 1; id < ids; ++id) {
-            if (!touched[id] && !isProtected[id]) continue;
-            StructureRow row;
-            row.labelSet = set.name;
-            row.id = int(id);
-            row.name = labelName(set.table, row.id);
-            row.isProtected = isProtected[id];
-            row.voxels = voxels[id];
-            row.touchedVoxels = touched[id];
-            row.volumeMl = double(voxels[id]) * report.voxelVolumeMl;
-            row.removedMl = double(removedSamplesOf[id]) / double(field.samplesPerVoxel) * report.voxelVolumeMl;
-            row.share = row.volumeMl > 0 ? row.removedMl / row.volumeMl : 0.0;
-            row.touched = touched[id] > 0;
-            row.marginMm = row.touched ? 0.0 : std::sqrt(closest2[id]);
-            rows.push_back(std::move(row));
-        }
-        report.timings.structuresMs += msSince(phase);
+    report.removedMl = double(removedSamples) / double(field.samplesPerVoxel) * report.voxelVolumeMl;
+    return removal;
+}
 
-        phase = Clock::now();
-        for (StructureRow& row : rows) {
-            const std::size_t id = static_cast<std::size_t>(row.id);
-            if (regionHi[id].x >= 0)
-                row.intrusionDepthMm = intrusionDepthMm(labels, static_cast<std::uint16_t>(row.id), removedRegion, regionLo[id],
-                                                        regionHi[id], report.spacingMm);
+// Per label of one set: counts and closest approach over the grid, removal sums and R's bounding box over the
+// field box.
+struct LabelSums {
+    std::size_t ids = 0;
+    std::vector<std::uint64_t> voxels, touched, removedSamples;
+    std::vector<double> closest2;
+    std::vector<glm::ivec3> regionLo, regionHi;  // regionHi.x < 0: no voxel of the label in R
+};
+
+LabelSums sumLabels(const LabelSet& set, const RemovalField& field, const Removal& removal) {
+    const LabelMap& labels = *set.labels;
+    int maxId = 0;
+    for (std::uint16_t id : labels.ids) maxId = std::max(maxId, int(id));
+    for (int id : set.protectedIds) maxId = std::max(maxId, id);
+    LabelSums sums;
+    const std::size_t ids = sums.ids = static_cast<std::size_t>(maxId) + 1;
+    sums.voxels.assign(ids, 0), sums.touched.assign(ids, 0), sums.removedSamples.assign(ids, 0);
+    sums.closest2.assign(ids, kInfinity);
+    sums.regionLo.assign(ids, glm::ivec3(std::numeric_limits<int>::max())), sums.regionHi.assign(ids, glm::ivec3(-1));
+    if (removal.distanceToRemoved2.empty()) {
+        for (std::uint16_t id : labels.ids) ++sums.voxels[id];
+    } else {
+        for (std::size_t v = 0; v < labels.ids.size(); ++v) {
+            const std::uint16_t id = labels.ids[v];
+            ++sums.voxels[id];
+            sums.closest2[id] = std::min(sums.closest2[id], removal.distanceToRemoved2[v]);
         }
-        std::stable_sort(rows.begin(), rows.end(), [](const StructureRow& a, const StructureRow& b) {
-            return a.removedMl != b.removedMl ? a.removedMl > b.removedMl : a.id < b.id;
-        });
-        report.structures.insert(report.structures.end(), rows.begin(), rows.end());
-        report.timings.intrusionMs += msSince(phase);
     }
+    const VoxelBox& box = removal.box;
+    std::size_t at = 0;
+    for (int k = box.origin.z; k < box.origin.z + box.size.z; ++k)
+        for (int j = box.origin.y; j < box.origin.y + box.size.y; ++j)
+            for (int i = box.origin.x; i < box.origin.x + box.size.x; ++i, ++at) {
+                if (!removal.tissue[at] || field.insideSamples[at] == 0) continue;
+                const std::size_t index = labels.linearIndex(i, j, k);
+                const std::uint16_t id = labels.ids[index];
+                sums.removedSamples[id] += field.insideSamples[at];
+                ++sums.touched[id];
+                if (removal.removedRegion[index]) {
+                    sums.regionLo[id] = glm::min(sums.regionLo[id], glm::ivec3(i, j, k));
+                    sums.regionHi[id] = glm::max(sums.regionHi[id], glm::ivec3(i, j, k));
+                }
+            }
+    return sums;
+}
 
-    // Bundles: cut flags, lengths (trapezoid rule on the inside flags, plan/tract_probe.h) and margins.
-    phase = Clock::now();
-    DistanceSampler distance{&distanceToRemoved2, volume.dims, glm::inverse(volume.indexToWorld)};
+// One row per touched or protected label; its margin is the closest approach of an untouched one.
+std::vector<StructureRow> structureRows(const LabelSet& set, const LabelSums& sums, const Report& report) {
+    std::vector<StructureRow> rows;
+    std::vector<bool> isProtected(sums.ids, false);
+    for (int id : set.protectedIds)
+        if (id > 0) isProtected[static_cast<std::size_t>(id)] = true;
+    for (std::size_t id = 1; id < sums.ids; ++id) {
+        if (!sums.touched[id] && !isProtected[id]) continue;
+        StructureRow row;
+        row.labelSet = set.name;
+        row.id = int(id);
+        row.name = labelName(set.table, row.id);
+        row.isProtected = isProtected[id];
+        row.voxels = sums.voxels[id];
+        row.touchedVoxels = sums.touched[id];
+        row.volumeMl = double(sums.voxels[id]) * report.voxelVolumeMl;
+        row.removedMl = double(sums.removedSamples[id]) / double(report.samplesPerVoxel) * report.voxelVolumeMl;
+        row.share = row.volumeMl > 0 ? row.removedMl / row.volumeMl : 0.0;
+        row.touched = sums.touched[id] > 0;
+        row.marginMm = row.touched ? 0.0 : std::sqrt(sums.closest2[id]);
+        rows.push_back(std::move(row));
+    }
+    return rows;
+}
+
+// The intrusion depth of every label with voxels in R, then the rows by removed mL (largest first), then id.
+void addIntrusionDepths(std::vector<StructureRow>& rows, const LabelMap& labels, const LabelSums& sums, const Removal& removal,
+                        glm::dvec3 spacingMm) {
+    for (StructureRow& row : rows) {
+        const std::size_t id = static_cast<std::size_t>(row.id);
+        if (sums.regionHi[id].x >= 0)
+            row.intrusionDepthMm = intrusionDepthMm(labels, static_cast<std::uint16_t>(row.id), removal.removedRegion, sums.regionLo[id],
+                                                    sums.regionHi[id], spacingMm);
+    }
+    std::stable_sort(rows.begin(), rows.end(), [](const StructureRow& a, const StructureRow& b) {
+        return a.removedMl != b.removedMl ? a.removedMl > b.removedMl : a.id < b.id;
+    });
+}
+
+// One bundle: cut flags, lengths (trapezoid rule on the inside flags, plan/tract_probe.h) and its margin.
+BundleRow bundleRow(const BundleInput& in, const Removal& removal, const DistanceSampler& distance) {
+    if (!in.tracts) throw InputError("<bundle " + in.name + ">", "tracts", "a tractogram");
+    const Tractogram& tracts = *in.tracts;
+    const TractProbe& probe = in.probe;
+    if (probe.streamlineOffsets.size() != tracts.streamlineCount() + 1 || probe.insideFlags.size() != probe.points.size() ||
+        (!probe.streamlineOffsets.empty() && probe.streamlineOffsets.back() != probe.points.size()))
+        throw InputError(tracts.source, "probe", "tractProbePoints of this tractogram with one inside flag per point");
     // The trilinear interpolant of a 1-Lipschitz function sampled on an orthogonal grid changes by at most
     // sqrt(3) per mm: after a probe at distance d, the next (d - best) / sqrt(3) mm of the streamline cannot
     // come closer than the best so far, so they are skipped (the result is the same as probing every point).
     const double lipschitz = std::sqrt(3.0);
-    for (const BundleInput& in : bundles) {
-        if (!in.tracts) throw InputError("<bundle " + in.name + ">", "tracts", "a tractogram");
-        const Tractogram& tracts = *in.tracts;
-        const TractProbe& probe = in.probe;
-        if (probe.streamlineOffsets.size() != tracts.streamlineCount() + 1 || probe.insideFlags.size() != probe.points.size() ||
-            (!probe.streamlineOffsets.empty() && probe.streamlineOffsets.back() != probe.points.size()))
-            throw InputError(tracts.source, "probe", "tractProbePoints of this tractogram with one inside flag per point");
-        BundleRow row;
-        row.name = in.name;
-        row.isProtected = in.isProtected;
-        row.streamlines = tracts.streamlineCount();
-        row.marginMm = kInfinity;
-        std::vector<std::uint8_t> cut(tracts.streamlineCount(), 0);
-        for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
-            const std::uint32_t first = probe.streamlineOffsets[s], end = probe.streamlineOffsets[s + 1];
-            for (std::uint32_t p = first; p < end; ++p) {
-                if (probe.insideFlags[p]) cut[s] = 1;
-                if (p > first) {
-                    const double length = glm::length(probe.points[p] - probe.points[p - 1]);
-                    row.totalLengthMm += length;
-                    row.removedLengthMm += length * 0.5 * double(probe.insideFlags[p] + probe.insideFlags[p - 1]);
-                }
-            }
-            if (cut[s]) {
-                ++row.cut;
-                row.marginMm = 0;
-            } else if (!distanceToRemoved2.empty() && row.marginMm > 0) {
-                double skip = 0;
-                for (std::uint32_t p = first; p < end; ++p) {
-                    if (p > first) skip -= glm::length(probe.points[p] - probe.points[p - 1]);
-                    if (skip > 0) continue;
-                    const double d = distance(probe.points[p]);
-                    row.marginMm = std::min(row.marginMm, d);
-                    skip = (d - row.marginMm) / lipschitz;
-                }
+    BundleRow row;
+    row.name = in.name;
+    row.isProtected = in.isProtected;
+    row.streamlines = tracts.streamlineCount();
+    row.marginMm = kInfinity;
+    std::vector<std::uint8_t> cut(tracts.streamlineCount(), 0);
+    for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
+        const std::uint32_t first = probe.streamlineOffsets[s], end = probe.streamlineOffsets[s + 1];
+        for (std::uint32_t p = first; p < end; ++p) {
+            if (probe.insideFlags[p]) cut[s] = 1;
+            if (p > first) {
+                const double length = glm::length(probe.points[p] - probe.points[p - 1]);
+                row.totalLengthMm += length;
+                row.removedLengthMm += length * 0.5 * double(probe.insideFlags[p] + probe.insideFlags[p - 1]);
             }
         }
-        row.share = row.streamlines ? double(row.cut) / double(row.streamlines) : 0.0;
-        row.cutTracts = subsetStreamlines(tracts, cut);
-        for (std::uint8_t& c : cut) c = c ? 0 : 1;
-        row.sparedTracts = subsetStreamlines(tracts, cut);
-        report.bundles.push_back(std::move(row));
+        if (cut[s]) {
+            ++row.cut;
+            row.marginMm = 0;
+        } else if (!removal.distanceToRemoved2.empty() && row.marginMm > 0) {
+            double skip = 0;
+            for (std::uint32_t p = first; p < end; ++p) {
+                if (p > first) skip -= glm::length(probe.points[p] - probe.points[p - 1]);
+                if (skip > 0) continue;
+                const double d = distance(probe.points[p]);
+                row.marginMm = std::min(row.marginMm, d);
+                skip = (d - row.marginMm) / lipschitz;
+            }
+        }
     }
+    row.share = row.streamlines ? double(row.cut) / double(row.streamlines) : 0.0;
+    row.cutTracts = subsetStreamlines(tracts, cut);
+    for (std::uint8_t& c : cut) c = c ? 0 : 1;
+    row.sparedTracts = subsetStreamlines(tracts, cut);
+    return row;
+}
+
+}  // namespace
+
+Report computeReport(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
+                     const RemovalField& field, const std::vector<LabelSet>& labelSets,
+                     const std::vector<BundleInput>& bundles) {
+    const Clock::time_point start = Clock::now();
+    checkInputs(volume, field, labelSets);
+    Report report = reportOf(volume, settings, field);
+
+    Clock::time_point phase = Clock::now();
+    Removal removal = measureTissue(report, volume, tf, settings, field, labelSets);
+    report.timings.tissueMs = msSince(phase);
+
+    // One distance transform of R over the whole grid serves every margin.
+    phase = Clock::now();
+    if (report.removedRegionVoxels > 0 && (!labelSets.empty() || !bundles.empty()))
+        removal.distanceToRemoved2 = squaredDistanceTransformMm(volume.dims, report.spacingMm, removal.removedRegion);
+    report.timings.distanceMs = msSince(phase);
+
+    for (const LabelSet& set : labelSets) {
+        phase = Clock::now();
+        const LabelSums sums = sumLabels(set, field, removal);
+        std::vector<StructureRow> rows = structureRows(set, sums, report);
+        report.timings.structuresMs += msSince(phase);
+
+        phase = Clock::now();
+        addIntrusionDepths(rows, *set.labels, sums, removal, report.spacingMm);
+        report.structures.insert(report.structures.end(), rows.begin(), rows.end());
+        report.timings.intrusionMs += msSince(phase);
+    }
+
+    phase = Clock::now();
+    const DistanceSampler distance{&removal.distanceToRemoved2, volume.dims, glm::inverse(volume.indexToWorld)};
+    for (const BundleInput& in : bundles) report.bundles.push_back(bundleRow(in, removal, distance));
     report.timings.bundlesMs = msSince(phase);
     report.timings.totalMs = msSince(start);
     return report;

@@ -215,9 +215,10 @@ std::string sessionFrameLine(const SessionFrame& f) {
     return j.dump();
 }
 
-Session parseSession(std::string_view text, const std::filesystem::path& path, bool lenient) {
-    Session session;
-    session.file = path;
+namespace {
+
+// The lines of a session, without their line ends; trailing empty lines dropped.
+std::vector<std::string_view> sessionLines(std::string_view text) {
     std::vector<std::string_view> lines;
     std::size_t start = 0;
     while (start < text.size()) {
@@ -229,201 +230,257 @@ Session parseSession(std::string_view text, const std::filesystem::path& path, b
         start = end + 1;
     }
     while (!lines.empty() && lines.back().empty()) lines.pop_back();
+    return lines;
+}
+
+// What the frames need of the header, and what they change as they are read.
+struct FrameContext {
+    std::string file;
+    std::filesystem::path directory;  // the scene's folder: glTF paths in edits are relative to it
+    int version = 0;
+    std::size_t bindings = 0;         // the mapping's, for the frames' hold requests
+    std::optional<std::size_t> headerLights;  // how many lights line 1 lists, when it lists them
+    std::set<int> meshIds, deviceIds;  // of the header and the frames so far
+    std::size_t lightCount = 0;        // after each frame's edits
+};
+
+SessionMeshStart readMeshStart(const JsonReader& m, int version) {
+    SessionMeshStart mesh;
+    mesh.id = m.at("id").integer(0, 1 << 20);
+    mesh.name = m.at("name").string();
+    if (auto d = m.find("mesh")) mesh.description = d->json().dump();
+    mesh.pose = {m.at("position_mm").vec3(-1e6, 1e6), readQuaternion(m.at("orientation"))};
+    mesh.initialPose = {m.at("initial_position_mm").vec3(-1e6, 1e6), readQuaternion(m.at("initial_orientation"))};
+    mesh.scale = m.at("scale").vec3(1e-9, 1e6);
+    if (auto c = m.find("clips_tubes")) {
+        requireVersion3(*c, version);
+        mesh.clipsTubes = c->boolean();
+    }
+    m.finish();
+    return mesh;
+}
+
+void readHeaderLights(const JsonReader& r, const JsonReader& lights, SessionHeader& header) {
+    requireVersion2(lights, header.version);
+    std::vector<SessionLight> list;
+    for (const JsonReader& l : lights.elements(0, 64)) {
+        SessionLight light;
+        light.direction = readLightDirection(l.at("direction"));
+        light.cameraSpace = l.at("space").oneOf({"camera", "world"}) == "camera";
+        l.finish();
+        list.push_back(light);
+    }
+    header.selectedLight = r.at("selected_light").integer(0, std::max(0, static_cast<int>(list.size()) - 1));
+    header.lights = std::move(list);
+}
+
+void readHeaderEdits(const JsonReader& edits, const std::filesystem::path& directory, SessionHeader& header) {
+    requireVersion3(edits, header.version);
+    for (const JsonReader& e : edits.elements(0, 1024)) {
+        SettingEdit edit = readSettingEdit(e, directory);
+        if (settingInfo(edit.setting).target == SettingTarget::Mesh)
+            e.at("setting").fail("a setting that is not a clip mesh's (the header's \"meshes\" hold those)");
+        if (edit.setting == Setting::LightAdd || edit.setting == Setting::LightRemove) requireVersion4Lights(e.at("setting"), header.version);
+        header.edits.push_back(std::move(edit));
+    }
+}
+
+// Line 1 (always strict): the scene, devices, mapping and meshes the frames start from.
+FrameContext readHeader(std::string_view line, const std::string& file, const std::filesystem::path& path, SessionHeader& header) {
+    FrameContext context;
+    context.file = file;
+    nlohmann::json json = parseLine(line, file, 1);
+    JsonReader r(json, file, "line 1:");
+    if (!r.isObject() || !r.has("format") || r.at("format").string() != "curette-session")
+        throw InputError(file, "line 1: format", "\"curette-session\" (is this a curette session?)");
+    int version = r.at("version").integer(0, 1 << 20);
+    if (version < kOldestSessionVersion || version > kSessionVersion)
+        throw InputError(file, "line 1: version",
+                         std::to_string(kOldestSessionVersion) + " to " + std::to_string(kSessionVersion) + " (this curette reads session versions " +
+                             std::to_string(kOldestSessionVersion) + " to " + std::to_string(kSessionVersion) + ")",
+                         std::to_string(version));
+    header.version = context.version = version;
+    header.scene = r.at("scene").string();
+    // Where the scene is: glTF paths in edits are relative to its folder (checked when read).
+    std::filesystem::path scenePath = header.scene;
+    if (scenePath.is_relative()) scenePath = path.parent_path() / scenePath;
+    context.directory = scenePath.parent_path();
+    if (auto c = r.find("created")) header.created = c->string();
+    for (const JsonReader& d : r.at("devices").elements(0, 64)) header.devices.push_back(readDevice(d));
+    header.mappingJson = r.at("mapping").json().dump();
+    context.bindings = input::parseMapping(header.mappingJson, file + " line 1: mapping").bindings.size();
+    auto mode = parseShadingMode(r.at("shading").string());
+    if (!mode) r.at("shading").fail("one of " + shadingModeList());
+    header.shading = *mode;
+    for (const JsonReader& m : r.at("meshes").elements(0, 64)) header.meshes.push_back(readMeshStart(m, version));
+    header.nextMeshId = r.at("next_mesh_id").integer(0, 1 << 20);
+    for (const SessionMeshStart& m : header.meshes)
+        if (m.id >= header.nextMeshId) r.at("next_mesh_id").fail("an id above every mesh id in \"meshes\"");
+    if (auto lights = r.find("lights")) readHeaderLights(r, *lights, header);
+    if (auto edits = r.find("edits")) readHeaderEdits(*edits, context.directory, header);
+    header.inputState = readInputState(r.at("input_state"), context.bindings);
+    for (const auto& entry : header.inputState.devices) {
+        int id = entry.first;
+        if (std::none_of(header.devices.begin(), header.devices.end(), [id](const SessionDevice& h) { return h.id == id; }))
+            r.at("input_state").fail("device ids listed in \"devices\" (found " + std::to_string(id) + ")");
+    }
+    if (auto k = r.find("keyboard")) {
+        header.keyboardMmPerSecond = k->at("mm_per_s").number(0, 1e4);
+        header.keyboardDegPerSecond = k->at("deg_per_s").number(0, 1e4);
+        k->finish();
+    }
+    r.finish();
+
+    if (header.lights) context.headerLights = context.lightCount = header.lights->size();
+    for (const SessionMeshStart& m : header.meshes) context.meshIds.insert(m.id);
+    for (const SessionDevice& d : header.devices) context.deviceIds.insert(d.id);
+    return context;
+}
+
+OrbitCamera readCamera(const JsonReader& c) {
+    OrbitCamera camera;
+    camera.target = c.at("target").vec3(-1e6, 1e6);
+    camera.distanceMm = c.at("distance_mm").number(1e-3, 1e6);
+    camera.azimuthDeg = c.at("azimuth_deg").number(-1e6, 1e6);
+    camera.elevationDeg = c.at("elevation_deg").number(-90, 90);
+    camera.fovYDeg = c.at("fov_deg").number(1, 170);
+    camera.nearMm = c.at("near_mm").number(1e-6, 1e7);
+    camera.farMm = c.at("far_mm").number(1e-6, 1e8);
+    c.finish();
+    return camera;
+}
+
+// meshes_added, meshes_removed and every mesh's pose.
+void readFrameMeshes(const JsonReader& r, SessionFrame& f, FrameContext& context) {
+    if (auto added = r.find("meshes_added"))
+        for (const JsonReader& m : added->elements(0, 64)) {
+            SessionAddedMesh a{m.at("id").integer(0, 1 << 20), m.at("name").string(), m.at("mesh").json().dump()};
+            m.finish();
+            context.meshIds.insert(a.id);
+            f.meshesAdded.push_back(a);
+        }
+    if (auto removed = r.find("meshes_removed"))
+        for (const JsonReader& m : removed->elements(0, 64)) f.meshesRemoved.push_back(m.integer(0, 1 << 20));
+    for (const JsonReader& m : r.at("meshes").elements(0, 64)) {
+        SessionMesh mesh;
+        mesh.id = m.at("id").integer(0, 1 << 20);
+        if (!context.meshIds.count(mesh.id)) m.at("id").fail("the id of a mesh in the header or in an earlier meshes_added");
+        mesh.position = m.at("position_mm").vec3(-1e6, 1e6);
+        mesh.orientation = readQuaternion(m.at("orientation"));
+        mesh.scale = m.at("scale").vec3(1e-9, 1e6);
+        m.finish();
+        f.meshes.push_back(mesh);
+    }
+}
+
+void readFrameEdits(const JsonReader& edits, SessionFrame& f, FrameContext& context) {
+    requireVersion3(edits, context.version);
+    for (const JsonReader& e : edits.elements(0, 1024)) {
+        f.edits.push_back(readSettingEdit(e, context.directory));
+        Setting setting = f.edits.back().setting;
+        if (setting == Setting::MeshAdd && !context.meshIds.count(f.edits.back().target))
+            e.at("mesh").fail("the id of a mesh in this frame's meshes_added (where an added mesh is listed too)");
+        if (setting == Setting::LightAdd || setting == Setting::LightRemove) {
+            requireVersion4Lights(e.at("setting"), context.version);
+            context.lightCount = setting == Setting::LightAdd ? context.lightCount + 1 : std::max<std::size_t>(context.lightCount, 1) - 1;
+        }
+    }
+}
+
+// Every light's direction after the frame's edits (which may add or remove lights).
+std::vector<glm::dvec3> readFrameLights(const JsonReader& lights, const FrameContext& context) {
+    requireVersion2(lights, context.version);
+    if (!context.headerLights) lights.fail("nothing (line 1 lists no lights)");
+    const std::size_t lightCount = context.lightCount;
+    if (!lights.isArray() || lights.size() != lightCount)
+        lights.fail("an array of " + std::to_string(lightCount) + " light directions [x, y, z], one per light of line 1" +
+                    (lightCount != *context.headerLights ? " and the lights added and removed since" : ""));
+    std::vector<glm::dvec3> directions;
+    for (const JsonReader& l : lights.elements(lightCount, lightCount)) directions.push_back(readLightDirection(l));
+    return directions;
+}
+
+std::vector<input::HoldRequest> readHolds(const JsonReader& holds, const FrameContext& context) {
+    requireVersion4(holds, context.version);
+    std::vector<input::HoldRequest> requests;
+    for (const JsonReader& h : holds.elements(0, 64)) {
+        input::HoldRequest hold;
+        JsonReader binding = h.at("binding");
+        const nlohmann::json& b = binding.json();
+        if (b.is_number_integer() && b.get<std::int64_t>() >= 0 && b.get<std::int64_t>() < static_cast<std::int64_t>(context.bindings))
+            hold.binding = b.get<int>();
+        else if (!(b.is_string() && b.get<std::string>() == "keyboard"))
+            binding.fail("\"keyboard\" or the index of one of the " + std::to_string(context.bindings) + " bindings of line 1's mapping");
+        hold.mesh = h.at("mesh").integer(0, clip::kMaxClipMeshes - 1);
+        h.finish();
+        requests.push_back(hold);
+    }
+    return requests;
+}
+
+// devices_added, devices_removed and the raw reports of known devices.
+void readFrameDevices(const JsonReader& r, SessionFrame& f, FrameContext& context) {
+    if (auto added = r.find("devices_added"))
+        for (const JsonReader& d : added->elements(0, 64)) {
+            f.devicesAdded.push_back(readDevice(d));
+            context.deviceIds.insert(f.devicesAdded.back().id);
+        }
+    if (auto removed = r.find("devices_removed"))
+        for (const JsonReader& d : removed->elements(0, 64)) f.devicesRemoved.push_back(d.integer(0, 1 << 30));
+    for (const JsonReader& rep : r.at("reports").elements(0, 100000)) {
+        SessionReport report;
+        report.device = rep.at("device").integer(0, 1 << 30);
+        if (!context.deviceIds.count(report.device)) rep.at("device").fail("the id of a device in the header or in an earlier devices_added");
+        report.time = rep.at("time").number(0, 1e9);
+        report.bytes = input::fromHex(rep.at("bytes").string(), context.file, rep.path() + ".bytes");
+        if (report.bytes.empty()) rep.at("bytes").fail("at least one byte (the report ID)");
+        rep.finish();
+        f.reports.push_back(std::move(report));
+    }
+}
+
+// Session line `number` (from 2): one frame. Its fields are read in the order of their errors' precedence.
+SessionFrame readFrame(std::string_view line, std::size_t number, FrameContext& context) {
+    const std::string where = "line " + std::to_string(number);
+    nlohmann::json json = parseLine(line, context.file, number);
+    JsonReader r(json, context.file, where + ":");
+    SessionFrame f;
+    f.index = r.at("frame").unsignedInteger(1u << 31);
+    f.time = r.at("time").number(0, 1e9);
+    f.dt = r.at("dt").number(0, 10);
+    glm::dvec2 size = r.at("size").vec2(1, 16384);
+    f.size = glm::ivec2(size);
+    f.camera = readCamera(r.at("camera"));
+    auto mode = parseShadingMode(r.at("shading").string());
+    if (!mode) r.at("shading").fail("one of " + shadingModeList());
+    f.shading = *mode;
+    readFrameMeshes(r, f, context);
+    if (auto edits = r.find("edits")) readFrameEdits(*edits, f, context);
+    if (auto lights = r.find("lights")) f.lights = readFrameLights(*lights, context);
+    if (auto holds = r.find("holds")) f.holds = readHolds(*holds, context);
+    f.keys = static_cast<std::uint32_t>(r.at("keys").unsignedInteger(0xFFFFFFFFu));
+    f.drag = r.at("drag").vec2(-1e5, 1e5);
+    if (auto drag = r.find("light_drag")) {
+        requireVersion2(*drag, context.version);
+        f.lightDrag = drag->vec2(-1e5, 1e5);
+    }
+    readFrameDevices(r, f, context);
+    r.finish();
+    return f;
+}
+
+}  // namespace
+
+Session parseSession(std::string_view text, const std::filesystem::path& path, bool lenient) {
+    Session session;
+    session.file = path;
+    const std::vector<std::string_view> lines = sessionLines(text);
     const std::string file = path.string();
     if (lines.empty()) throw InputError(file, "line 1", "a session header", "an empty file");
-
-    std::filesystem::path directory;
-    std::size_t bindings = 0;   // the mapping's, for the frames' hold requests
-    // Header (always strict).
-    {
-        nlohmann::json json = parseLine(lines[0], file, 1);
-        JsonReader r(json, file, "line 1:");
-        if (!r.isObject() || !r.has("format") || r.at("format").string() != "curette-session")
-            throw InputError(file, "line 1: format", "\"curette-session\" (is this a curette session?)");
-        int version = r.at("version").integer(0, 1 << 20);
-        if (version < kOldestSessionVersion || version > kSessionVersion)
-            throw InputError(file, "line 1: version",
-                             std::to_string(kOldestSessionVersion) + " to " + std::to_string(kSessionVersion) + " (this curette reads session versions " +
-                                 std::to_string(kOldestSessionVersion) + " to " + std::to_string(kSessionVersion) + ")",
-                             std::to_string(version));
-        session.header.version = version;
-        session.header.scene = r.at("scene").string();
-        // Where the scene is: glTF paths in edits are relative to its folder (checked when read).
-        std::filesystem::path scenePath = session.header.scene;
-        if (scenePath.is_relative()) scenePath = path.parent_path() / scenePath;
-        directory = scenePath.parent_path();
-        if (auto c = r.find("created")) session.header.created = c->string();
-        for (const JsonReader& d : r.at("devices").elements(0, 64)) session.header.devices.push_back(readDevice(d));
-        session.header.mappingJson = r.at("mapping").json().dump();
-        bindings = input::parseMapping(session.header.mappingJson, file + " line 1: mapping").bindings.size();
-        auto mode = parseShadingMode(r.at("shading").string());
-        if (!mode) r.at("shading").fail("one of " + shadingModeList());
-        session.header.shading = *mode;
-        for (const JsonReader& m : r.at("meshes").elements(0, 64)) {
-            SessionMeshStart mesh;
-            mesh.id = m.at("id").integer(0, 1 << 20);
-            mesh.name = m.at("name").string();
-            if (auto d = m.find("mesh")) mesh.description = d->json().dump();
-            mesh.pose = {m.at("position_mm").vec3(-1e6, 1e6), readQuaternion(m.at("orientation"))};
-            mesh.initialPose = {m.at("initial_position_mm").vec3(-1e6, 1e6), readQuaternion(m.at("initial_orientation"))};
-            mesh.scale = m.at("scale").vec3(1e-9, 1e6);
-            if (auto c = m.find("clips_tubes")) {
-                requireVersion3(*c, version);
-                mesh.clipsTubes = c->boolean();
-            }
-            m.finish();
-            session.header.meshes.push_back(mesh);
-        }
-        session.header.nextMeshId = r.at("next_mesh_id").integer(0, 1 << 20);
-        for (const SessionMeshStart& m : session.header.meshes)
-            if (m.id >= session.header.nextMeshId) r.at("next_mesh_id").fail("an id above every mesh id in \"meshes\"");
-        if (auto lights = r.find("lights")) {
-            requireVersion2(*lights, version);
-            std::vector<SessionLight> list;
-            for (const JsonReader& l : lights->elements(0, 64)) {
-                SessionLight light;
-                light.direction = readLightDirection(l.at("direction"));
-                light.cameraSpace = l.at("space").oneOf({"camera", "world"}) == "camera";
-                l.finish();
-                list.push_back(light);
-            }
-            session.header.selectedLight = r.at("selected_light").integer(0, std::max(0, static_cast<int>(list.size()) - 1));
-            session.header.lights = std::move(list);
-        }
-        if (auto edits = r.find("edits")) {
-            requireVersion3(*edits, version);
-            for (const JsonReader& e : edits->elements(0, 1024)) {
-                SettingEdit edit = readSettingEdit(e, directory);
-                if (settingInfo(edit.setting).target == SettingTarget::Mesh)
-                    e.at("setting").fail("a setting that is not a clip mesh's (the header's \"meshes\" hold those)");
-                if (edit.setting == Setting::LightAdd || edit.setting == Setting::LightRemove) requireVersion4Lights(e.at("setting"), version);
-                session.header.edits.push_back(std::move(edit));
-            }
-        }
-        session.header.inputState = readInputState(r.at("input_state"), bindings);
-        for (const auto& entry : session.header.inputState.devices) {
-            int id = entry.first;
-            if (std::none_of(session.header.devices.begin(), session.header.devices.end(), [id](const SessionDevice& h) { return h.id == id; }))
-                r.at("input_state").fail("device ids listed in \"devices\" (found " + std::to_string(id) + ")");
-        }
-        if (auto k = r.find("keyboard")) {
-            session.header.keyboardMmPerSecond = k->at("mm_per_s").number(0, 1e4);
-            session.header.keyboardDegPerSecond = k->at("deg_per_s").number(0, 1e4);
-            k->finish();
-        }
-        r.finish();
-    }
-
-    std::set<int> meshIds, deviceIds;
-    std::size_t lightCount = session.header.lights ? session.header.lights->size() : 0;   // after each frame's edits
-    for (const SessionMeshStart& m : session.header.meshes) meshIds.insert(m.id);
-    for (const SessionDevice& d : session.header.devices) deviceIds.insert(d.id);
+    FrameContext context = readHeader(lines[0], file, path, session.header);
     for (std::size_t n = 1; n < lines.size(); ++n) {
-        std::string where = "line " + std::to_string(n + 1);
         try {
-            nlohmann::json json = parseLine(lines[n], file, n + 1);
-            JsonReader r(json, file, where + ":");
-            SessionFrame f;
-            f.index = r.at("frame").unsignedInteger(1u << 31);
-            f.time = r.at("time").number(0, 1e9);
-            f.dt = r.at("dt").number(0, 10);
-            glm::dvec2 size = r.at("size").vec2(1, 16384);
-            f.size = glm::ivec2(size);
-            JsonReader c = r.at("camera");
-            f.camera.target = c.at("target").vec3(-1e6, 1e6);
-            f.camera.distanceMm = c.at("distance_mm").number(1e-3, 1e6);
-            f.camera.azimuthDeg = c.at("azimuth_deg").number(-1e6, 1e6);
-            f.camera.elevationDeg = c.at("elevation_deg").number(-90, 90);
-            f.camera.fovYDeg = c.at("fov_deg").number(1, 170);
-            f.camera.nearMm = c.at("near_mm").number(1e-6, 1e7);
-            f.camera.farMm = c.at("far_mm").number(1e-6, 1e8);
-            c.finish();
-            auto mode = parseShadingMode(r.at("shading").string());
-            if (!mode) r.at("shading").fail("one of " + shadingModeList());
-            f.shading = *mode;
-            if (auto added = r.find("meshes_added"))
-                for (const JsonReader& m : added->elements(0, 64)) {
-                    SessionAddedMesh a{m.at("id").integer(0, 1 << 20), m.at("name").string(), m.at("mesh").json().dump()};
-                    m.finish();
-                    meshIds.insert(a.id);
-                    f.meshesAdded.push_back(a);
-                }
-            if (auto removed = r.find("meshes_removed"))
-                for (const JsonReader& m : removed->elements(0, 64)) f.meshesRemoved.push_back(m.integer(0, 1 << 20));
-            for (const JsonReader& m : r.at("meshes").elements(0, 64)) {
-                SessionMesh mesh;
-                mesh.id = m.at("id").integer(0, 1 << 20);
-                if (!meshIds.count(mesh.id)) m.at("id").fail("the id of a mesh in the header or in an earlier meshes_added");
-                mesh.position = m.at("position_mm").vec3(-1e6, 1e6);
-                mesh.orientation = readQuaternion(m.at("orientation"));
-                mesh.scale = m.at("scale").vec3(1e-9, 1e6);
-                m.finish();
-                f.meshes.push_back(mesh);
-            }
-            if (auto edits = r.find("edits")) {
-                requireVersion3(*edits, session.header.version);
-                for (const JsonReader& e : edits->elements(0, 1024)) {
-                    f.edits.push_back(readSettingEdit(e, directory));
-                    Setting setting = f.edits.back().setting;
-                    if (setting == Setting::MeshAdd && !meshIds.count(f.edits.back().target))
-                        e.at("mesh").fail("the id of a mesh in this frame's meshes_added (where an added mesh is listed too)");
-                    if (setting == Setting::LightAdd || setting == Setting::LightRemove) {
-                        requireVersion4Lights(e.at("setting"), session.header.version);
-                        lightCount = setting == Setting::LightAdd ? lightCount + 1 : std::max<std::size_t>(lightCount, 1) - 1;
-                    }
-                }
-            }
-            // Every light's direction after the frame's edits (which may add or remove lights).
-            if (auto lights = r.find("lights")) {
-                requireVersion2(*lights, session.header.version);
-                if (!session.header.lights) lights->fail("nothing (line 1 lists no lights)");
-                if (!lights->isArray() || lights->size() != lightCount)
-                    lights->fail("an array of " + std::to_string(lightCount) + " light directions [x, y, z], one per light of line 1" +
-                                 (lightCount != session.header.lights->size() ? " and the lights added and removed since" : ""));
-                std::vector<glm::dvec3> directions;
-                for (const JsonReader& l : lights->elements(lightCount, lightCount)) directions.push_back(readLightDirection(l));
-                f.lights = std::move(directions);
-            }
-            if (auto holds = r.find("holds")) {
-                requireVersion4(*holds, session.header.version);
-                for (const JsonReader& h : holds->elements(0, 64)) {
-                    input::HoldRequest hold;
-                    JsonReader binding = h.at("binding");
-                    const nlohmann::json& b = binding.json();
-                    if (b.is_number_integer() && b.get<std::int64_t>() >= 0 && b.get<std::int64_t>() < static_cast<std::int64_t>(bindings))
-                        hold.binding = b.get<int>();
-                    else if (!(b.is_string() && b.get<std::string>() == "keyboard"))
-                        binding.fail("\"keyboard\" or the index of one of the " + std::to_string(bindings) + " bindings of line 1's mapping");
-                    hold.mesh = h.at("mesh").integer(0, clip::kMaxClipMeshes - 1);
-                    h.finish();
-                    f.holds.push_back(hold);
-                }
-            }
-            f.keys = static_cast<std::uint32_t>(r.at("keys").unsignedInteger(0xFFFFFFFFu));
-            f.drag = r.at("drag").vec2(-1e5, 1e5);
-            if (auto drag = r.find("light_drag")) {
-                requireVersion2(*drag, session.header.version);
-                f.lightDrag = drag->vec2(-1e5, 1e5);
-            }
-            if (auto added = r.find("devices_added"))
-                for (const JsonReader& d : added->elements(0, 64)) {
-                    f.devicesAdded.push_back(readDevice(d));
-                    deviceIds.insert(f.devicesAdded.back().id);
-                }
-            if (auto removed = r.find("devices_removed"))
-                for (const JsonReader& d : removed->elements(0, 64)) f.devicesRemoved.push_back(d.integer(0, 1 << 30));
-            for (const JsonReader& rep : r.at("reports").elements(0, 100000)) {
-                SessionReport report;
-                report.device = rep.at("device").integer(0, 1 << 30);
-                if (!deviceIds.count(report.device)) rep.at("device").fail("the id of a device in the header or in an earlier devices_added");
-                report.time = rep.at("time").number(0, 1e9);
-                report.bytes = input::fromHex(rep.at("bytes").string(), file, rep.path() + ".bytes");
-                if (report.bytes.empty()) rep.at("bytes").fail("at least one byte (the report ID)");
-                rep.finish();
-                f.reports.push_back(std::move(report));
-            }
-            r.finish();
-            session.frames.push_back(std::move(f));
+            session.frames.push_back(readFrame(lines[n], n + 1, context));
         } catch (const InputError& e) {
             if (!lenient) throw;
             session.warning = std::string(e.what()) + "; replaying the " + std::to_string(session.frames.size()) + " frames before it";

@@ -53,7 +53,7 @@ bool intersectBox(vec3 origin, vec3 direction, vec3 lo, vec3 hi, out float tNear
 }
 
 // Phong's six gradient fetches are taken between rounds of the sample loop, for the visible samples only
-// (see main). Solid and lao/cao shading cost less than the rounds do, so they shade in the loop.
+// (see castRay). Solid and lao/cao shading cost less than the rounds do, so they shade in the loop.
 #if SHADING == SHADING_PHONG && !defined(GRADIENT_OPACITY)
 #define SHADE_BETWEEN_ROUNDS
 #endif
@@ -88,83 +88,110 @@ bool shadeAndComposite(inout vec4 accumulated, VolumeSample point, vec3 tex, flo
     return accumulated.a >= earlyTerminationAlpha;
 }
 
-void main() {
-    ivec2 pixel;
-    if (!tilePixel(gl_WorkGroupSize.xy, pixel) || outsideImage(pixel)) return;
-    vec3 direction = pixelRayDirection(pixel);
-    vec3 originTex = toTexture(eyeWorld);
-    vec3 directionTex = mat3(worldToTexture) * direction;
-
-    vec4 accumulated = vec4(0.0);  // premultiplied colour, opacity
-    uint samples = 0u, steps = 0u;
-#ifdef ISMOS_LAYERS
-    layers = ismosBegin();
-    depthPerMm = dot(direction, ismosForward) / ismosDepthRangeMm;
-#endif
-    float tNear, tFar;
-    if (intersectBox(originTex, directionTex, vec3(0.0), vec3(1.0), tNear, tFar)) {
-        float jitter = jitterSeed != 0u ? pixelRandom(uvec2(pixel), jitterSeed) : 0.0;
-        int k = int(ceil(max(tNear, 0.0) / stepMm - jitter));
-        int kLast = int(floor(tFar / stepMm - jitter));
-        ClipSpan span = ClipSpan(-1e30, 1e30, 0xffffffffu);
-        if (clipDepthBoxTests) span = rayClipSpan(eyeWorld, direction);
+// The ray's lattice samples k..kLast inside the box [tNear, tFar], and its jitter.
+void latticeRange(ivec2 pixel, vec3 direction, float tNear, float tFar, out float jitter, out int k, out int kLast) {
+    jitter = jitterSeed != 0u ? pixelRandom(uvec2(pixel), jitterSeed) : 0.0;
+    k = int(ceil(max(tNear, 0.0) / stepMm - jitter));
+    kLast = int(floor(tFar / stepMm - jitter));
 #ifdef ISMOS_TUBES
-        // The ray stops in front of the tube surface (G-buffer view depth; 0: none).
-        float tubeView = texelFetch(ismosTubeDepth, pixel, 0).r;
-        if (tubeView > 0.0) kLast = min(kLast, int(ceil(tubeView / dot(direction, ismosForward) / stepMm - jitter)) - 1);
+    // The ray stops in front of the tube surface (G-buffer view depth; 0: none).
+    float tubeView = texelFetch(ismosTubeDepth, pixel, 0).r;
+    if (tubeView > 0.0) kLast = min(kLast, int(ceil(tubeView / dot(direction, ismosForward) / stepMm - jitter)) - 1);
 #endif
+}
+
 #ifdef CUT_FACES
-        // Cut faces (clip_test.glsl, shade_sample.glsl). Lattice sample k stands for the ray within half a
-        // step of it (the sum over the lattice is the midpoint rule). Where the ray leaves a clip mesh, the
-        // first visible lattice sample is taken at the crossing instead, standing for the ray from there to
-        // the end of its own half step, so the tissue starts exactly where the face is; the lattice does not
-        // move. A clipped sample costs its clip test alone (no jump, no classification); the face is worked out
-        // once per crossing, between rounds of the sample loop (below).
-        faceT = -1.0;
-        faceNormal = vec3(0.0);
-        faceCosine = 0.0;
-        int meshBehind = -1;        // the mesh holding the last lattice sample (-1: none)
+// The ray left mesh `meshBehind` between lattice samples k - 1 and k: sets the face (faceT, faceNormal,
+// faceCosine) and returns the segment the sample taken on it stands for, from the crossing to the end of
+// lattice sample k's half step.
+float crossFace(int meshBehind, int k, float jitter, vec3 direction) {
+    float tLattice = (float(k) + jitter) * stepMm;
+    vec3 outward;
+    float s = clipExitFraction(meshBehind, eyeWorld + (tLattice - stepMm) * direction, eyeWorld + tLattice * direction, outward);
+    float crossing = tLattice - (1.0 - s) * stepMm;
+    faceNormal = -outward;
+    faceCosine = abs(dot(direction, faceNormal));
+    faceT = crossing;
+    return tLattice + 0.5 * stepMm - crossing;
+}
 #endif
-        // The ray runs in rounds. A round's sample loop walks the lattice until it meets a crossing (the first
-        // sample past it, with cut faces) or, with SHADE_BETWEEN_ROUNDS, a visible sample, and stops there; the
-        // next round works the face out, or shades the sample. llvmpipe runs every line of a loop body on every
-        // step, taken or not (a block never taken that fetched 18 texels took the head's solid ray cast from
-        // 53 to 333 ms), so what only some samples need is kept out of the sample loop where that pays for the
-        // lanes that wait at the end of a round: the crossing (40 % of the carved head's solid ray cast when it
-        // was in the loop) and phong's gradient.
-        bool rayDone = false;
+
+// In an empty brick (occupancy distance d > 0) moves k to the last lattice sample inside the cube of bricks
+// within Chebyshev distance d - 1, all empty (the caller's ++k moves past it), and returns true.
+bool skipEmptyBricks(vec3 tex, vec3 originTex, vec3 directionTex, float jitter, inout int k) {
+    ivec3 brick = clamp(ivec3(floor(tex * vec3(volumeSize) / float(brickSize))), ivec3(0),
+                        textureSize(occupancy, 0) - 1);
+    int distance = int(texelFetch(occupancy, brick, 0).r * 255.0 + 0.5);
+    if (distance <= 0) return false;
+    int reach = min(distance, maxSkipBricks) - 1;
+    vec3 lo = vec3((brick - reach) * brickSize) / vec3(volumeSize);
+    vec3 hi = vec3((brick + 1 + reach) * brickSize) / vec3(volumeSize);
+    float bNear, bFar;
+    intersectBox(originTex, directionTex, lo, hi, bNear, bFar);
+    k = max(k, int(floor(bFar / stepMm - jitter)));
+#ifdef CUT_FACES
+    faceT = -1.0;
+#endif
+#ifdef ISMOS_LAYERS
+    ismosGap(layers);
+#endif
+    return true;
+}
+
+// Walks the ray's lattice samples inside the box and returns their composite (premultiplied colour, opacity).
+vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, float tNear, float tFar, inout uint samples,
+             inout uint steps) {
+    vec4 accumulated = vec4(0.0);
+    float jitter;
+    int k, kLast;
+    latticeRange(pixel, direction, tNear, tFar, jitter, k, kLast);
+    ClipSpan span = ClipSpan(-1e30, 1e30, 0xffffffffu);
+    if (clipDepthBoxTests) span = rayClipSpan(eyeWorld, direction);
+#ifdef CUT_FACES
+    // Cut faces (clip_test.glsl, shade_sample.glsl). Lattice sample k stands for the ray within half a
+    // step of it (the sum over the lattice is the midpoint rule). Where the ray leaves a clip mesh, the
+    // first visible lattice sample is taken at the crossing instead, standing for the ray from there to
+    // the end of its own half step, so the tissue starts exactly where the face is; the lattice does not
+    // move. A clipped sample costs its clip test alone (no jump, no classification); the face is worked out
+    // once per crossing, between rounds of the sample loop (below).
+    faceT = -1.0;
+    faceNormal = vec3(0.0);
+    faceCosine = 0.0;
+    int meshBehind = -1;        // the mesh holding the last lattice sample (-1: none)
+#endif
+    // The ray runs in rounds. A round's sample loop walks the lattice until it meets a crossing (the first
+    // sample past it, with cut faces) or, with SHADE_BETWEEN_ROUNDS, a visible sample, and stops there; the
+    // next round works the face out, or shades the sample. llvmpipe runs every line of a loop body on every
+    // step, taken or not (a block never taken that fetched 18 texels took the head's solid ray cast from
+    // 53 to 333 ms), so what only some samples need is kept out of the sample loop where that pays for the
+    // lanes that wait at the end of a round: the crossing (40 % of the carved head's solid ray cast when it
+    // was in the loop) and phong's gradient.
+    bool rayDone = false;
 #ifdef SHADE_BETWEEN_ROUNDS
-        bool shadePending = false;  // the last round stopped at a visible sample:
-        VolumeSample pending;       // its classification,
-        vec3 pendingTex;            // where it is,
-        float pendingT = 0.0;       // how far along the ray,
-        float pendingAlpha = 0.0;   // and the opacity of its segment
+    bool shadePending = false;  // the last round stopped at a visible sample:
+    VolumeSample pending;       // its classification,
+    vec3 pendingTex;            // where it is,
+    float pendingT = 0.0;       // how far along the ray,
+    float pendingAlpha = 0.0;   // and the opacity of its segment
 #endif
 #ifdef SAMPLE_ROUNDS
-        while (!rayDone) {
+    while (!rayDone) {
 #endif
 #ifdef SHADE_BETWEEN_ROUNDS
-            if (shadePending) {
-                shadePending = false;
-                if (shadeAndComposite(accumulated, pending, pendingTex, pendingT, pendingAlpha, direction)) break;
-                ++k;
-            }
+        if (shadePending) {
+            shadePending = false;
+            if (shadeAndComposite(accumulated, pending, pendingTex, pendingT, pendingAlpha, direction)) break;
+            ++k;
+        }
 #endif
 #ifdef CUT_FACES
-            // The last round stopped at the first lattice sample past a crossing: this round takes it on the face.
-            bool atFace = meshBehind >= 0;
-            float faceSegment = stepMm;
-            if (atFace) {
-                float tLattice = (float(k) + jitter) * stepMm;
-                vec3 outward;
-                float s = clipExitFraction(meshBehind, eyeWorld + (tLattice - stepMm) * direction, eyeWorld + tLattice * direction, outward);
-                float crossing = tLattice - (1.0 - s) * stepMm;
-                faceNormal = -outward;
-                faceCosine = abs(dot(direction, faceNormal));
-                faceT = crossing;
-                faceSegment = tLattice + 0.5 * stepMm - crossing;
-                meshBehind = -1;
-            }
+        // The last round stopped at the first lattice sample past a crossing: this round takes it on the face.
+        bool atFace = meshBehind >= 0;
+        float faceSegment = stepMm;
+        if (atFace) {
+            faceSegment = crossFace(meshBehind, k, jitter, direction);
+            meshBehind = -1;
+        }
 #endif
         for (; k <= kLast; ++k) {
             float t = (float(k) + jitter) * stepMm;
@@ -190,26 +217,7 @@ void main() {
 #else
             if (skipEmptySpace) {
 #endif
-                ivec3 brick = clamp(ivec3(floor(tex * vec3(volumeSize) / float(brickSize))), ivec3(0),
-                                    textureSize(occupancy, 0) - 1);
-                int distance = int(texelFetch(occupancy, brick, 0).r * 255.0 + 0.5);
-                if (distance > 0) {
-                    // Every brick within Chebyshev distance d - 1 of this one is empty: jump to the last lattice
-                    // sample inside that cube; the loop's ++k moves past it.
-                    int reach = min(distance, maxSkipBricks) - 1;
-                    vec3 lo = vec3((brick - reach) * brickSize) / vec3(volumeSize);
-                    vec3 hi = vec3((brick + 1 + reach) * brickSize) / vec3(volumeSize);
-                    float bNear, bFar;
-                    intersectBox(originTex, directionTex, lo, hi, bNear, bFar);
-                    k = max(k, int(floor(bFar / stepMm - jitter)));
-#ifdef CUT_FACES
-                    faceT = -1.0;
-#endif
-#ifdef ISMOS_LAYERS
-                    ismosGap(layers);
-#endif
-                    continue;
-                }
+                if (skipEmptyBricks(tex, originTex, directionTex, jitter, k)) continue;
             }
             // Step VI's shadow-test clipping: a sample inside any clip mesh is not there.
 #ifdef CUT_FACES
@@ -260,21 +268,19 @@ void main() {
 #endif
         }
 #ifdef SAMPLE_ROUNDS
-            // A round that stopped at a visible sample or a crossing stopped at a lattice sample; past the last
-            // one, the lattice ran out.
-            if (k > kLast) rayDone = true;
-        }
-#endif
+        // A round that stopped at a visible sample or a crossing stopped at a lattice sample; past the last
+        // one, the lattice ran out.
+        if (k > kLast) rayDone = true;
     }
-#ifdef COUNT_SAMPLES
-    atomicAdd(samplesTaken, samples);
-    atomicAdd(raySteps, steps);
-    atomicAdd(halfSteps[inFirstHalfOfDispatch() ? 0 : 1], steps);
 #endif
-    imageStore(outputImage, pixel, accumulated);
+    return accumulated;
+}
+
 #ifdef ISMOS_LAYERS
+// The pixel's ISMOS layers; a tube is an opaque layer at its depth (the compositor adds its colour behind
+// the volume).
+void storeIsmosLayers(ivec2 pixel, vec4 accumulated) {
 #ifdef ISMOS_TUBES
-    // The tube is an opaque layer at its depth (the compositor adds its colour behind the volume).
     float surface = texelFetch(ismosTubeDepth, pixel, 0).r;
     if (surface > 0.0 && accumulated.a < earlyTerminationAlpha) {
         ismosGap(layers);
@@ -283,5 +289,32 @@ void main() {
     }
 #endif
     ismosStore(layers, pixel);
+}
+#endif
+
+void main() {
+    ivec2 pixel;
+    if (!tilePixel(gl_WorkGroupSize.xy, pixel) || outsideImage(pixel)) return;
+    vec3 direction = pixelRayDirection(pixel);
+    vec3 originTex = toTexture(eyeWorld);
+    vec3 directionTex = mat3(worldToTexture) * direction;
+
+    vec4 accumulated = vec4(0.0);  // premultiplied colour, opacity
+    uint samples = 0u, steps = 0u;
+#ifdef ISMOS_LAYERS
+    layers = ismosBegin();
+    depthPerMm = dot(direction, ismosForward) / ismosDepthRangeMm;
+#endif
+    float tNear, tFar;
+    if (intersectBox(originTex, directionTex, vec3(0.0), vec3(1.0), tNear, tFar))
+        accumulated = castRay(pixel, direction, originTex, directionTex, tNear, tFar, samples, steps);
+#ifdef COUNT_SAMPLES
+    atomicAdd(samplesTaken, samples);
+    atomicAdd(raySteps, steps);
+    atomicAdd(halfSteps[inFirstHalfOfDispatch() ? 0 : 1], steps);
+#endif
+    imageStore(outputImage, pixel, accumulated);
+#ifdef ISMOS_LAYERS
+    storeIsmosLayers(pixel, accumulated);
 #endif
 }
