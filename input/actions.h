@@ -1,7 +1,8 @@
 #pragma once
-// What input asks of the scene. Input never touches the scene (DESIGN.md): it emits these, and the app
-// applies them (session/interaction.h). Camera-frame motion stays camera-frame here, because input never reads
-// render state; the app turns it into world motion with the frame's camera.
+// What input asks of the scene. Input never touches the scene (input/ sees base/ only: docs/architecture.md,
+// "Layers"): it emits these, and the session layer applies them (session/interaction.h). Camera-frame motion
+// stays camera-frame here, because input never reads render state; the session turns it into world motion
+// with the frame's camera.
 
 #include <glm/glm.hpp>
 
