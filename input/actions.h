@@ -41,7 +41,7 @@ struct RemoveMesh {
 };
 // Lights (any shading mode; ismos shadows follow them): turn the light's direction in the camera frame, yaw
 // about the camera's up axis (+: towards the right of the screen) and pitch towards it (+: up), in radians.
-// light -1: the selected light (NextLight selects the next one). The app applies it (turnedLight in
+// light -1: the selected light (NextLight selects the next one). The session applies it (turnedLight in
 // session/interaction.h), with the frame's camera for world-space lights.
 struct MoveLight {
     int light = -1;
