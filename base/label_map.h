@@ -2,7 +2,7 @@
 // Label volumes beside the scan ("the carve becomes a plan"): a grid of integer label ids (0 = no label) with
 // the same index-to-world convention as VolumeData (centre of voxel (i,j,k) -> world RAS millimetres), and the
 // table that names and colours the ids. Readers of label tables live in io/label_table.h; the formats are
-// described in planning-formats.md section 2 (colour tables). Ids are 16-bit: NIfTI uint8/uint16 label files,
+// described in io/label_table.h (colour tables). Ids are 16-bit: NIfTI uint8/uint16 label files,
 // Slicer's uchar/ushort segmentations and the mricron atlases (AAL 116 labels, AICHA 192) all fit.
 
 #include "base/volume.h"

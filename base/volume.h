@@ -1,6 +1,6 @@
 #pragma once
 // A scalar volume as it lives in memory and on the GPU: voxels in a compact storage format, the map from the
-// stored texel value to the physical value, and the voxel-index-to-world affine (DESIGN.md "Coordinates").
+// stored texel value to the physical value, and the voxel-index-to-world affine (to RAS millimetres).
 
 #include <glm/glm.hpp>
 

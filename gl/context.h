@@ -2,7 +2,7 @@
 // One interface for the ways curette gets a GL 4.5 core context: headless (the default for everything but
 // the viewer) and windowed (GLFW). GL calls are loaded through libepoxy, which serves both.
 //
-// Headless contexts come from one of two EGL platforms (docs/architecture.md, "GL contexts"):
+// Headless contexts come from one of two EGL platforms (docs/subsystems.md, "GL contexts"):
 //  - the device platform (EGL_EXT_device_enumeration + EGL_EXT_platform_device): the GPUs EGL lists, each
 //    opened directly; the only headless path on NVIDIA's and AMD's vendor drivers. Mesa lists its software
 //    renderer here too (EGL_MESA_device_software), and every DRM device it drives;

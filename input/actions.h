@@ -1,7 +1,8 @@
 #pragma once
-// What input asks of the scene. Input never touches the scene (DESIGN.md): it emits these, and the app
-// applies them (session/interaction.h). Camera-frame motion stays camera-frame here, because input never reads
-// render state; the app turns it into world motion with the frame's camera.
+// What input asks of the scene. Input never touches the scene (input/ sees base/ only: docs/architecture.md,
+// "Layers"): it emits these, and the session layer applies them (session/interaction.h). Camera-frame motion
+// stays camera-frame here, because input never reads render state; the session turns it into world motion
+// with the frame's camera.
 
 #include <glm/glm.hpp>
 
@@ -40,7 +41,7 @@ struct RemoveMesh {
 };
 // Lights (any shading mode; ismos shadows follow them): turn the light's direction in the camera frame, yaw
 // about the camera's up axis (+: towards the right of the screen) and pitch towards it (+: up), in radians.
-// light -1: the selected light (NextLight selects the next one). The app applies it (turnedLight in
+// light -1: the selected light (NextLight selects the next one). The session applies it (turnedLight in
 // session/interaction.h), with the frame's camera for world-space lights.
 struct MoveLight {
     int light = -1;

@@ -22,7 +22,7 @@ enum class Bus { Usb, Bluetooth, Unknown };
 
 // Axes, all normalised. Gamepad sticks in [-1, 1] with +y up; triggers in [0, 1]. 6-DoF translation and
 // rotation in [-1, 1] of the device's full scale, in the device's raw HID axis order and signs (the mapping
-// decides what they mean, hid.md section 7).
+// decides what they mean: spacenavd and Blender read the 3Dconnexion axes with different signs and order).
 enum Axis : int {
     LeftX, LeftY, RightX, RightY, LeftTrigger, RightTrigger,  // gamepads
     TranslateX = 0, TranslateY, TranslateZ, RotateX, RotateY, RotateZ,  // 6-DoF

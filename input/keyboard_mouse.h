@@ -1,6 +1,7 @@
 #pragma once
-// Keyboard and mouse, the fallback with the same actions as the devices: the app fills a plain state from
-// GLFW each frame (and records it), and this turns it into actions for the selected mesh. Fixed keys:
+// Keyboard and mouse, the fallback with the same actions as the devices: the viewer (tools/commands/view.cpp)
+// fills a plain state from GLFW each frame (and records it), and this turns it into actions for the selected
+// mesh. Fixed keys:
 // W/S forward/back, A/D left/right, Q/E down/up (camera frame); Up/Down pitch, Left/Right yaw,
 // PageUp/PageDown roll; right-drag moves in the view plane; Tab next mesh; R reset; Insert add; Delete
 // remove; 1-6 solid/phong/lao/cao/dos/ismos; C cycle shading; F9 recording; P or F12 screenshot.

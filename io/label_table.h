@@ -1,6 +1,6 @@
 #pragma once
-// Label tables: the names and colours of the ids of a label volume (base/label_map.h). Formats and the facts
-// they follow are in planning-formats.md section 2 (Slicer: vtkMRMLColorTableStorageNode.cxx; MRIcron:
+// Label tables: the names and colours of the ids of a label volume (base/label_map.h). The formats, and the
+// sources their rules follow (Slicer: vtkMRMLColorTableStorageNode.cxx; MRIcron:
 // nifti_img.pas LoadColorScheme; mricron-data 1.2.20211006 templates):
 //
 //  MricronNames  `index name [code]` per line, CRLF or LF, e.g. mricron's aal.nii.txt (`1 Precentral_L 2001`)

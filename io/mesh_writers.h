@@ -2,7 +2,7 @@
 // Surface exports of the removed region (clip::TriangleMesh, world RAS millimetres, counter-clockwise seen
 // from outside) for other planning tools.
 //
-// Binary STL (planning-formats.md section 7; vtkSTLWriter): an 80-byte header, a uint32 triangle count, then
+// Binary STL (vtkSTLWriter): an 80-byte header, a uint32 triangle count, then
 // 50-byte records (normal, three vertices as float32, a zero uint16), little-endian. The header reads
 // `curette binary STL, SPACE=RAS` or `... SPACE=LPS`, the tag 3D Slicer looks for (vtkMRMLModelStorageNode).
 // The normal of each record is the unit normal of its vertices ((v1 - v0) x (v2 - v0); 0 0 0 when the

@@ -1,6 +1,6 @@
 #pragma once
 // Label maps as 3D Slicer segmentations (`.seg.nrrd`), single layer: what Slicer's reader
-// (vtkMRMLSegmentationStorageNode.cxx, planning-formats.md section 1) needs, on the NRRD format
+// (vtkMRMLSegmentationStorageNode.cxx) needs, on the NRRD format
 // (http://teem.sourceforge.net/nrrd/format.html). Written:
 //   NRRD0004; type uchar when every id is <= 255, else ushort with `endian: little`; dimension 3;
 //   space: left-posterior-superior; sizes; space directions = the columns of IJK -> LPS (the RAS affine's

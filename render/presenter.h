@@ -1,7 +1,7 @@
 #pragma once
 // The viewer's last step: the rendered image (premultiplied RGBA, row 0 at the top) drawn over the
 // background into the window's default framebuffer (shaders/present.vert, present.frag). It sets all the
-// GL state it needs, so the app layer issues no GL call of its own.
+// GL state it needs, so viewer/ and tools/ issue no GL call of their own.
 
 #include "gl/objects.h"
 #include "gl/program.h"

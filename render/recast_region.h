@@ -1,6 +1,6 @@
 #pragma once
 // Which pixels an exact frame casts again when, since the last exact image, only clip meshes have moved
-// (docs/architecture.md, "Pixels an exact frame casts again"). A pixel is its ray's alone (shaders/raycast.comp:
+// (docs/subsystems.md, "Pixels an exact frame casts again"). A pixel is its ray's alone (shaders/raycast.comp:
 // the same camera, volume, TF, settings and jitter give the same samples), so where the ray meets nothing that
 // changed it is the last image's pixel bit for bit. A rigid motion of mesh i changes, along a ray:
 //  - its clip tests: a sample's answer changes only where the mesh's depth maps call it inside at the old pose

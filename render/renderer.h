@@ -1,7 +1,7 @@
 #pragma once
 // The renderer of one scene: it owns the GPU resources the scene needs (allocated when a pass first needs
 // them, only those its shading modes use) and runs each frame as the plan of passes render/model/frame_plan.h
-// makes from the frame, what the scene has and what is up to date (docs/architecture.md, "The frame plan").
+// makes from the frame, what the scene has and what is up to date (docs/architecture.md, "The frame and its plan").
 
 #include "render/passes/clip_mesh_set.h"
 #include "gl/context.h"

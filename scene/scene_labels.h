@@ -1,5 +1,5 @@
 #pragma once
-// A scene's label volumes, loaded: each set read (app/io), its table completed, resampled onto the scan
+// A scene's label volumes, loaded: each set read (io/), its table completed, resampled onto the scan
 // grid by nearest label (base/label_map.h), and the ids and names the scene wrote (protected, shown, the
 // report's tissue labels) resolved against the table. Also the one mapping from the sets to what the
 // renderer draws (render/label_overlay.h): all sets in one id space, set s's id n at offset_s + n.

@@ -4,7 +4,7 @@
 // z_k = firstDepth + k * sliceDistance, and a pixel's sample is where its ray crosses that plane, so the
 // segment it stands for is the true length along the ray, sliceDistance / cos(angle to the view axis).
 //
-// Occlusion buffer (two channels, DESIGN.md "Tubes and DOS"):
+// Occlusion buffer (two channels, docs/subsystems.md "Tubes in the slab pass"):
 //   .x "all": visibility of the ambient light through the cone, from the clipped volume and the tubes;
 //   .y "geometry": the same from the tubes alone.
 // Eye buffer update (seed 001 Algorithm 1): C += (1 - A) * alpha * La * colour * ambient(prev occlusion).

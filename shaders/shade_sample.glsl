@@ -1,6 +1,6 @@
 // The colour of a classified volume sample in each shading mode (shading_modes.glsl): one definition for the
 // ray caster and the slab pass. The slab pass multiplies it by the light its cone lets through (channel
-// "all" in dos, channel "geometry" in lao/cao: DESIGN.md "Tubes and DOS").
+// "all" in dos, channel "geometry" in lao/cao: docs/subsystems.md "Tubes in the slab pass").
 // Binder: SampleShadingPiece (render/shader_pieces.h): SHADING, ambientScale and V_AO.
 #include "bindings.glsl"
 #include "shading_modes.glsl"

@@ -1,6 +1,6 @@
 // Sampling the data volume. Texture coordinates come from world millimetres through one matrix,
-// worldToTexture, derived from the volume's inverse affine in render/model/volume_geometry.cpp (DESIGN.md
-// "Coordinates and units": the only place). Texture (0,0,0)..(1,1,1) spans voxel cells, so voxel (i,j,k)'s
+// worldToTexture, derived from the volume's inverse affine in render/model/volume_geometry.cpp (the only
+// place that derives it). Texture (0,0,0)..(1,1,1) spans voxel cells, so voxel (i,j,k)'s
 // centre is at ((i,j,k) + 0.5) / dims.
 #include "bindings.glsl"
 

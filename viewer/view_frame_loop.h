@@ -47,7 +47,7 @@ struct FrameLoopSettings {
     ViewQuality quality = ViewQuality::Adaptive;
     // Nothing moved for this long: the motion has stopped. 0.1 s, not 0.2 s, since a motion abandons an exact frame
     // under way at the cost of its slice in flight: the exact frame came 0.10-0.17 s sooner on head-carved-move and
-    // -pause, the motion frames as many and the TF drag's step I as held (docs/architecture.md).
+    // -pause, the motion frames as many and the TF drag's step I as held (docs/measurements.md).
     double settleSeconds = 0.1;
     double previewTargetMs = 70;       // the preview frame time its resolution is steered to
     double minPreviewScale = 0.125;    // preview resolution bounds, as a fraction of the exact frame's; the loop

@@ -166,7 +166,7 @@ ParseResult parseSwitchPro(std::span<const std::uint8_t> r, DeviceState& state) 
     if (r[0] == 0x30 || r[0] == 0x21) {
         if (r.size() < 49 && !(r[0] == 0x21 && r.size() >= 13)) return ParseResult::Truncated;
         const std::uint8_t* p = r.data();
-        // Sticks: 12-bit packed, centre ~2048, Y grows upward (hid.md: SDL inverts, K-NIN negates for
+        // Sticks: 12-bit packed, centre ~2048, Y grows upward (SDL inverts, Linux hid-nintendo negates for
         // their y-down conventions; ours is y-up, so Y is taken as is). Uncalibrated nominal range +-2048.
         auto twelve = [](const std::uint8_t* b, bool high) {
             return high ? static_cast<int>((b[1] >> 4) | (b[2] << 4)) : static_cast<int>(b[0] | ((b[1] & 0x0F) << 8));

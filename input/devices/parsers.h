@@ -1,8 +1,8 @@
 #pragma once
 // One parser per device family: a pure function from one input report (buffer[0] = report ID, as hidapi
 // returns it) to the device state. It returns the reason a report was rejected (and then leaves `state`
-// untouched, so a bad report never makes a mesh jump). Layouts: ../shared/reference/hid.md, each checked
-// against the sources it cites (SDL, Linux hid-playstation/hid-nintendo, spacenavd).
+// untouched, so a bad report never makes a mesh jump). Layouts follow the sources named at each parser:
+// SDL's src/joystick/hidapi drivers, Linux drivers/hid/hid-playstation.c and hid-nintendo.c, spacenavd.
 
 #include "input/device_state.h"
 
@@ -20,19 +20,19 @@ enum class ParseResult {
 };
 const char* parseResultName(ParseResult r);
 
-// DualShock 4 (hid.md section 3): USB report 0x01 (64 bytes), Bluetooth 0x11-0x19 (78 bytes, +2 offset,
+// DualShock 4 (SDL_hidapi_ps4.c, hid-playstation.c): USB report 0x01 (64 bytes), Bluetooth 0x11-0x19 (78 bytes, +2 offset,
 // CRC-32 of 0xA1 + bytes 0..73 at 74-77) and the minimal Bluetooth 0x01 report (10 bytes).
 ParseResult parseDualShock4(std::span<const std::uint8_t> report, DeviceState& state);
-// DualSense (section 4): USB 0x01 (64 bytes), Bluetooth 0x31 (78 bytes, +1 offset, CRC as DS4) and the
+// DualSense (SDL_hidapi_ps5.c, hid-playstation.c): USB 0x01 (64 bytes), Bluetooth 0x31 (78 bytes, +1 offset, CRC as DS4) and the
 // simple 10-byte 0x01.
 ParseResult parseDualSense(std::span<const std::uint8_t> report, DeviceState& state);
-// Switch Pro (section 5): full report 0x30 and subcommand reply 0x21 (>= 49 bytes; 12-bit sticks, Y up),
+// Switch Pro (SDL_hidapi_switch.c, hid-nintendo.c): full report 0x30 and subcommand reply 0x21 (>= 49 bytes; 12-bit sticks, Y up),
 // simple report 0x3F (BT default before the handshake), 0x81 USB command replies (ignored).
 ParseResult parseSwitchPro(std::span<const std::uint8_t> report, DeviceState& state);
-// Xbox One/Series over Bluetooth (section 6): report 0x01 in the 17-byte layout and the old 16-byte (FW 3.x)
+// Xbox One/Series over Bluetooth (SDL_hidapi_xboxone.c): report 0x01 in the 17-byte layout and the old 16-byte (FW 3.x)
 // layout; 0x02 (Xbox button, old firmware) and 0x04 (battery).
 ParseResult parseXboxBluetooth(std::span<const std::uint8_t> report, DeviceState& state);
-// 3Dconnexion (section 7): 0x01 translation (7 bytes) or all six axes (13 bytes), 0x02 rotation, 0x03
+// 3Dconnexion (spacenavd src/dev.c, Blender GHOST_NDOFManager): 0x01 translation (7 bytes) or all six axes (13 bytes), 0x02 rotation, 0x03
 // buttons; axes signed 16-bit, +-350 full scale (clamped), raw axis order and signs.
 ParseResult parseSpaceMouse(std::span<const std::uint8_t> report, DeviceState& state);
 

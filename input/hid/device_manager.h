@@ -50,9 +50,10 @@ public:
     // Messages for the user (opened, released, cannot open); each distinct one once.
     std::vector<std::string> takeMessages();
 
-    // The reports a device of `family` on `bus` needs before it streams full reports (hid.md: DS4 BT reads
-    // feature 0x02; DualSense BT reads feature 0x09; Switch Pro: USB handshake 80 02, 80 03, 80 02, 80 04,
-    // then subcommand 0x03 0x30 for the full report mode). Exposed for tests.
+    // The reports a device of `family` on `bus` needs before it streams full reports (SDL's hidapi drivers,
+    // Linux hid-playstation and hid-nintendo: DS4 BT reads feature 0x02; DualSense BT reads feature 0x09;
+    // Switch Pro: USB handshake 80 02, 80 03, 80 02, 80 04, then subcommand 0x03 0x30 for the full report
+    // mode). Exposed for tests.
     struct StartupStep {
         enum Kind { Write, GetFeature } kind;
         std::vector<std::uint8_t> bytes;  // for GetFeature: bytes[0] = report ID, size = buffer length

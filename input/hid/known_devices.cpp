@@ -14,7 +14,7 @@ std::optional<DeviceFamily> familyOf(std::uint16_t vid, std::uint16_t pid) {
         {0x054c, 0x0df2, DeviceFamily::DualSense},
         // Nintendo Switch Pro Controller (USB and BT).
         {0x057e, 0x2009, DeviceFamily::SwitchPro},
-        // Xbox One / Series over Bluetooth (USB is GIP, not HID, on Linux: hid.md section 6).
+        // Xbox One / Series over Bluetooth (USB is GIP, not HID: Linux's xpad driver binds it).
         {0x045e, 0x02e0, DeviceFamily::XboxBluetooth}, {0x045e, 0x02fd, DeviceFamily::XboxBluetooth},
         {0x045e, 0x0b20, DeviceFamily::XboxBluetooth}, {0x045e, 0x0b05, DeviceFamily::XboxBluetooth},
         {0x045e, 0x0b22, DeviceFamily::XboxBluetooth}, {0x045e, 0x0b13, DeviceFamily::XboxBluetooth},

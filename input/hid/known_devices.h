@@ -1,5 +1,6 @@
 #pragma once
-// Which VID/PID pairs curette drives, and with which parser (hid.md sections 3-7).
+// Which VID/PID pairs curette drives, and with which parser (IDs from SDL's usb_ids.h, the Linux HID drivers
+// and spacenavd's device list).
 
 #include "input/device_state.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// A frame as a plan of passes (the Filament frame-graph model; docs/architecture.md "The frame plan"). One
+// A frame as a plan of passes (the Filament frame-graph model; docs/architecture.md "The frame and its plan"). One
 // table declares every pass: its name (the one the timings, the benches, the viewer overlay and
 // `curette render --plan` print), the paper step it implements, and the resources it reads and writes. One
 // function, planFrame, turns the shading mode, what the scene has, and what is already up to date into the

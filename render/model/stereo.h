@@ -1,5 +1,5 @@
 #pragma once
-// Stereo pairs (docs/architecture.md, "Stereo"). GL-free: the rig and the composition of two eye images;
+// Stereo pairs (docs/subsystems.md, "Stereo"). GL-free: the rig and the composition of two eye images;
 // render/stereo_render.h renders them.
 //
 // The rig is off-axis: the eyes sit eyeSeparationMm apart on the camera's right axis, their view axes parallel

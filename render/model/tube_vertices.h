@@ -1,6 +1,6 @@
 #pragma once
 // Tube and line geometry as the CPU builds it (render/model/tube_geometry.h) and how tubes are shaded: plain data,
-// no GL, so the scene reader and the app can hold them; render/passes/tube_set.h puts them on the GPU.
+// no GL, so scene/ and session/ can hold them; render/passes/tube_set.h puts them on the GPU.
 
 #include "base/transfer_function.h"
 

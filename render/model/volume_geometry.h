@@ -1,6 +1,6 @@
 #pragma once
 // Where a volume sits in the world and how world millimetres map to texture coordinates. This is the one
-// place texture coordinates are derived from the affine (DESIGN.md "Coordinates and units"); every pass and
+// place texture coordinates are derived from the affine (world space is RAS millimetres); every pass and
 // every CPU reference uses it.
 
 #include <glm/glm.hpp>

@@ -1,6 +1,6 @@
 #pragma once
-// The order of a dispatch's work groups on llvmpipe (docs/architecture.md, "Ray casting on llvmpipe: empty
-// space and thread balance"). Its compute thread pool (lp_cs_tpool.c, Mesa 22.3) hands each of its T worker
+// The order of a dispatch's work groups on llvmpipe (docs/subsystems.md, "Empty space, tile
+// order and clip spans"). Its compute thread pool (lp_cs_tpool.c, Mesa 22.3) hands each of its T worker
 // threads one contiguous run of floor(n / T) of a dispatch's n work groups, in gl_WorkGroupID order (x fastest),
 // and the n mod T left over one at a time. A list whose costly entries sit together (the bricks around a clip
 // mesh, or the slab of a step I slice that holds the head while the rest is air) then keeps one thread busy

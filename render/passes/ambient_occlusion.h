@@ -1,5 +1,5 @@
 #pragma once
-// Contextual Ambient Occlusion (seed 002): steps I, IV and V (docs/architecture.md, "The frame plan").
+// Contextual Ambient Occlusion (seed 002): steps I, IV and V (docs/architecture.md, "The frame and its plan").
 //   I   precompute(): LAO of every voxel without clipping -> V_PAO
 //   IV  update():     anti-aliased voxel clipping -> V_o (clipped opacity) and V_m (categories a/b/c)
 //   V   update():     V_AO: category c copies V_PAO, b (and a voxels next to a visible one) recompute LAO,

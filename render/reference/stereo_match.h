@@ -1,6 +1,6 @@
 #pragma once
 // Surface points a stereo pair shows in both eyes, and the shading difference between the eyes there: the
-// measure of `curette bench stereo` (docs/architecture.md, "Stereo"). CPU only.
+// measure of `curette bench stereo` (docs/subsystems.md, "Stereo"). CPU only.
 //
 // A pixel's surface point is where its ray's accumulated opacity first reaches 0.5 (the CPU reference ray
 // march, render/reference/raycast_reference.h, with the scene's clip region cut away), or the tube surface

@@ -1,4 +1,4 @@
-// Device parsers against reports built from the documented layouts (hid.md): bytes by hand for the key
+// Device parsers against reports built from the documented layouts (input/devices/parsers.h): bytes by hand for the key
 // facts, encoders for every button and extreme; truncated, unknown and corrupt reports leave the state alone.
 #include "input/devices/encoders.h"
 #include "input/devices/parsers.h"
@@ -12,7 +12,8 @@ namespace curette::input {
 namespace {
 
 TEST(Parsers, SonyCrcMatchesTheReferenceVector) {
-    // hid.md section 3: report 0x11 followed by 73 zero bytes -> CRC bytes ac 18 01 99 (little endian).
+    // CRC-32 (zlib crc32) over 0xA1 and report 0x11 followed by 73 zero bytes -> CRC bytes ac 18 01 99
+    // (little endian), computed with zlib.
     std::vector<std::uint8_t> report(74, 0);
     report[0] = 0x11;
     EXPECT_EQ(sonyBluetoothCrc(0xA1, report), 0x990118acu);
@@ -185,7 +186,7 @@ TEST(Parsers, BadReportsNeverChangeTheState) {
         for (std::size_t e = 0; e < f.encoders.size(); ++e) {
             std::vector<std::uint8_t> good = f.encoders[e](known);
             DeviceState s = known;
-            // Xbox reports come in a 17- and a 16-byte layout (hid.md section 6): cut below 16 for it.
+            // Xbox reports come in a 17- and a 16-byte layout (SDL_hidapi_xboxone.c): cut below 16 for it.
             std::size_t longest = f.family == DeviceFamily::XboxBluetooth ? 15 : good.size() - 1;
             for (std::size_t cut : {std::size_t{1}, std::size_t{5}, good.size() / 2, longest}) {
                 std::vector<std::uint8_t> truncated(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(cut));

@@ -33,7 +33,7 @@ TEST(LabelTable, AalNamesDropTheCodeColumnAndTakePlanarLutColours) {
     EXPECT_EQ(table.find(116)->name, "Vermis_10");
     ASSERT_NE(table.findName("frontal_sup_orb_l"), nullptr);
     EXPECT_EQ(table.findName("frontal_sup_orb_l")->id, 5);
-    // planning-formats.md section 2, checked on the bytes: planar reading gives 1 = 2 = (204,204,204) and
+    // MRIcron's planar .lut (io/label_table.h), checked on the bytes: planar reading gives 1 = 2 = (204,204,204) and
     // 3 = 4 = (203,149,149).
     EXPECT_EQ(rgb255(table.find(1)), "204 204 204");
     EXPECT_EQ(rgb255(table.find(2)), "204 204 204");
