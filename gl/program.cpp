@@ -265,8 +265,74 @@ glm::uvec3 Program::workGroupSize() const {
 void Program::dispatchCovering(glm::uvec3 items) const {
     glm::uvec3 group = workGroupSize();
     glm::uvec3 groups = (items + group - 1u) / group;
-    glUseProgram(program_.name());
+    use();
     glDispatchCompute(groups.x, groups.y, groups.z);
+}
+
+namespace {
+thread_local ProgramUseLog* currentUseLog = nullptr;
+
+bool isSamplerType(GLenum t) {
+    switch (t) {
+        case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_2D_ARRAY: case GL_SAMPLER_1D_ARRAY:
+        case GL_SAMPLER_CUBE: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_BUFFER:
+        case GL_INT_SAMPLER_1D: case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D: case GL_INT_SAMPLER_2D_ARRAY:
+        case GL_UNSIGNED_INT_SAMPLER_1D: case GL_UNSIGNED_INT_SAMPLER_2D: case GL_UNSIGNED_INT_SAMPLER_3D:
+        case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY: case GL_UNSIGNED_INT_SAMPLER_BUFFER: return true;
+        default: return false;
+    }
+}
+
+bool isImageType(GLenum t) {
+    switch (t) {
+        case GL_IMAGE_1D: case GL_IMAGE_2D: case GL_IMAGE_3D: case GL_IMAGE_2D_ARRAY: case GL_IMAGE_BUFFER:
+        case GL_INT_IMAGE_2D: case GL_INT_IMAGE_3D: case GL_INT_IMAGE_2D_ARRAY:
+        case GL_UNSIGNED_INT_IMAGE_1D: case GL_UNSIGNED_INT_IMAGE_2D: case GL_UNSIGNED_INT_IMAGE_3D:
+        case GL_UNSIGNED_INT_IMAGE_2D_ARRAY: case GL_UNSIGNED_INT_IMAGE_BUFFER: return true;
+        default: return false;
+    }
+}
+
+void blockBindings(GLuint program, GLenum interface, std::set<unsigned>& out) {
+    GLint count = 0;
+    glGetProgramInterfaceiv(program, interface, GL_ACTIVE_RESOURCES, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const GLenum property = GL_BUFFER_BINDING;
+        GLint binding = 0;
+        glGetProgramResourceiv(program, interface, static_cast<GLuint>(i), 1, &property, 1, nullptr, &binding);
+        out.insert(static_cast<unsigned>(binding));
+    }
+}
+}  // namespace
+
+void Program::use() const {
+    glUseProgram(program_.name());
+    if (currentUseLog) currentUseLog->programs_.push_back(program_.name());
+}
+
+ProgramUseLog::ProgramUseLog() : outer_(currentUseLog) { currentUseLog = this; }
+ProgramUseLog::~ProgramUseLog() {
+    if (outer_) outer_->programs_.insert(outer_->programs_.end(), programs_.begin(), programs_.end());
+    currentUseLog = outer_;
+}
+
+ProgramBindings activeBindings(GLuint program) {
+    ProgramBindings b;
+    GLint count = 0;
+    glGetProgramInterfaceiv(program, GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const GLenum properties[2] = {GL_TYPE, GL_LOCATION};
+        GLint values[2] = {0, -1};
+        glGetProgramResourceiv(program, GL_UNIFORM, static_cast<GLuint>(i), 2, properties, 2, nullptr, values);
+        auto type = static_cast<GLenum>(values[0]);
+        if (values[1] < 0 || !(isSamplerType(type) || isImageType(type))) continue;
+        GLint unit = 0;
+        glGetUniformiv(program, values[1], &unit);
+        (isSamplerType(type) ? b.samplers : b.images).insert(static_cast<unsigned>(unit));
+    }
+    blockBindings(program, GL_SHADER_STORAGE_BLOCK, b.storageBlocks);
+    blockBindings(program, GL_UNIFORM_BLOCK, b.uniformBlocks);
+    return b;
 }
 
 }  // namespace curette::gl

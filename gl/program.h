@@ -33,7 +33,7 @@ public:
 
     GLuint name() const { return program_.name(); }
     explicit operator bool() const { return static_cast<bool>(program_); }
-    void use() const { glUseProgram(program_.name()); }
+    void use() const;   // glUseProgram, recorded by a live ProgramUseLog
 
     // Uniform setters by name (glProgramUniform*). The name must be declared by the program's source (any of
     // its shader pieces), or set() throws: a typo or a stale name is an error, as an unknown scene key is. A
@@ -83,5 +83,28 @@ private:
     std::string shader_;
     std::map<Defines, Program> programs_;
 };
+
+// Records every program made current (Program::use) on this thread while it lives: what a pass really ran, so
+// the resources its programs bind can be held against what the pass declares (render/pass_bindings.h).
+class ProgramUseLog {
+public:
+    ProgramUseLog();
+    ~ProgramUseLog();
+    ProgramUseLog(const ProgramUseLog&) = delete;
+    ProgramUseLog& operator=(const ProgramUseLog&) = delete;
+    const std::vector<GLuint>& programs() const { return programs_; }
+
+private:
+    friend class Program;
+    std::vector<GLuint> programs_;
+    ProgramUseLog* outer_ = nullptr;
+};
+
+// The units a linked program's active resources are bound to (the GL's introspection: what the compiled shaders
+// really read or write, after dead code is gone).
+struct ProgramBindings {
+    std::set<unsigned> samplers, images, storageBlocks, uniformBlocks;
+};
+ProgramBindings activeBindings(GLuint program);
 
 }  // namespace curette::gl

@@ -4,6 +4,7 @@
 // makes from the frame, what the scene has and what is up to date (docs/architecture.md, "The frame and its plan").
 
 #include "render/passes/clip_mesh_set.h"
+#include "render/frame_run.h"
 #include "gl/context.h"
 #include "gl/program.h"
 #include "gl/timer.h"
@@ -81,12 +82,7 @@ public:
 
     // Preview and exact frames (docs/architecture.md, "Preview and exact frames"): what a viewer shows while
     // something moves or while step I runs, at whatever size it asks.
-    // Where a preview's ambient factor comes from (lao/cao frames; other modes preview as they render).
-    enum class PreviewAmbient {
-        None,          // V_PAO is not there yet (step I in progress): the frame is shaded phong instead
-        Precomputed,   // V_PAO, the unclipped LAO (no exact frame since step I)
-        LastExact,     // V_AO of the last exact frame (its poses, not this frame's, near the cut)
-    };
+    using PreviewAmbient = curette::PreviewAmbient;   // render/frame_run.h
     // The frame's plan without steps I, IV and V: the clip maps (the frame's own, as the exact frame would draw
     // them) and the image passes, shading with `previewAmbient()`. It writes the output image and nothing any
     // exact frame reads, so the next render() is unchanged by it (Preview.NeverChangesTheExactFrame).
@@ -109,7 +105,7 @@ public:
     double exactProgress() const;
     // Whether the image shown is a preview of `frame` under the current scene (showing() is for exact ones).
     bool showingPreview(const FrameDescription& frame) const;
-    bool lastFrameExact() const { return shownExact_; }
+    bool lastFrameExact() const { return shown_ && shown_->exact; }
     // Step I in slices: whether `frame` needs V_PAO and it is not for the current volume, TF and LAO settings;
     // then advancePrecompute(budget) runs slices of it (AmbientOcclusion::advancePrecompute) for about budgetMs
     // of GPU time (at least one slice; it waits for the GPU to time them, and sizes the next slice from the
@@ -125,8 +121,8 @@ public:
     // Waits until the GPU has finished every pass submitted so far (for wall-clock timing).
     void finish() const;
     // The image shown: the last exact frame or preview (a preview is kept in an image of its own).
-    GLuint outputTexture() const { return images_[shownImage_].texture.name(); }
-    glm::ivec2 outputSize() const { return images_[shownImage_].size; }
+    GLuint outputTexture() const { return images_[shownImageIndex()].texture.name(); }
+    glm::ivec2 outputSize() const { return images_[shownImageIndex()].size; }
     Image readImage() const;
 
     // Count the volume samples the ray caster takes (for `bench`; slows the frame slightly when on).
@@ -149,6 +145,12 @@ public:
     // The share of the image the last exact frame's ray cast covered (1: all of it; 0: it kept every pixel).
     double lastRecastShare() const { return lastRecastShare_; }
 
+    // Whether every frame records which resources each pass's programs really bind (the GL's introspection of
+    // the programs it used, render/pass_bindings.h); lastPassBindings() holds the image shown's, in plan order.
+    // For the test that holds the passes' declared reads and writes against them.
+    void setAuditBindings(bool on) { auditBindings_ = on; }
+    const std::vector<BoundResources>& lastPassBindings() const { return lastPassBindings_; }
+
     // Time per pass of the frames rendered since the last call.
     FrameTimings collectTimings();
     // Every GPU resource allocated now, named by the descriptor table (render/model/gpu_resources.h).
@@ -158,60 +160,54 @@ private:
     PlanInputs planInputs(const FrameDescription& frame) const;
     // The versions of everything V_PAO and V_AO are computed from; the clip meshes' from the set itself.
     InputVersions currentVersions() const;
-    // Whether this frame wants the dilated maps: cao does; lao does not; the other modes keep what is drawn.
+    ImageStamp stampOf(const FrameDescription& frame) const { return {frame, currentVersions(), appearanceVersion_}; }
+    // Whether this frame wants the dilated maps (ShadingModeTraits::dilatedMaps in the AO modes; the other modes
+    // keep what is drawn).
     bool dilatedMapsWanted(ShadingMode mode) const;
     bool tubesInView(const FrameDescription& frame) const;
-    void run(Pass pass, const FrameDescription& frame);
-    // The whole image, or (bandCount >= 0) its bands [firstBand, firstBand + bandCount) of tile rows;
-    // returns the image's number of bands.
-    int runRayCast(const FrameDescription& frame, bool ismosLayers = false, int firstBand = 0, int bandCount = -1);
+
+    // The one executor (render/frame_run.h). beginRun plans an exact frame or a preview; execute runs its passes
+    // from the run's context, each whole (budgetMs < 0) or as the next slice of it, and returns true once every
+    // pass is done; finishRun shows its image.
+    FrameRun beginRun(const FrameDescription& frame, bool exact);
+    bool execute(FrameRun& run, double budgetMs, std::uint32_t sliceUnits = 0);
+    void finishRun(const FrameRun& run);
+    PassContext contextOf(FrameRun& run);
+    // One pass, whole; or its next slice (step IV, step V and the ray cast have slices; the others run whole).
+    // Both return whether the pass is done.
+    bool runWhole(Pass pass, const PassContext& context, FrameRun& run);
+    bool runSlice(Pass pass, const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
+    bool stepIVSlice(FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
+    bool stepVSlice(FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
+    bool rayCastSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
+    void beginStepIV(FrameRun& run);
+    void finishStepV(const FrameRun& run);
+    // The ray cast of the context's frame: the whole image, or (bandCount >= 0) its bands [firstBand, firstBand +
+    // bandCount) of tile rows; returns the image's number of bands.
+    int runRayCast(const PassContext& context, bool ismosLayers, int firstBand = 0, int bandCount = -1);
+    void runSlabPass(const PassContext& context);
+    void runComposite(const PassContext& context);
     // The pixels the exact frame `frame` with plan `plan` must cast (none: all of them): those the meshes' motion
     // since the last exact image can change, when nothing else changed (render/recast_region.h).
     std::optional<PixelRegion> recastRegion(const FrameDescription& frame, const FramePlan& plan) const;
-    // Called as an exact frame starts writing the exact image: from then on it is no longer the last one's.
-    void beginExactImage(const std::optional<PixelRegion>& region, glm::ivec2 size);
-    // The exact frame in slices (advanceExact).
-    struct ExactJob {
-        FrameDescription frame;
-        FramePlan plan;
-        std::size_t next = 0;                 // the pass of plan.passes under way
-        InputVersions versionsSeen;           // the scene at the end of the last slice ...
-        std::uint64_t appearanceSeen = 0;
-        std::uint64_t previewsSeen = 0;       // ... and the previews drawn by then
-        bool stepIVBegun = false, stepIVDone = false, stepVBegun = false, stepVDone = false;
-        InputVersions ambientVersions;        // what step IV clipped (V_AO's freshness once step V is done)
-        std::uint32_t stepIVBricks = 0, lastStepIVBricks = 0;
-        std::uint32_t stepVGroups = 0;
-        int bands = 0, bandsDone = 0;         // the ray cast's
-        std::uint32_t lastBands = 0;          // the last slices' sizes
-        std::uint32_t lastStepVGroups = 0;
-        std::optional<PixelRegion> recast;      // the pixels its ray cast covers (none: all)
-        bool imageBegun = false;              // its first image pass ran (the last exact image is gone)
-        bool rayCastBegun = false;
-    };
-    void beginImage(ExactJob& job);           // beginExactImage for the job's first image pass
-    bool exactJobCurrent(const FrameDescription& frame) const;
-    void runExactSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
-    // The exact frame under way is given up: if its step IV ran and its step V is unfinished, step V is abandoned
+    // Called as an exact run starts writing the exact image: from then on it is no longer the last one's.
+    void beginExactImage(FrameRun& run);
+    // The exact frame in slices is given up: if its step IV ran and its step V is unfinished, step V is abandoned
     // (AmbientOcclusion::abandonUpdate), and the next exact frame's IV and V visit this one's bricks too.
     void abandonExactJob();
-    void beginStepV(ExactJob& job);
-    // A slice of step IV (its first decides and uploads the bricks); whether step IV is done.
-    bool stepIVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
-    bool stepVSlice(ExactJob& job, double budgetMs, std::uint32_t sliceUnits);
-    std::optional<ExactJob> exactJob_;
+    bool exactJobCurrent(const FrameDescription& frame) const;
+    std::optional<FrameRun> exactJob_;
+    bool auditBindings_ = false;
+    std::vector<BoundResources> lastPassBindings_;
+    void recordBindings(FrameRun& run, Pass pass, const std::vector<GLuint>& programs) const;
     std::uint64_t previewsRendered_ = 0;
-    double stepVGroupsPerMs_ = 0, rayCastBandsPerMs_ = 0, stepIVBricksPerMs_ = 0;   // the last slices' rates (0: not measured yet)
-    // The ambient texture the image passes shade lao/cao with: V_AO, or in a preview previewAmbient()'s.
-    GLuint shadedAmbientTexture() const;
+    SliceSizer stepIVSizer_{SliceSizer::Rate::Last}, stepVSizer_{SliceSizer::Rate::Last}, rayCastSizer_{SliceSizer::Rate::Last};
+    SliceSizer precomputeSizers_[2] = {SliceSizer{SliceSizer::Rate::Slowest}, SliceSizer{SliceSizer::Rate::Slowest}};   // step I's phases
     void validateSize(const FrameDescription& frame) const;
-    void markShown(const FrameDescription& frame, bool exact);
-    void runSlabPass(const FrameDescription& frame, bool withTubes);
-    void runComposite(const FrameDescription& frame);
     void updateOccupancy();
     void updateSeenBricks();
     std::unique_ptr<AmbientOcclusion> makeAmbientOcclusion();   // and the seen bricks it reads, made with the first one
-    void ensureOutput(glm::ivec2 size);
+    void ensureOutput(int image, glm::ivec2 size);
 
     gl::Context& context_;
     GpuVolume volume_;
@@ -226,17 +222,19 @@ private:
     // Inputs of the image that no AO product depends on (tubes, tube shading, the ambient scale): with the
     // frame and currentVersions(), what showing() compares.
     std::uint64_t appearanceVersion_ = 1;
-    FramePlan lastPlan_;
-    std::optional<FrameDescription> shownFrame_;
-    InputVersions shownVersions_;
-    std::uint64_t shownAppearanceVersion_ = 0;
-    bool shownExact_ = false;
+    FramePlan lastPlan_;             // the plan of the image shown
+    // The image shown: which one, what it shows, and for a preview its ambient source.
+    struct ShownImage {
+        ImageStamp stamp;
+        bool exact = false;
+        PreviewAmbient ambient = PreviewAmbient::None;
+    };
+    std::optional<ShownImage> shown_;
+    int shownImageIndex() const { return shown_ && !shown_->exact ? kPreviewImage : kExactImage; }
     // The exact image (images_[kExactImage]) as the last exact frame left it, and what it was rendered from:
     // none while an exact frame is writing it, or before the first.
     struct ExactImage {
-        FrameDescription frame;
-        InputVersions versions;
-        std::uint64_t appearance = 0;
+        ImageStamp stamp;
         ClipSnapshot clip;
         glm::ivec3 diagnostics{0};
     };
@@ -245,18 +243,9 @@ private:
     glm::ivec3 diagnostics() const { return {countSamples_ ? 1 : 0, emptySpaceJumpLimit_, tileRowsPerBand_}; }
     std::optional<ExactImage> exactImage_;
     bool recastOnlyChanged_ = true;
-    std::optional<PixelRegion> recastRegion_;   // the exact frame under way: the pixels its ray cast covers
-    std::optional<TileSpans> recastSpans_;       // ... in the ray caster's tiles,
-    gl::Buffer recastSpanBuffer_;                // ... uploaded
     double lastRecastShare_ = 1.0;
-    PreviewAmbient shownPreviewAmbient_ = PreviewAmbient::None;
-    std::optional<PreviewAmbient> previewing_;   // set while renderPreview runs its passes
     bool ambientWritten_ = false;                // V_AO written (step V) since the current V_PAO's step I
     std::optional<InputVersions> slicingFor_;    // the inputs the step I in slices is computing V_PAO for
-    // The slowest rate a slice of each phase ran at (0: not measured yet). Not the last slice's: bricks no
-    // visible sample reads cost a fraction of the others (LaoSettings::onlyWhereSeen), so a rate measured in
-    // the air around a head would size the first slice in tissue many times over the budget.
-    double precomputeBricksPerMs_[2] = {0, 0};
     gl::Texture occupancy_;
     // Per brick of GpuVolume::seenBrickSize: 0 where a sample may have opacity, else 255; steps I and V cast
     // LAO rays only in bricks marked 0 (LaoSettings::onlyWhereSeen).
@@ -267,9 +256,6 @@ private:
     };
     static constexpr int kExactImage = 0, kPreviewImage = 1;
     OutputImage images_[2];          // exact frames (render, advanceExact) and previews (renderPreview)
-    int target_ = kExactImage;       // the image the passes write
-    int shownImage_ = kExactImage;
-    GLuint targetTexture() const { return images_[target_].texture.name(); }
     gl::Buffer sampleCounter_;
     bool countSamples_ = false;
     int emptySpaceJumpLimit_ = 255;

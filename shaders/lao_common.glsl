@@ -21,7 +21,7 @@ layout(binding = BINDING_MASK) uniform usampler3D categoryMask;
 // the brick and a one-voxel apron, and a shown label marks every brick whose apron holds it). If v's own brick
 // is empty (not 0 here, Renderer::updateOccupancy), the TF gives no opacity anywhere in that range, so no
 // sample that reads v has opacity: no pixel depends on v's LAO, and steps I and V write 1 without a ray.
-layout(binding = BINDING_OCCUPANCY) uniform sampler3D seenBricks;   // on the ray caster's occupancy unit (another pass)
+layout(binding = BINDING_SEEN_BRICKS) uniform sampler3D seenBricks;
 uniform int seenBrickSize;
 
 bool ambientSeen(ivec3 v) { return texelFetch(seenBricks, v / seenBrickSize, 0).r == 0.0; }

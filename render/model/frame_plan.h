@@ -74,6 +74,7 @@ struct PlanInputs {
     ShadingMode shading = ShadingMode::Phong;
     int clipMeshes = 0;
     bool clipMapsCurrent = true;   // every mesh's maps (and the dilated ones if the mode needs them) drawn
+    bool labels = false;           // the scene has a label volume
     bool tubes = false;            // the scene has tubes ...
     bool tubesInView = false;      // ... and they may cover a pixel of this frame
     bool precomputedCurrent = false;

@@ -19,6 +19,7 @@ constexpr ResourceInfo kResources[] = {
     {Resource::PrecomputedAo, "V_PAO (precomputed LAO)", "R16 3D", "step I: LAO without clipping"},
     {Resource::Ambient, "V_AO (LAO under clipping)", "R16 3D", "step V: the ambient factor the integrators read"},
     {Resource::RecomputeList, "recompute list", "uint32 buffer", "step V: the voxels to recompute (compacted dispatch)"},
+    {Resource::VisitedBricks, "visited bricks", "uint32 buffer", "steps IV and V: the bricks they visit; step IV flags those whose V_o changed or whose LAO can"},
     {Resource::LaoDirections, "LAO directions", "vec4 buffer", "the K rays of eq. 3 with their weights"},
     {Resource::TubeGeometry, "tube geometry", "vertex buffers", "tubes (triangles) or illuminated lines"},
     {Resource::GBuffer, "G-buffer + partial occlusion", "RGBA16F x2, R32F x2, D32F", "tube colour, normal, depth; occlusion at the surface"},

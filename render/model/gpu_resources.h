@@ -23,6 +23,7 @@ enum class Resource {
     PrecomputedAo,     // V_PAO
     Ambient,           // V_AO
     RecomputeList,     // step V's compacted list
+    VisitedBricks,     // the bricks steps IV and V visit, with step IV's flags per brick
     LaoDirections,     // the K LAO rays
     TubeGeometry,      // tube or line vertex buffers
     GBuffer,           // tube G-buffer and the partial-occlusion buffer

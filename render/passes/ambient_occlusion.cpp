@@ -179,7 +179,7 @@ void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
     // lao_common.glsl's: the voxels no visible sample reads (ambientSeen).
     if (!seenBricks_) return;
     p.set("seenBrickSize", GpuVolume::seenBrickSize);
-    glBindTextureUnit(binding::occupancy, seenBricks_->name());
+    glBindTextureUnit(binding::seenBricks, seenBricks_->name());
 }
 
 void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,

@@ -191,5 +191,40 @@ TEST(ExactInSlices, AnAbandonedStepVIsNotFinishedByTheNextExactFrame) {
     EXPECT_EQ(abandoned, after) << "the next exact frame also ran the abandoned step V";
 }
 
+// The exact frame in slices runs the plan of the frame it computes, not the last frame's: a scene that gained
+// tubes after its last exact frame (so that frame ran no tube G-buffer) is rendered with them, in a mode whose
+// tubes go through the slab pass (cao, with steps IV and V sliced too) and in ismos (pass 1 stops at the tubes),
+// and equals render() of the same state bit for bit. Each pass reading the plan it belongs to is what makes it
+// so; a pass reading the renderer's last plan drew these frames without the tubes' occlusion.
+TEST(ExactInSlices, TubesAndIsmosInASlicedFrameEqualRender) {
+    for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Ismos}) {
+        SCOPED_TRACE(shadingModeName(mode));
+        TubeVertices tube = test::straightTube(glm::dvec3(0, -2, 0), glm::dvec3(0, 0, 1), 14.0, 2.0, glm::vec4(1, 0.4, 0.2, 1));
+        MovingSphereScene sliced(mode), whole(mode);
+        sliced.renderer->render(sliced.frame);   // no tubes yet: this plan has no tube G-buffer
+        sliced.moveTo(2);
+        whole.moveTo(2);
+        sliced.renderer->setTubes(tube, TubeShading{});
+        whole.renderer->setTubes(tube, TubeShading{});
+        whole.renderer->render(whole.frame);
+        ASSERT_TRUE(whole.renderer->lastPlan().runs(Pass::TubeGBuffer));
+        int calls = 0;
+        while (!sliced.renderer->advanceExact(sliced.frame, 0.0, 2)) ASSERT_LT(++calls, 100000);
+        EXPECT_GE(calls, 3) << "nothing was sliced";
+        EXPECT_TRUE(sliced.renderer->lastPlan().runs(Pass::TubeGBuffer));
+        EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage()))
+            << "the exact frame in slices differs from render() with tubes in view";
+        // A preview between them changes neither: the next exact frame of another pose still equals render().
+        sliced.moveTo(3);
+        whole.moveTo(3);
+        FrameDescription small = sliced.frame;
+        small.size = {24, 20};
+        sliced.renderer->renderPreview(small);
+        while (!sliced.renderer->advanceExact(sliced.frame, 0.0, 3)) ASSERT_LT(++calls, 200000);
+        whole.renderer->render(whole.frame);
+        EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "after a preview";
+    }
+}
+
 }  // namespace
 }  // namespace curette

@@ -492,6 +492,7 @@ TEST(Raycast, BindingsMatchGlsl) {
     EXPECT_EQ(glsl.at("BINDING_TRANSFER_FUNCTION"), binding::transferFunction);
     EXPECT_EQ(glsl.at("BINDING_GRADIENT_OPACITY"), binding::gradientOpacity);
     EXPECT_EQ(glsl.at("BINDING_OCCUPANCY"), binding::occupancy);
+    EXPECT_EQ(glsl.at("BINDING_SEEN_BRICKS"), binding::seenBricks);
     EXPECT_EQ(glsl.at("BINDING_AMBIENT"), binding::ambient);
     EXPECT_EQ(glsl.at("BINDING_OPACITY"), binding::opacity);
     EXPECT_EQ(glsl.at("BINDING_PRECOMPUTED_AO"), binding::precomputedAo);
