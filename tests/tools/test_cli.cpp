@@ -1,6 +1,6 @@
 // The `curette` executable: exit codes, one clear error line, PNGs written atomically (nothing left behind on
 // failure), `info` on the real head.
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 
 #include <gtest/gtest.h>
 

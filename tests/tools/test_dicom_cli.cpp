@@ -1,7 +1,7 @@
 // `curette info` and `curette render` on DICOM folders, run as a user would: the table of series, which one
 // opens, the patient's name and ids only with --show-identifiers, one error line for a refused series, and a
 // scene whose volume is a DICOM folder.
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 #include "tests/io/dicom_test_writer.h"
 
 #include <gtest/gtest.h>

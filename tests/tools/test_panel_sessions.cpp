@@ -14,7 +14,7 @@
 #include "input/hid/fake_backend.h"
 #include "render/renderer.h"
 
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 
 #include <gtest/gtest.h>
 

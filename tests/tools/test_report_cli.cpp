@@ -11,7 +11,7 @@
 #include "mesh/gltf_mesh.h"
 #include "mesh/primitives.h"
 #include "mesh/triangle_mesh.h"
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 #include "tests/io/io_test_support.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 #include "scene/scene.h"
 #include "base/error.h"
 #include "base/json_reader.h"
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 
 #include <gtest/gtest.h>
 

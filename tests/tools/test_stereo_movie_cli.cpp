@@ -1,7 +1,7 @@
 // The command line of stereo, movies and GPU choice, as a user meets it: `render --stereo`, `render
 // --turntable` (with a stand-in ffmpeg on PATH that records what it is handed, so no test needs the real one),
 // `replay --mp4`, `info --gl` and `--gpu`.
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // A scene's "tubes" may name any tract format the readers take: `curette render` on a tiny scene whose tubes
 // are a .trx zip, a TRX folder and a .tck.gz draws them (the plan has the tube passes, and the image differs
 // from the scene without tubes); a broken .trx is one error line naming the file and the field, exit 2, no PNG.
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 #include "tests/io/io_test_support.h"
 #include "tests/tracts/trx_test_writer.h"
 

@@ -4,7 +4,7 @@
 #include "io/tck_writer.h"
 #include "io/tract_file.h"
 #include "tools/tract_synthesis.h"
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 #include "tests/io/io_test_support.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // (nibabel's test data), a MetaImage file, a volume with NaN voxels ("no data"), and the statistics `info`
 // prints, which leave those voxels out.
 #include "scene/volume_statistics.h"
-#include "tests/app/run_curette.h"
+#include "tests/tools/run_curette.h"
 
 #include <gtest/gtest.h>
 
