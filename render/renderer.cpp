@@ -166,8 +166,7 @@ bool Renderer::tubesInView(const FrameDescription& frame) const {
     // Conservative: the tubes' world box is outside the view only when all eight corners lie beyond one plane
     // of the view frustum; then they cover no pixel and the frame is the one without tubes.
     if (!tubes_) return false;
-    double aspect = double(frame.size.x) / frame.size.y;
-    glm::dmat4 viewProjection = frame.camera.projection(aspect) * frame.camera.view();
+    glm::dmat4 viewProjection = frame.camera.viewProjection(frame.size);
     glm::dvec3 lo = tubes_->boundsMin(), hi = tubes_->boundsMax();
     for (int plane = 0; plane < 6; ++plane) {
         int axis = plane / 2;
@@ -666,7 +665,7 @@ void Renderer::runComposite(const FrameDescription& frame) {
     setLightingUniforms(c, frame, tubeShading_.material);
     c.set("poissonCount", poissonCount_);
     // Section 3.1.5: the vicinity radius l_vicinity tan(theta), projected at the surface's depth.
-    double pixelsPerMmAtUnitDepth = frame.size.y / (2.0 * std::tan(glm::radians(frame.camera.fovYDeg) / 2.0));
+    double pixelsPerMmAtUnitDepth = frame.camera.pixelsPerMmAtUnitDepth(frame.size.y);
     c.set("vicinityRadiusPixelsAtUnitDepth",
           static_cast<float>(tubeShading_.vicinityDistanceMm * std::tan(glm::radians(frame.dos.coneAngleDeg)) * pixelsPerMmAtUnitDepth));
     c.set("depthBiasMm", static_cast<float>(tubeShading_.depthBiasMm));

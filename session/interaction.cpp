@@ -355,9 +355,9 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
             }
         } else if (auto* d = std::get_if<input::DragMesh>(&action)) {
             if (MeshState* m = mesh(d->mesh)) {
-                // The view plane through the mesh: a pixel there spans 2 depth tan(fov/2) / height millimetres.
+                // The view plane through the mesh: a pixel there spans depth / (pixels per mm at unit depth).
                 double depth = std::max(1.0, glm::dot(m->pose.position - camera.position(), forward));
-                double mmPerPixel = 2.0 * depth * std::tan(glm::radians(camera.fovYDeg) / 2.0) / std::max(viewportHeight, 1);
+                double mmPerPixel = depth / camera.pixelsPerMmAtUnitDepth(std::max(viewportHeight, 1));
                 m->pose.position += mmPerPixel * (d->pixels.x * right - d->pixels.y * up);
             }
         } else if (auto* s = std::get_if<input::SetShading>(&action)) {

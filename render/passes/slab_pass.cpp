@@ -92,7 +92,7 @@ void SlabPass::run(const SlabInputs& in) {
     // Eq. 11 and 12: the cone base radius d tan(theta) in world units, projected at the previous slice's
     // depth into pixels (the projection scales a length at depth z by H / (2 z tan(fovy / 2))).
     double tanTheta = std::tan(glm::radians(settings.coneAngleDeg));
-    double pixelsPerMmAtUnitDepth = frame.size.y / (2.0 * std::tan(glm::radians(camera.fovYDeg) / 2.0));
+    double pixelsPerMmAtUnitDepth = camera.pixelsPerMmAtUnitDepth(frame.size.y);
     int current = 0;
     for (long k = first; k <= last; ++k) {
         double z = double(k) * d;
