@@ -106,6 +106,10 @@ struct FrameDescription {
     bool operator==(const FrameDescription&) const = default;
 };
 
+// Whether the slab pass runs (and so the DOS cone and grid shape the image) for `shading`, with or without
+// tubes in view: planFrame decides, and the viewer's panel asks here.
+bool slabPassRuns(ShadingMode shading, bool tubesInView);
+
 // A light's direction in world space (camera-space lights are (right, up, towards the viewer)), unit length.
 glm::dvec3 worldLightDirection(const Light& light, const OrbitCamera& camera);
 
