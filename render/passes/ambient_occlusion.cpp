@@ -382,7 +382,7 @@ std::uint32_t AmbientOcclusion::advanceClipVoxels(const TransferFunctionTexture&
 }
 
 std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, ShadingMode mode) {
-    bool cao = mode == ShadingMode::Cao;
+    bool cao = traits(mode).dilatedMaps;   // the mode table's: cao tests the dilated maps and updates in part
     // Full LAO (the baseline) and the first update after step I visit every voxel. A CAO update visits the
     // bricks (render/mesh_voxel_box.h) of the meshes that changed since the last update (pose, scale, geometry,
     // or every mesh when the maps were drawn again or one was added or removed), those they reach now and those
