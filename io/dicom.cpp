@@ -5,6 +5,7 @@
 #include "io/dicom_structure.h"
 #include "base/error.h"
 #include "base/log.h"
+#include "base/text.h"
 
 #include <gdcmDataSet.h>
 #include <gdcmImage.h>
@@ -78,13 +79,8 @@ std::ostringstream& gdcmMessages() {
 
 void forgetGdcmMessages() { gdcmMessages().str({}); }
 
-std::string trim(std::string_view text) {
-    // Values are padded to even length with a space (or a NUL for UIs), PS3.5 6.2.
-    auto blank = [](char c) { return c == ' ' || c == '\0' || c == '\t' || c == '\r' || c == '\n'; };
-    while (!text.empty() && blank(text.front())) text.remove_prefix(1);
-    while (!text.empty() && blank(text.back())) text.remove_suffix(1);
-    return std::string(text);
-}
+// Values are padded to even length with a space (or a NUL for UIs), PS3.5 6.2; some writers leave tabs and line ends.
+constexpr std::string_view kPadding{" \0\t\r\n", 5};
 
 std::string fmt(double value) {
     char text[32];
@@ -99,7 +95,7 @@ std::optional<std::vector<double>> numbers(const std::string& text) {
     std::size_t start = 0;
     while (true) {
         std::size_t end = text.find('\\', start);
-        std::string item = trim(std::string_view(text).substr(start, end == std::string::npos ? std::string::npos : end - start));
+        std::string item(trim(std::string_view(text).substr(start, end == std::string::npos ? std::string::npos : end - start), kPadding));
         const char* first = item.data();
         const char* last = item.data() + item.size();
         if (first != last && *first == '+') ++first;
@@ -160,7 +156,7 @@ std::string textOf(const gdcm::DataSet& dataSet, const gdcm::Tag& tag) {
     if (!dataSet.FindDataElement(tag)) return {};
     const gdcm::ByteValue* value = dataSet.GetDataElement(tag).GetByteValue();
     if (!value || !value->GetPointer()) return {};
-    return trim(std::string_view(value->GetPointer(), value->GetLength()));
+    return std::string(trim(std::string_view(value->GetPointer(), value->GetLength()), kPadding));
 }
 
 gdcm::SmartPointer<gdcm::SequenceOfItems> sequenceOf(const gdcm::DataSet& dataSet, const gdcm::Tag& tag) {
@@ -259,7 +255,7 @@ std::optional<FileHeader> headerOf(const gdcm::Scanner& scanner, const std::stri
     if (!scanner.IsKey(file.c_str())) return std::nullopt;
     auto text = [&](const gdcm::Tag& tag) {
         const char* value = scanner.GetValue(file.c_str(), tag);
-        return value ? trim(value) : std::string();
+        return value ? std::string(trim(value, kPadding)) : std::string();
     };
     FileHeader h;
     h.path = file;
@@ -804,7 +800,7 @@ std::vector<DicomSeries> scanDicom(const fs::path& path, bool readIdentifiers) {
         if (!folder && file != files.front()) {
             // One file named: only its series is read; the others are not even looked at further.
             const char* uid = scanner.GetValue(file.c_str(), kSeriesInstanceUid);
-            if (!uid || trim(uid) != namedSeries) continue;
+            if (!uid || trim(uid, kPadding) != namedSeries) continue;
         }
         std::optional<FileHeader> header;
         try {
