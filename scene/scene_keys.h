@@ -22,7 +22,7 @@ namespace curette {
 struct SceneClipMesh {
     std::string name;
     std::shared_ptr<const clip::TriangleMesh> geometry;
-    clip::RigidPose pose;
+    clip::RigidPose pose{};
     glm::dvec3 scale{1.0};
     bool clipsTubes = false;
 };

@@ -84,12 +84,8 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     }
     for (const SessionAddedMesh& a : f.meshesAdded) {
         if (addedByEdits.count(a.id)) continue;
-        MeshState m;
-        m.id = a.id;
-        m.name = a.name;
-        m.description = a.description;
-        m.geometry = meshFromDescription(a.description, where + ": meshes_added.mesh", sceneDirectory);
-        state_.meshes.push_back(m);
+        SceneClipMesh added{.name = a.name, .geometry = meshFromDescription(a.description, where + ": meshes_added.mesh", sceneDirectory)};
+        state_.meshes.push_back(MeshState::make(a.id, added, a.description));
     }
     for (int id : f.meshesRemoved)
         if (int i = state_.indexOf(id); i >= 0 && !removedByEdits.count(id)) state_.meshes.erase(state_.meshes.begin() + i);
