@@ -13,6 +13,10 @@
 
 namespace curette {
 
+// The shaders take this many lights (phong.glsl MAX_LIGHTS, ismos_occlusion.comp MAX_ISMOS_LIGHTS; the
+// ShaderConstants test holds them equal).
+inline constexpr int kMaxLights = 4;
+
 struct Light {
     glm::dvec3 direction{0.3, 0.5, 1.0};  // towards the light; camera space is (right, up, towards viewer)
     glm::dvec3 color{1.0};                // colour times intensity
