@@ -1,6 +1,6 @@
 #pragma once
-// Texture/image units shared with the shaders (shaders/bindings.glsl is the GLSL side; the test
-// BindingsMatchGlsl parses it and checks every value here).
+// Texture/image units and the other values shared with the shaders (shaders/bindings.glsl is the GLSL side;
+// the ShaderConstants test parses both files and fails unless every name has the same value on both sides).
 
 namespace curette::binding {
 
@@ -60,6 +60,11 @@ inline constexpr unsigned ssboTubeIndices = 17;
 inline constexpr unsigned ssboTileSpans = 18;
 
 inline constexpr unsigned uboClipMeshes = 0;
+
+// G-buffer surface kinds (normal.w: tube_gbuffer.frag's surfaceKind).
+inline constexpr float surfaceNone = 0.0f;
+inline constexpr float surfaceTube = 1.0f;
+inline constexpr float surfaceLine = 2.0f;
 
 // V_m categories (CAO Fig. 5).
 inline constexpr unsigned categoryClipped = 0;

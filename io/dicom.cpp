@@ -5,6 +5,7 @@
 
 #include "io/dicom_values.h"
 #include "base/error.h"
+#include "base/text.h"
 
 #include <gdcmTrace.h>
 
@@ -37,13 +38,10 @@ std::ostringstream& gdcmMessages() {
 
 void forgetGdcmMessages() { gdcmMessages().str({}); }
 
-std::string trim(std::string_view text) {
-    // Values are padded to even length with a space (or a NUL for UIs), PS3.5 6.2.
-    auto blank = [](char c) { return c == ' ' || c == '\0' || c == '\t' || c == '\r' || c == '\n'; };
-    while (!text.empty() && blank(text.front())) text.remove_prefix(1);
-    while (!text.empty() && blank(text.back())) text.remove_suffix(1);
-    return std::string(text);
-}
+// Values are padded to even length with a space (or a NUL for UIs), PS3.5 6.2; some writers leave tabs and line ends.
+constexpr std::string_view kPadding{" \0\t\r\n", 5};
+
+std::string trim(std::string_view text) { return std::string(curette::trim(text, kPadding)); }
 
 std::string fmt(double value) {
     char text[32];
@@ -58,7 +56,7 @@ std::optional<std::vector<double>> numbers(const std::string& text) {
     std::size_t start = 0;
     while (true) {
         std::size_t end = text.find('\\', start);
-        std::string item = trim(std::string_view(text).substr(start, end == std::string::npos ? std::string::npos : end - start));
+        std::string item(trim(std::string_view(text).substr(start, end == std::string::npos ? std::string::npos : end - start)));
         const char* first = item.data();
         const char* last = item.data() + item.size();
         if (first != last && *first == '+') ++first;

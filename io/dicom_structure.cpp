@@ -3,6 +3,7 @@
 
 #include "io/gzip.h"
 #include "base/error.h"
+#include "base/text.h"
 
 #include <gdcmDict.h>
 #include <gdcmDicts.h>
@@ -26,10 +27,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string trim(std::string text) {
-    while (!text.empty() && (text.back() == ' ' || text.back() == '\0')) text.pop_back();  // PS3.5 6.2 padding
-    return text;
-}
+// PS3.5 6.2: a UI is padded with a NUL, other values with a space.
+constexpr std::string_view kPadding{" \0", 2};
 
 // One walk over one file: the meta group (explicit VR little endian), then the data set in its transfer
 // syntax (or, without one, in each encoding GDCM could guess).
@@ -163,7 +162,7 @@ private:
     std::string valueText(std::uint64_t at, std::uint64_t length) {
         std::string text(static_cast<std::size_t>(std::min<std::uint64_t>(length, 64)), '\0');
         if (!seekTo(at) || !in_->read(text.data(), static_cast<std::streamsize>(text.size()))) return {};
-        return trim(text);
+        return std::string(trim(text, kPadding));
     }
     static bool isVr(const char* vr, const char* const* list, std::size_t count) {
         return std::any_of(list, list + count, [&](const char* code) { return vr[0] == code[0] && vr[1] == code[1]; });

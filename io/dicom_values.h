@@ -19,7 +19,7 @@ constexpr std::uint64_t kAlwaysAcceptedBytes = 64ull << 20;
 std::ostringstream& gdcmMessages();
 void forgetGdcmMessages();
 
-std::string trim(std::string_view text);
+std::string trim(std::string_view text);   // without the padding of PS3.5 6.2 (space, NUL, tabs, line ends)
 std::string fmt(double value);  // %.6g
 // The numbers of a multi-valued DS or IS ("a\b\c"), or nothing when any value is not a number.
 std::optional<std::vector<double>> numbers(const std::string& text);

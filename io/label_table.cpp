@@ -2,6 +2,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/text.h"
 
 #include <algorithm>
 #include <array>
@@ -24,13 +25,6 @@ struct Line {
 
 bool isBlank(std::string_view s) {
     return std::all_of(s.begin(), s.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
-}
-
-std::string trim(std::string_view s) {
-    std::size_t begin = 0, end = s.size();
-    while (begin < end && std::isspace(static_cast<unsigned char>(s[begin]))) ++begin;
-    while (end > begin && std::isspace(static_cast<unsigned char>(s[end - 1]))) --end;
-    return std::string(s.substr(begin, end - begin));
 }
 
 std::string lower(std::string s) {
@@ -128,7 +122,7 @@ std::vector<std::string> csvFields(const Line& line, const std::string& source) 
         } else if (c == '"') {
             inQuotes = wasQuoted = true;
         } else if (c == ',') {
-            fields.push_back(wasQuoted ? field : trim(field));
+            fields.push_back(wasQuoted ? field : std::string(trim(field)));
             field.clear();
             wasQuoted = false;
         } else {
@@ -136,13 +130,13 @@ std::vector<std::string> csvFields(const Line& line, const std::string& source) 
         }
     }
     if (inQuotes) throw InputError(source, lineField(line), "CSV fields with balanced double quotes", quoted(s));
-    fields.push_back(wasQuoted ? field : trim(field));
+    fields.push_back(wasQuoted ? field : std::string(trim(field)));
     return fields;
 }
 
 bool isCsvHeader(const std::string& line) {
     std::size_t comma = line.find(',');
-    return comma != std::string::npos && lower(trim(std::string_view(line).substr(0, comma))) == "labelvalue";
+    return comma != std::string::npos && lower(std::string(trim(std::string_view(line).substr(0, comma)))) == "labelvalue";
 }
 
 void addEntry(LabelTable& table, std::set<int>& seen, LabelEntry entry, const Line& line) {
@@ -228,13 +222,13 @@ LabelTable parseMricronNames(const std::vector<Line>& lines, const std::string& 
     const bool codes = hasCodeColumn(data);
     std::set<int> seen;
     for (const Line* line : data) {
-        std::string text = trim(line->text);
+        std::string text(trim(line->text));
         std::size_t end = 0;
         while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end]))) ++end;
         LabelEntry e;
         e.id = parseId(std::string_view(text).substr(0, end), *line, source);
-        std::string rest = trim(std::string_view(text).substr(end));
-        if (codes) rest = trim(std::string_view(rest).substr(0, rest.find_last_of(" \t")));
+        std::string rest(trim(std::string_view(text).substr(end)));
+        if (codes) rest = std::string(trim(std::string_view(rest).substr(0, rest.find_last_of(" \t"))));
         if (rest.empty())
             throw InputError(source, lineField(*line), "\"index name\" (a name after the index)", quoted(line->text));
         e.name = rest;
@@ -267,7 +261,7 @@ LabelTableFormat detectLabelTableFormat(std::string_view text, const std::string
         }
     bool slicerComment = false;
     for (const Line& l : lines) {
-        std::string t = lower(trim(l.text));
+        std::string t = lower(std::string(trim(l.text)));
         if (t.starts_with("# color procedural file"))
             throw InputError(source, lineField(l), "a colour table (a Slicer procedural colour file holds a function, not a table)",
                              quoted(l.text));

@@ -4,6 +4,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/text.h"
 
 #include <zlib.h>
 
@@ -32,11 +33,8 @@ std::string shown(std::string_view text) {
     return "\"" + s + (text.size() > 60 ? "...\"" : "\"");
 }
 
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-    return s;
-}
+// Header lines are padded with spaces and tabs; a CRLF file ends each in '\r'.
+constexpr std::string_view kHeaderBlanks = " \t\r";
 
 // `Key = Value` lines up to and including ElementDataFile, which MetaIO reads last (metaImage.cxx sets
 // terminateRead on it): the data of a LOCAL file begin right after that line.
@@ -84,17 +82,17 @@ Header readHeader(std::span<const std::uint8_t> bytes, const std::string& source
         std::string_view text(reinterpret_cast<const char*>(bytes.data() + pos), end - pos);
         pos = end < bytes.size() ? end + 1 : end;
         ++line;
-        text = trim(text);
+        text = trim(text, kHeaderBlanks);
         if (text.empty()) continue;
         // Control bytes: this is binary data, so the header ended without naming where its data are.
         if (std::any_of(text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f; }))
             throw InputError(source, "ElementDataFile", "a header whose last line is ElementDataFile = LOCAL or a file name",
                              "binary bytes at line " + std::to_string(line) + " before any ElementDataFile line");
         std::size_t eq = text.find('=');
-        std::string_view key = eq == std::string_view::npos ? std::string_view{} : trim(text.substr(0, eq));
+        std::string_view key = eq == std::string_view::npos ? std::string_view{} : trim(text.substr(0, eq), kHeaderBlanks);
         if (key.empty())
             throw InputError(source, "line " + std::to_string(line), "Key = Value (a MetaImage header line)", shown(text));
-        std::string_view value = trim(text.substr(eq + 1));
+        std::string_view value = trim(text.substr(eq + 1), kHeaderBlanks);
         if (!h.fields.emplace(std::string(key), std::string(value)).second)
             throw InputError(source, std::string(key), "given once", "given twice (line " + std::to_string(line) + ")");
         if (key == "ElementDataFile") {
@@ -132,7 +130,7 @@ std::vector<double> numbers(const Header& h, const std::string& key, const std::
 
 std::int64_t integer(const Header& h, const std::string& key, const std::string& value, std::int64_t lo, std::int64_t hi,
                      const std::string& expected) {
-    std::string_view t = trim(value);
+    std::string_view t = trim(value, kHeaderBlanks);
     std::int64_t v = 0;
     auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), v);
     if (error != std::errc() || end != t.data() + t.size() || t.empty() || v < lo || v > hi)

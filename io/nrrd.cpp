@@ -5,6 +5,7 @@
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "base/log.h"
+#include "base/text.h"
 
 #include <algorithm>
 #include <charconv>
@@ -18,20 +19,13 @@ namespace curette::io {
 
 namespace {
 
-std::string trim(std::string s) {
-    auto notSpace = [](unsigned char c) { return !std::isspace(c); };
-    s.erase(s.begin(), std::find_if(s.begin(), s.end(), notSpace));
-    s.erase(std::find_if(s.rbegin(), s.rend(), notSpace).base(), s.end());
-    return s;
-}
-
 std::string lower(std::string s) {
     for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return s;
 }
 
 double parseNumber(const std::string& text, const std::string& source, const std::string& field) {
-    std::string t = trim(text);
+    std::string t(trim(text));
     double v = 0;
     auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
     if (ec != std::errc() || end != t.data() + t.size()) throw InputError(source, field, "a number", "\"" + t + "\"");
@@ -42,7 +36,7 @@ double parseNumber(const std::string& text, const std::string& source, const std
 long parseInteger(const std::string& text, const std::string& source, const std::string& field, long min, long max) {
     double v = parseNumber(text, source, field);
     if (!(v >= static_cast<double>(min) && v <= static_cast<double>(max)) || v != std::floor(v))
-        throw InputError(source, field, "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]", "\"" + trim(text) + "\"");
+        throw InputError(source, field, "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]", "\"" + std::string(trim(text)) + "\"");
     return static_cast<long>(v);
 }
 
@@ -55,7 +49,7 @@ std::vector<std::string> words(const std::string& text) {
 
 // "(a,b,c)" -> three numbers.
 glm::dvec3 parseVector(const std::string& text, const std::string& source, const std::string& field) {
-    std::string t = trim(text);
+    std::string t(trim(text));
     if (t.size() < 2 || t.front() != '(' || t.back() != ')') throw InputError(source, field, "a vector like (1,0,0)", "\"" + t + "\"");
     std::string inner = t.substr(1, t.size() - 2);
     std::vector<double> v;
@@ -73,7 +67,7 @@ glm::dvec3 parseVector(const std::string& text, const std::string& source, const
 // Space directions: one "(x,y,z)" or "none" per axis.
 std::vector<std::optional<glm::dvec3>> parseDirections(const std::string& text, const std::string& source) {
     std::vector<std::optional<glm::dvec3>> list;
-    std::string t = trim(text);
+    std::string t(trim(text));
     std::size_t i = 0;
     while (i < t.size()) {
         if (std::isspace(static_cast<unsigned char>(t[i]))) {
@@ -95,7 +89,7 @@ std::vector<std::optional<glm::dvec3>> parseDirections(const std::string& text, 
 }
 
 ScalarType parseType(const std::string& text, const std::string& source) {
-    std::string t = lower(trim(text));
+    std::string t = lower(std::string(trim(text)));
     static const std::map<std::string, ScalarType> names = {
         {"uchar", ScalarType::UInt8},          {"unsigned char", ScalarType::UInt8},  {"uint8", ScalarType::UInt8},
         {"uint8_t", ScalarType::UInt8},        {"short", ScalarType::Int16},          {"short int", ScalarType::Int16},
@@ -106,7 +100,7 @@ ScalarType parseType(const std::string& text, const std::string& source) {
         {"int32_t", ScalarType::Int32},        {"float", ScalarType::Float32},        {"double", ScalarType::Float64}};
     auto it = names.find(t);
     if (it == names.end())
-        throw InputError(source, "type", "uchar, short, ushort, int, float or double (and their NRRD aliases)", "\"" + trim(text) + "\"");
+        throw InputError(source, "type", "uchar, short, ushort, int, float or double (and their NRRD aliases)", "\"" + std::string(trim(text)) + "\"");
     return it->second;
 }
 
@@ -139,7 +133,7 @@ Header parseHeader(std::span<const std::uint8_t> bytes, const std::string& sourc
         if (line.find(":=") != std::string::npos) continue;  // key/value pairs: metadata we do not use
         std::size_t colon = line.find(": ");
         if (colon == std::string::npos) throw InputError(source, "header line", "\"field: value\"", "\"" + line + "\"");
-        h.fields[lower(trim(line.substr(0, colon)))] = trim(line.substr(colon + 2));
+        h.fields[lower(std::string(trim(line.substr(0, colon))))] = trim(line.substr(colon + 2));
     }
     h.dataStart = bytes.size();  // no blank line: a detached header (.nhdr) ends with the file
     return h;

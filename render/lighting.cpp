@@ -5,8 +5,8 @@
 namespace curette {
 
 void setLightingUniforms(gl::Program& p, const FrameDescription& frame, const TransferFunction::Material& m) {
-    int count = std::min<int>(static_cast<int>(frame.lights.size()), 4);
-    glm::vec3 directions[4], colors[4];
+    int count = std::min<int>(static_cast<int>(frame.lights.size()), kMaxLights);
+    glm::vec3 directions[kMaxLights], colors[kMaxLights];
     for (int i = 0; i < count; ++i) {
         const Light& l = frame.lights[static_cast<std::size_t>(i)];
         directions[i] = glm::vec3(worldLightDirection(l, frame.camera));

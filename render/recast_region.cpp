@@ -112,7 +112,7 @@ std::optional<PixelRegion> pixelsMeeting(const ConvexCorners& corners, const Fra
     // the hull of its corners' projections. Pixel centres as pixel_ray.glsl: ndc = (pixel + 0.5) / size * 2 - 1,
     // y up; here in pixel units, y down, a centre at (x + 0.5, y + 0.5).
     glm::dvec2 size(frame.size);
-    glm::dmat4 viewProjection = frame.camera.projection(size.x / size.y) * frame.camera.view();
+    glm::dmat4 viewProjection = frame.camera.viewProjection(frame.size);
     std::vector<glm::dvec2> points;
     double top = std::numeric_limits<double>::infinity(), bottom = -top;
     for (const glm::dvec3& corner : corners) {

@@ -161,8 +161,7 @@ bool Renderer::tubesInView(const FrameDescription& frame) const {
     // Conservative: the tubes' world box is outside the view only when all eight corners lie beyond one plane
     // of the view frustum; then they cover no pixel and the frame is the one without tubes.
     if (!tubes_) return false;
-    double aspect = double(frame.size.x) / frame.size.y;
-    glm::dmat4 viewProjection = frame.camera.projection(aspect) * frame.camera.view();
+    glm::dmat4 viewProjection = frame.camera.viewProjection(frame.size);
     glm::dvec3 lo = tubes_->boundsMin(), hi = tubes_->boundsMax();
     for (int plane = 0; plane < 6; ++plane) {
         int axis = plane / 2;

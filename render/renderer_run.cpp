@@ -396,7 +396,7 @@ void Renderer::runComposite(const PassContext& context) {
     setLightingUniforms(c, frame, tubeShading_.material);
     c.set("poissonCount", poissonCount_);
     // Section 3.1.5: the vicinity radius l_vicinity tan(theta), projected at the surface's depth.
-    double pixelsPerMmAtUnitDepth = frame.size.y / (2.0 * std::tan(glm::radians(frame.camera.fovYDeg) / 2.0));
+    double pixelsPerMmAtUnitDepth = frame.camera.pixelsPerMmAtUnitDepth(frame.size.y);
     c.set("vicinityRadiusPixelsAtUnitDepth",
           static_cast<float>(tubeShading_.vicinityDistanceMm * std::tan(glm::radians(frame.dos.coneAngleDeg)) * pixelsPerMmAtUnitDepth));
     c.set("depthBiasMm", static_cast<float>(tubeShading_.depthBiasMm));

@@ -11,9 +11,7 @@
 namespace curette {
 
 void CameraRayPiece::apply(gl::Program& p) const {
-    double aspect = double(frame.size.x) / frame.size.y;
-    glm::dmat4 viewProjection = frame.camera.projection(aspect) * frame.camera.view();
-    p.set("inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
+    p.set("inverseViewProjection", glm::mat4(glm::inverse(frame.camera.viewProjection(frame.size))));
     p.set("eyeWorld", glm::vec3(frame.camera.position()));
     p.set("outputSize", frame.size);
 }

@@ -3,10 +3,22 @@
 #include "io/transfer_function_file.h"
 #include "base/error.h"
 #include "mesh/mesh_description.h"
+#include "render/model/setting_limits.h"
 
 #include <glm/gtc/quaternion.hpp>
 
 namespace curette {
+
+namespace {
+// A value within one of the limits the passes also check (render/model/setting_limits.h).
+int within(const JsonReader& r, const IntLimit& limit) { return r.integer(limit.min, limit.max); }
+double within(const JsonReader& r, const NumberLimit& limit) {
+    if (!r.isNumber()) r.fail(limit.expected());
+    double v = r.number();
+    if (!limit.contains(v)) r.fail(limit.expected());
+    return v;
+}
+}  // namespace
 
 ShadingMode readShading(const JsonReader& r) {
     auto mode = parseShadingMode(r.isString() ? r.string() : "");
@@ -45,9 +57,9 @@ LaoSettings readLao(const JsonReader& r) {
         if (!parseLaoPattern(text, lao.directions))
             rays->fail("one of \"6\", \"14\", \"26\", \"54\" (the paper's patterns) or \"fibonacci:K\" with K in [1, 4096]");
     }
-    if (auto m = r.find("samples")) lao.samples = m->integer(1, 1024);
-    if (auto s = r.find("step_mm")) lao.stepMm = s->number(1e-3, 100);
-    if (auto n = r.find("antialiasing_samples")) lao.antiAliasingSamples = n->integer(0, 256);
+    if (auto m = r.find("samples")) lao.samples = within(*m, limits::laoSamples);
+    if (auto s = r.find("step_mm")) lao.stepMm = within(*s, limits::laoStepMm);
+    if (auto n = r.find("antialiasing_samples")) lao.antiAliasingSamples = within(*n, limits::laoAntiAliasingSamples);
     if (auto j = r.find("jitter")) lao.directions.jitter = j->number(0, 0.5);
     if (auto w = r.find("weights")) lao.directions.skyWeighting = w->oneOf({"uniform", "sky"}) == "sky";
     if (auto a = r.find("ambient_scale")) lao.ambientScale = a->number(0, 10);
@@ -76,10 +88,10 @@ RaycastSettings readRaycast(const JsonReader& r) {
 
 DosSettings readDos(const JsonReader& r) {
     DosSettings d;
-    if (auto v = r.find("cone_angle_deg")) d.coneAngleDeg = v->number(0, 89.9);
-    if (auto v = r.find("grid")) d.gridSize = v->integer(1, 16);
-    if (auto v = r.find("slice_distance_mm")) d.sliceDistanceMm = v->number(0, 100);
-    if (auto v = r.find("ambient")) d.ambientRadiance = v->number(0, 100);
+    if (auto v = r.find("cone_angle_deg")) d.coneAngleDeg = within(*v, limits::dosConeAngleDeg);
+    if (auto v = r.find("grid")) d.gridSize = within(*v, limits::dosGrid);
+    if (auto v = r.find("slice_distance_mm")) d.sliceDistanceMm = within(*v, limits::dosSliceDistanceMm);
+    if (auto v = r.find("ambient")) d.ambientRadiance = within(*v, limits::dosAmbient);
     r.finish();
     return d;
 }

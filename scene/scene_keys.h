@@ -22,7 +22,7 @@ namespace curette {
 struct SceneClipMesh {
     std::string name;
     std::shared_ptr<const clip::TriangleMesh> geometry;
-    clip::RigidPose pose;
+    clip::RigidPose pose{};
     glm::dvec3 scale{1.0};
     bool clipsTubes = false;
 };
@@ -42,8 +42,8 @@ struct TubeRendering {
     bool operator==(const TubeRendering&) const = default;
 };
 
-// A scene has at most this many lights (shaders/phong.glsl MAX_LIGHTS; the ISMOS model takes as many).
-inline constexpr std::size_t kMaxSceneLights = 4;
+// A scene has at most as many lights as the shaders take.
+inline constexpr std::size_t kMaxSceneLights = kMaxLights;
 
 // "shading": "solid" | "phong" | ...
 ShadingMode readShading(const JsonReader& r);

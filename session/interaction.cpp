@@ -84,21 +84,24 @@ std::string editedKeyName(const SettingEdit& edit) {
 
 }  // namespace
 
+MeshState MeshState::make(int id, const SceneClipMesh& mesh, std::string description) {
+    MeshState m;
+    m.id = id;
+    m.name = mesh.name;
+    m.description = std::move(description);
+    m.geometry = mesh.geometry;
+    m.pose = m.initialPose = mesh.pose;
+    m.scale = mesh.scale;
+    m.clipsTubes = mesh.clipsTubes;
+    return m;
+}
+
 InteractionState InteractionState::fromScene(const Scene& scene) {
     InteractionState s;
     s.shading = scene.shading;
     s.lights = scene.lights;
     adoptSceneSettings(scene, s);
-    for (const SceneClipMesh& m : scene.clipMeshes) {
-        MeshState mesh;
-        mesh.id = s.nextMeshId++;
-        mesh.name = m.name;
-        mesh.geometry = m.geometry;
-        mesh.pose = mesh.initialPose = m.pose;
-        mesh.scale = m.scale;
-        mesh.clipsTubes = m.clipsTubes;
-        s.meshes.push_back(mesh);
-    }
+    for (const SceneClipMesh& m : scene.clipMeshes) s.meshes.push_back(MeshState::make(s.nextMeshId++, m));
     return s;
 }
 
@@ -129,23 +132,22 @@ InteractionState InteractionState::fromSessionStart(const SessionHeader& header,
     }
     s.nextMeshId = header.nextMeshId;
     for (const SessionMeshStart& start : header.meshes) {
-        MeshState m;
-        m.id = start.id;
-        m.name = start.name;
-        m.description = start.description;
+        // The scene mesh's geometry and clips_tubes, or an added mesh's own; the rest as recorded.
+        SceneClipMesh mesh;
         if (!start.description.empty()) {
-            m.geometry = meshFromDescription(start.description, source + " line 1: meshes[id " + std::to_string(start.id) + "].mesh", sceneDirectory);
+            mesh.geometry = meshFromDescription(start.description, source + " line 1: meshes[id " + std::to_string(start.id) + "].mesh", sceneDirectory);
         } else if (start.id < static_cast<int>(scene.clipMeshes.size())) {
-            m.geometry = scene.clipMeshes[static_cast<std::size_t>(start.id)].geometry;
-            m.clipsTubes = scene.clipMeshes[static_cast<std::size_t>(start.id)].clipsTubes;
+            mesh = scene.clipMeshes[static_cast<std::size_t>(start.id)];
         } else {
             throw InputError(source, "line 1: meshes[id " + std::to_string(start.id) + "]",
                              "a scene mesh index (the scene has " + std::to_string(scene.clipMeshes.size()) + ") or a \"mesh\" description");
         }
-        m.pose = start.pose;
+        mesh.name = start.name;
+        mesh.pose = start.pose;
+        mesh.scale = start.scale;
+        if (start.clipsTubes) mesh.clipsTubes = *start.clipsTubes;   // version 3
+        MeshState m = MeshState::make(start.id, mesh, start.description);
         m.initialPose = start.initialPose;
-        m.scale = start.scale;
-        if (start.clipsTubes) m.clipsTubes = *start.clipsTubes;   // version 3
         s.meshes.push_back(std::move(m));
     }
     return s;
@@ -271,14 +273,8 @@ void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const s
                 if (edit.target < 0) edit.target = nextMeshId;   // live: the next id; recorded: the id it had
                 if (indexOf(edit.target) >= 0) fail("the id of a mesh not present yet");
                 nextMeshId = std::max(nextMeshId, edit.target + 1);
-                MeshState m;
-                m.id = edit.target;
-                m.name = edit.value.contains("name") ? added.name : "added " + std::to_string(m.id);
-                m.description = edit.value.at("mesh").dump();
-                m.geometry = added.geometry;
-                m.pose = m.initialPose = added.pose;
-                m.scale = added.scale;
-                m.clipsTubes = added.clipsTubes;
+                if (!edit.value.contains("name")) added.name = "added " + std::to_string(edit.target);
+                MeshState m = MeshState::make(edit.target, added, edit.value.at("mesh").dump());
                 meshes.push_back(m);
                 addedMeshIds.push_back(m.id);
                 break;
@@ -355,9 +351,9 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
             }
         } else if (auto* d = std::get_if<input::DragMesh>(&action)) {
             if (MeshState* m = mesh(d->mesh)) {
-                // The view plane through the mesh: a pixel there spans 2 depth tan(fov/2) / height millimetres.
+                // The view plane through the mesh: a pixel there spans depth / (pixels per mm at unit depth).
                 double depth = std::max(1.0, glm::dot(m->pose.position - camera.position(), forward));
-                double mmPerPixel = 2.0 * depth * std::tan(glm::radians(camera.fovYDeg) / 2.0) / std::max(viewportHeight, 1);
+                double mmPerPixel = depth / camera.pixelsPerMmAtUnitDepth(std::max(viewportHeight, 1));
                 m->pose.position += mmPerPixel * (d->pixels.x * right - d->pixels.y * up);
             }
         } else if (auto* s = std::get_if<input::SetShading>(&action)) {
@@ -368,12 +364,11 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
             if (MeshState* m = mesh(r->mesh)) m->pose = m->initialPose;
         } else if (std::holds_alternative<input::AddMesh>(action)) {
             if (static_cast<int>(meshes.size()) >= clip::kMaxClipMeshes) continue;  // at the limit: nothing
-            MeshState m;
-            m.id = nextMeshId++;
-            m.name = "added " + std::to_string(m.id);
-            m.description = addedMeshDescription();
-            m.geometry = meshFromDescription(m.description, "<added mesh>", ".");
-            m.pose.position = m.initialPose.position = camera.target;
+            const int id = nextMeshId++;
+            const std::string description = addedMeshDescription();
+            SceneClipMesh added{.name = "added " + std::to_string(id), .geometry = meshFromDescription(description, "<added mesh>", ".")};
+            added.pose.position = camera.target;
+            MeshState m = MeshState::make(id, added, description);
             meshes.push_back(m);
             addedMeshIds.push_back(m.id);
         } else if (auto* rm = std::get_if<input::RemoveMesh>(&action)) {

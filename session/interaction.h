@@ -31,6 +31,11 @@ struct MeshState {
     clip::RigidPose pose, initialPose;
     glm::dvec3 scale{1.0};
     bool clipsTubes = false;     // the mesh also cuts tubes (scene key clips_tubes)
+
+    // The one way to make one (scene, edits, devices, session files, benches, tests), so none forgets a field:
+    // mesh `id` with a scene mesh's keys (its pose is also where reset_pose puts it) and, for a mesh added in
+    // the session, its JSON description.
+    static MeshState make(int id, const SceneClipMesh& mesh, std::string description = {});
 };
 
 struct InteractionState {

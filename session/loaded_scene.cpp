@@ -27,12 +27,12 @@ LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath) {
 }
 
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
-    const Scene& scene = loaded.scene;
-    renderer.setLaoSettings(scene.lao);
     LabelRendering labels = labelRendering(loaded.labels);
     if (!labels.ids.empty()) renderer.setLabels(std::make_unique<LabelOverlay>(loaded.volume.dims, labels.ids, labels.styles));
-    syncClipMeshes(InteractionState::fromScene(scene), renderer.clipMeshes());
-    setSceneTubes(renderer, scene.tubes, TubeRendering{scene.tubesAsLines, scene.tubeShading, scene.tubesBuiltOnGpu}, loaded.tracts);
+    // The scene's settings by the session step's path; the renderer was made with its transfer function.
+    InteractionState state = InteractionState::fromScene(loaded.scene);
+    RendererSync synced{.transferFunction = state.transferFunctionVersion};
+    syncRenderer(state, renderer, loaded.tracts, synced);
 }
 
 namespace {

@@ -18,9 +18,9 @@ struct LoadedScene {
 
 LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
 
-// Hands the scene's LAO settings, labels, clip meshes (through the session step's one path, session/session_step.h) and
-// tubes to a renderer made for its volume: every command that renders a scene goes through here, so they all
-// render the same thing.
+// Hands the scene's labels, and by syncRenderer (session/session_step.h, the path edits take too) its LAO
+// settings, clip meshes and tubes, to a renderer made for its volume and transfer function: every command that
+// renders a scene goes through here, so they all render the same thing.
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer);
 
 // Every bundle of a scene's tubes in one vertex set (tubes, or lines for the illuminated-lines mode), and

@@ -37,9 +37,7 @@ SessionStep::SessionStep(InteractionState state, FrameDescription frame) : state
         state_.fromSceneSettings = true;
     }
     frameFromState(state_, frame_);
-    syncedTransferFunction_ = state_.transferFunctionVersion;
-    syncedTubes_ = state_.tubesVersion;
-    syncedTubeShading_ = state_.tubeShadingVersion;
+    synced_ = {state_.transferFunctionVersion, state_.tubesVersion, state_.tubeShadingVersion};
 }
 
 StepChanges SessionStep::compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, const std::vector<Light>& lightsBefore,
@@ -84,12 +82,8 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     }
     for (const SessionAddedMesh& a : f.meshesAdded) {
         if (addedByEdits.count(a.id)) continue;
-        MeshState m;
-        m.id = a.id;
-        m.name = a.name;
-        m.description = a.description;
-        m.geometry = meshFromDescription(a.description, where + ": meshes_added.mesh", sceneDirectory);
-        state_.meshes.push_back(m);
+        SceneClipMesh added{.name = a.name, .geometry = meshFromDescription(a.description, where + ": meshes_added.mesh", sceneDirectory)};
+        state_.meshes.push_back(MeshState::make(a.id, added, a.description));
     }
     for (int id : f.meshesRemoved)
         if (int i = state_.indexOf(id); i >= 0 && !removedByEdits.count(id)) state_.meshes.erase(state_.meshes.begin() + i);
@@ -116,21 +110,23 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
 
 void SessionStep::syncTo(clip::ClipMeshSet& set) const { syncClipMeshes(state_, set); }
 
-void SessionStep::syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts) {
-    syncClipMeshes(state_, renderer.clipMeshes());
-    if (syncedTransferFunction_ != state_.transferFunctionVersion) {
-        renderer.setTransferFunction(state_.transferFunction);
-        syncedTransferFunction_ = state_.transferFunctionVersion;
+void SessionStep::syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts) { syncRenderer(state_, renderer, tracts, synced_); }
+
+void syncRenderer(const InteractionState& state, Renderer& renderer, const std::vector<Tractogram>& tracts, RendererSync& synced) {
+    syncClipMeshes(state, renderer.clipMeshes());
+    if (synced.transferFunction != state.transferFunctionVersion) {
+        renderer.setTransferFunction(state.transferFunction);
+        synced.transferFunction = state.transferFunctionVersion;
     }
-    renderer.setLaoSettings(state_.lao);   // changes nothing when equal
-    if (syncedTubes_ != state_.tubesVersion || syncedTubeShading_ != state_.tubeShadingVersion) {
-        if (state_.tubes.empty() || syncedTubes_ != state_.tubesVersion) {
-            setSceneTubes(renderer, state_.tubes, state_.tubeRendering, tracts);
+    renderer.setLaoSettings(state.lao);   // changes nothing when equal
+    if (synced.tubes != state.tubesVersion || synced.tubeShading != state.tubeShadingVersion) {
+        if (state.tubes.empty() || synced.tubes != state.tubesVersion) {
+            setSceneTubes(renderer, state.tubes, state.tubeRendering, tracts);
         } else {
-            renderer.setTubeShading(sceneTubeShading(state_.tubes, state_.tubeRendering.shading));
+            renderer.setTubeShading(sceneTubeShading(state.tubes, state.tubeRendering.shading));
         }
-        syncedTubes_ = state_.tubesVersion;
-        syncedTubeShading_ = state_.tubeShadingVersion;
+        synced.tubes = state.tubesVersion;
+        synced.tubeShading = state.tubeShadingVersion;
     }
 }
 

@@ -13,7 +13,9 @@
 #include "render/model/frame.h"
 #include "render/renderer.h"
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,16 @@ struct StepChanges {
 
 // SessionStep::syncTo for a state without a step (a scene's first frame: render, bench raycast/dos).
 void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set);
+
+// The versions of a state's settings a renderer was last handed (nullopt: never).
+struct RendererSync {
+    std::optional<std::uint64_t> transferFunction{}, tubes{}, tubeShading{};
+};
+// The one path by which a state's settings reach a renderer (configureRenderer for a scene's first frame,
+// SessionStep::syncTo after edits): the clip meshes and LAO settings (cheap when unchanged), and the transfer
+// function and tubes (rebuilt from `tracts`, one per scene bundle) when their versions differ from `synced`,
+// which it then updates.
+void syncRenderer(const InteractionState& state, Renderer& renderer, const std::vector<Tractogram>& tracts, RendererSync& synced);
 
 // Pose equality, for every command: same ids in the same order, positions, orientations and scales.
 bool samePoses(const std::vector<SessionMesh>& a, const std::vector<SessionMesh>& b);
@@ -58,10 +70,8 @@ public:
     // Makes `set` match the state's meshes (index i = state().meshes[i]). Poses, scales and clips_tubes are set
     // (cheap: a rigid motion only changes a camera matrix); meshes are re-added only when the list changed.
     void syncTo(clip::ClipMeshSet& set) const;
-    // Makes a renderer match the state: the clip meshes as above, and the transfer function, the LAO
-    // settings and the tubes (rebuilt from `tracts`, one per scene bundle) when an edit changed them. The one
-    // path by which edited settings reach a renderer (the frame's raycast, dos, ismos and lights reach it in
-    // frame()).
+    // Makes a renderer match the state through syncRenderer (the frame's raycast, dos, ismos and lights reach
+    // it in frame()).
     void syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts);
 
 private:
@@ -71,7 +81,7 @@ private:
     InteractionState state_;
     FrameDescription frame_;
     // The state's setting versions the renderer was last given (those of the scene: configureRenderer).
-    std::uint64_t syncedTransferFunction_ = 0, syncedTubes_ = 0, syncedTubeShading_ = 0;
+    RendererSync synced_;
 };
 
 }  // namespace curette

@@ -40,7 +40,7 @@
 #define SSBO_VISIT_BRICKS 2         // uint[]: the bricks steps IV and V visit (visit_bricks.glsl)
 #define SSBO_RECOMPUTE_LIST 3       // uint count, uint voxels[]: category-b voxels (step V, compacted)
 #define SSBO_DISPATCH 4             // uvec3: indirect dispatch size of the compacted step V
-#define SSBO_ANTIALIASING 5         // vec4[]: the N extra anti-aliasing offsets of step IV
+#define SSBO_ANTI_ALIASING 5        // vec4[]: the N extra anti-aliasing offsets of step IV
 #define SSBO_POISSON_DISK 8         // vec2[]: vicinity-occlusion samples in the unit disk
 #define SSBO_PROBE_POINTS 6         // vec4[]: world points the clip probe tests (clip_probe.comp)
 #define SSBO_PROBE_RESULTS 7        // uint[]: per point bit 0 inside, bit 1 dilated, bit 2 near

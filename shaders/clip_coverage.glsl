@@ -4,12 +4,12 @@
 // clip::insideSampleCount (mesh/coverage.h).
 // Nine samples, the centre and the eight corners one index step away along the diagonals; only where they
 // disagree, N more at fixed offsets in [-1, 1]^3 (antiAliasingOffsets, clip::antiAliasingOffsets).
-// Binder: the pass sets indexToWorld and antiAliasingSamples and binds SSBO_ANTIALIASING; clip_test.glsl's
+// Binder: the pass sets indexToWorld and antiAliasingSamples and binds SSBO_ANTI_ALIASING; clip_test.glsl's
 // binder is clip::ClipMeshSet::apply.
 #include "bindings.glsl"
 #include "clip_test.glsl"
 
-layout(std430, binding = SSBO_ANTIALIASING) readonly buffer AntiAliasing { vec4 antiAliasingOffsets[]; };
+layout(std430, binding = SSBO_ANTI_ALIASING) readonly buffer AntiAliasing { vec4 antiAliasingOffsets[]; };
 uniform mat4 indexToWorld;
 uniform int antiAliasingSamples;   // N
 

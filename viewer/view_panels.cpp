@@ -292,7 +292,7 @@ void ViewPanels::shadingPanel(const InteractionState& state, std::vector<Setting
         if (ImGui::SliderFloat("ambient scale", &scale, 0.0f, 4.0f)) ao["ambient_scale"] = scale, changed = true;
         if (changed) edits.push_back(edit(Setting::AmbientOcclusion, ao));
     }
-    if (state.shading == ShadingMode::Dos || !state.tubes.empty()) {
+    if (slabPassRuns(state.shading, !state.tubes.empty())) {
         nlohmann::json dos = objectOf(state, scene, "dos");
         bool changed = false;
         float cone = static_cast<float>(state.dos.coneAngleDeg);

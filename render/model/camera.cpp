@@ -25,6 +25,12 @@ glm::dmat4 OrbitCamera::projection(double aspect) const {
     return glm::perspective(glm::radians(fovYDeg), aspect, nearMm, farMm);
 }
 
+glm::dmat4 OrbitCamera::viewProjection(glm::ivec2 sizePx) const {
+    return projection(double(sizePx.x) / sizePx.y) * view();
+}
+
+double OrbitCamera::pixelsPerMmAtUnitDepth(int heightPx) const { return heightPx / (2.0 * std::tan(glm::radians(fovYDeg) / 2.0)); }
+
 void OrbitCamera::fit(glm::dvec3 center, double radiusMm) {
     target = center;
     distanceMm = 1.05 * radiusMm / std::sin(glm::radians(fovYDeg) / 2.0);

@@ -23,6 +23,12 @@ struct OrbitCamera {
     glm::dvec3 right() const;
     glm::dmat4 view() const;
     glm::dmat4 projection(double aspect) const;
+    // projection * view for an image of `sizePx` pixels (aspect width / height): the one matrix the passes,
+    // the shaders' pixel rays and the CPU references all use, so they agree bit for bit.
+    glm::dmat4 viewProjection(glm::ivec2 sizePx) const;
+    // How many pixels one millimetre across the view spans at unit depth in an image `heightPx` high:
+    // H / (2 tan(fovy / 2)); divide by a depth for the scale there.
+    double pixelsPerMmAtUnitDepth(int heightPx) const;
 
     // Places the camera so a sphere of `radiusMm` around `center` fills the view with a small margin.
     void fit(glm::dvec3 center, double radiusMm);

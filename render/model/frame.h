@@ -13,6 +13,10 @@
 
 namespace curette {
 
+// The shaders take this many lights (phong.glsl MAX_LIGHTS, ismos_occlusion.comp MAX_ISMOS_LIGHTS; the
+// ShaderConstants test holds them equal).
+inline constexpr int kMaxLights = 4;
+
 struct Light {
     glm::dvec3 direction{0.3, 0.5, 1.0};  // towards the light; camera space is (right, up, towards viewer)
     glm::dvec3 color{1.0};                // colour times intensity
@@ -105,6 +109,10 @@ struct FrameDescription {
     std::vector<Light> lights{Light{}};
     bool operator==(const FrameDescription&) const = default;
 };
+
+// Whether the slab pass runs (and so the DOS cone and grid shape the image) for `shading`, with or without
+// tubes in view: planFrame decides, and the viewer's panel asks here.
+bool slabPassRuns(ShadingMode shading, bool tubesInView);
 
 // A light's direction in world space (camera-space lights are (right, up, towards the viewer)), unit length.
 glm::dvec3 worldLightDirection(const Light& light, const OrbitCamera& camera);

@@ -3,6 +3,7 @@
 #include "base/error.h"
 #include "base/progress.h"
 #include "gl/bindings.h"
+#include "render/model/setting_limits.h"
 #include "render/model/worker_deal.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -32,13 +33,9 @@ gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label,
 
 AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& settings, const gl::Texture* seenBricks)
     : volume_(volume), settings_(settings), seenBricks_(settings.onlyWhereSeen ? seenBricks : nullptr), laoReach_(volume.geometry(), reachMm(settings)) {
-    if (settings.samples < 1 || settings.samples > 1024)
-        throw InputError("<lao settings>", "samples", "an integer in [1, 1024]", std::to_string(settings.samples));
-    if (!(settings.stepMm > 0.0))
-        throw InputError("<lao settings>", "step_mm", "a positive length", std::to_string(settings.stepMm));
-    if (settings.antiAliasingSamples < 0 || settings.antiAliasingSamples > 256)
-        throw InputError("<lao settings>", "antialiasing_samples", "an integer in [0, 256]",
-                         std::to_string(settings.antiAliasingSamples));
+    requireWithin(limits::laoSamples, settings.samples, "<lao settings>", "samples");
+    requireWithin(limits::laoStepMm, settings.stepMm, "<lao settings>", "step_mm");
+    requireWithin(limits::laoAntiAliasingSamples, settings.antiAliasingSamples, "<lao settings>", "antialiasing_samples");
     glm::ivec3 dims = volume.geometry().dims;
     // Step V numbers voxels as 32-bit uints (lao_common.glsl, the recompute list).
     if (std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z) > 0xFFFFFFFFull)
@@ -382,7 +379,7 @@ std::uint32_t AmbientOcclusion::advanceClipVoxels(const TransferFunctionTexture&
 }
 
 std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, ShadingMode mode) {
-    bool cao = mode == ShadingMode::Cao;
+    bool cao = traits(mode).dilatedMaps;   // the mode table's: cao tests the dilated maps and updates in part
     // Full LAO (the baseline) and the first update after step I visit every voxel. A CAO update visits the
     // bricks (render/mesh_voxel_box.h) of the meshes that changed since the last update (pose, scale, geometry,
     // or every mesh when the maps were drawn again or one was added or removed), those they reach now and those

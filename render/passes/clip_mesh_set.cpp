@@ -3,6 +3,7 @@
 #include "base/error.h"
 #include "base/log.h"
 #include "gl/bindings.h"
+#include "render/passes/clip_mesh_gpu.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,15 +15,6 @@ namespace curette::clip {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-
-struct CameraGpu {  // std140 layout of ClipMeshGpu in shaders/clip_test.glsl
-    float worldToMap[16];
-    std::int32_t info[4];
-    float mapBox[4];
-    float depthBoxLo[4], depthBoxHi[4];
-    float depthBall[4];
-};
-static_assert(sizeof(CameraGpu) == 144);
 
 // Whether any pixel of the resolution x resolution corner of a 2-D texture is finite.
 bool anyFinite(GLuint texture, int resolution) {

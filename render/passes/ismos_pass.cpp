@@ -88,8 +88,8 @@ void IsmosPass::runOcclusion(const FrameDescription& frame, const IsmosSpace& sp
     defines.emplace_back("ISMOS_BLEND", s.blendLayers ? "1" : "0");
     gl::Program& p = programs_.get(defines);
     int count = static_cast<int>(lights_.size());
-    glm::vec3 centres[4]{}, tints[4]{};
-    glm::vec4 spots[4]{};
+    glm::vec3 centres[kMaxLights]{}, tints[kMaxLights]{};
+    glm::vec4 spots[kMaxLights]{};
     for (int j = 0; j < count; ++j) {
         const IsmosLight& l = lights_[static_cast<std::size_t>(j)];
         centres[j] = glm::vec3(l.centre);

@@ -4,6 +4,7 @@
 #include "base/log.h"
 #include "gl/bindings.h"
 #include "render/lighting.h"
+#include "render/model/setting_limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -42,10 +43,8 @@ void SlabPass::run(const SlabInputs& in) {
     const DosSettings& settings = frame.dos;
     const GpuVolume& volume = in.volume;
     GBuffer* tubes = in.tubes;
-    if (!(settings.coneAngleDeg >= 0.0 && settings.coneAngleDeg < 90.0))
-        throw InputError("<dos settings>", "cone_angle_deg", "an angle in [0, 90)", std::to_string(settings.coneAngleDeg));
-    if (settings.gridSize < 1 || settings.gridSize > 16)
-        throw InputError("<dos settings>", "grid", "an integer in [1, 16]", std::to_string(settings.gridSize));
+    requireWithin(limits::dosConeAngleDeg, settings.coneAngleDeg, "<dos settings>", "cone_angle_deg");
+    requireWithin(limits::dosGrid, settings.gridSize, "<dos settings>", "grid");
     ensureBuffers(frame.size);
     const VolumeGeometry& g = volume.geometry();
     const OrbitCamera& camera = frame.camera;
@@ -92,7 +91,7 @@ void SlabPass::run(const SlabInputs& in) {
     // Eq. 11 and 12: the cone base radius d tan(theta) in world units, projected at the previous slice's
     // depth into pixels (the projection scales a length at depth z by H / (2 z tan(fovy / 2))).
     double tanTheta = std::tan(glm::radians(settings.coneAngleDeg));
-    double pixelsPerMmAtUnitDepth = frame.size.y / (2.0 * std::tan(glm::radians(camera.fovYDeg) / 2.0));
+    double pixelsPerMmAtUnitDepth = camera.pixelsPerMmAtUnitDepth(frame.size.y);
     int current = 0;
     for (long k = first; k <= last; ++k) {
         double z = double(k) * d;

@@ -127,11 +127,10 @@ void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    double aspect = double(frame.size.x) / frame.size.y;
-    program_.set("viewProjection", glm::mat4(frame.camera.projection(aspect) * frame.camera.view()));
+    program_.set("viewProjection", glm::mat4(frame.camera.viewProjection(frame.size)));
     program_.set("eyeWorld", glm::vec3(frame.camera.position()));
     program_.set("viewForward", glm::vec3(frame.camera.forward()));
-    program_.set("surfaceKind", lines_ ? 2.0f : 1.0f);
+    program_.set("surfaceKind", lines_ ? binding::surfaceLine : binding::surfaceTube);
     clip.apply(program_);
     program_.use();
     glBindVertexArray(vertexArray_.name());

@@ -3,8 +3,7 @@
 namespace curette::reference {
 
 CameraRay cameraRay(const FrameDescription& frame, glm::ivec2 pixel) {
-    double aspect = double(frame.size.x) / frame.size.y;
-    glm::dmat4 inverseViewProjection = glm::inverse(frame.camera.projection(aspect) * frame.camera.view());
+    glm::dmat4 inverseViewProjection = glm::inverse(frame.camera.viewProjection(frame.size));
     glm::dvec2 ndc = (glm::dvec2(pixel) + 0.5) / glm::dvec2(frame.size) * 2.0 - 1.0;
     ndc.y = -ndc.y;
     glm::dvec4 farPoint = inverseViewProjection * glm::dvec4(ndc, 1.0, 1.0);

@@ -25,8 +25,7 @@ std::optional<SurfacePoint> surfacePoint(const SurfaceScene& scene, const EyeVie
 }
 
 glm::dvec2 projectToPixel(const FrameDescription& frame, glm::dvec3 world) {
-    double aspect = double(frame.size.x) / frame.size.y;
-    glm::dvec4 clip = frame.camera.projection(aspect) * frame.camera.view() * glm::dvec4(world, 1.0);
+    glm::dvec4 clip = frame.camera.viewProjection(frame.size) * glm::dvec4(world, 1.0);
     glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
     return {(ndc.x + 1.0) / 2.0 * frame.size.x, (1.0 - ndc.y) / 2.0 * frame.size.y};
 }

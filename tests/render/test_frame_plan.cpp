@@ -1,6 +1,7 @@
 // The frame plan (render/model/frame_plan.h), the descriptor tables and the checked shader interfaces.
 #include "base/error.h"
 #include "gl/program.h"
+#include "render/model/frame.h"
 #include "render/model/frame_plan.h"
 #include "render/model/gpu_resources.h"
 #include "render/renderer.h"
@@ -18,6 +19,23 @@ std::vector<Pass> passes(const FramePlan& plan) {
     std::vector<Pass> out;
     for (const PlannedPass& p : plan.passes) out.push_back(p.pass);
     return out;
+}
+
+// The viewer shows the DOS settings when this says the slab pass runs; it must say what planFrame does.
+TEST(FramePlan, SlabPassRunsAsThePlanSays) {
+    EXPECT_TRUE(slabPassRuns(ShadingMode::Dos, false));
+    EXPECT_FALSE(slabPassRuns(ShadingMode::Phong, false));
+    EXPECT_TRUE(slabPassRuns(ShadingMode::Phong, true));     // tubes: G-buffer, slab pass, composite
+    EXPECT_FALSE(slabPassRuns(ShadingMode::Ismos, true));    // ISMOS shades the tubes itself
+    for (const ShadingModeTraits& t : allShadingModes())
+        for (bool tubes : {false, true}) {
+            PlanInputs in;
+            in.shading = t.mode;
+            in.clipMeshes = 1;
+            in.clipMapsCurrent = false;
+            in.tubes = in.tubesInView = tubes;
+            EXPECT_EQ(slabPassRuns(t.mode, tubes), planFrame(in).runs(Pass::SlabPass)) << t.name << (tubes ? " with tubes" : "");
+        }
 }
 
 TEST(FramePlan, AStillSceneCostsStepSixAlone) {

@@ -1,6 +1,5 @@
 // ISMOS (seed 003): pass 2 against its CPU twin, analytic shadows and transmittance, the model's equations,
 // the frame plan and the allocations of the mode.
-#include "gl/bindings.h"
 #include "render/model/ismos_model.h"
 #include "render/reference/ismos_reference.h"
 #include "mesh/primitives.h"
@@ -12,11 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <fstream>
-#include <map>
 #include <random>
-#include <regex>
-#include <sstream>
 
 namespace curette {
 namespace {
@@ -76,25 +71,6 @@ Rendered renderBoth(Renderer& r, FrameDescription f) {
 }
 
 const std::vector<Light> kTwoLightsOneSpot = {Light{{0.6, 0.4, 0.7}, {1.0, 0.9, 0.8}, true}, Light{{-0.5, 0.6, 0.6}, {0.5, 0.6, 1.0}, true}};
-
-TEST(Ismos, BindingsMatchGlsl) {
-    std::ifstream in(std::string(CURETTE_SOURCE_DIR) + "/shaders/bindings.glsl");
-    std::stringstream text;
-    text << in.rdbuf();
-    std::map<std::string, unsigned> glsl;
-    std::regex define(R"(#define\s+(\w+)\s+(\d+))");
-    std::string s = text.str();
-    for (std::sregex_iterator it(s.begin(), s.end(), define), end; it != end; ++it) glsl[(*it)[1]] = static_cast<unsigned>(std::stoul((*it)[2]));
-    EXPECT_EQ(glsl.at("BINDING_ISMOS_LAYER_FRONT"), binding::ismosLayerFront);
-    EXPECT_EQ(glsl.at("BINDING_ISMOS_LAYER_ALPHA"), binding::ismosLayerAlpha);
-    EXPECT_EQ(glsl.at("BINDING_ISMOS_LAYER_BACK"), binding::ismosLayerBack);
-    EXPECT_EQ(glsl.at("BINDING_ISMOS_FIT"), binding::ismosFit);
-    EXPECT_EQ(glsl.at("IMAGE_ISMOS_LAYER_FRONT"), binding::imageIsmosLayerFront);
-    EXPECT_EQ(glsl.at("IMAGE_ISMOS_LAYER_ALPHA"), binding::imageIsmosLayerAlpha);
-    EXPECT_EQ(glsl.at("IMAGE_ISMOS_LAYER_BACK"), binding::imageIsmosLayerBack);
-    EXPECT_EQ(glsl.at("IMAGE_ISMOS_FIT"), binding::imageIsmosFit);
-    EXPECT_EQ(glsl.at("SSBO_ISMOS_LIGHT_SAMPLES"), binding::ssboIsmosLightSamples);
-}
 
 // Pass 2 on the GPU equals its CPU twin on the GPU's own layers, in every variant.
 TEST(Ismos, OcclusionPassMatchesCpuTwinOnReadBackLayers) {

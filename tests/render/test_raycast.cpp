@@ -1,5 +1,4 @@
 // Ray casting (shaders/raycast.comp) against its CPU double twin and against analytic answers.
-#include "gl/bindings.h"
 #include "render/reference/raycast_reference.h"
 #include "mesh/primitives.h"
 #include "render/renderer.h"
@@ -14,12 +13,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <map>
-#include <fstream>
 #include <numbers>
 #include <random>
-#include <regex>
-#include <sstream>
 #include <utility>
 
 namespace curette {
@@ -476,56 +471,6 @@ TEST(Raycast, VolumeLargerThanTextureLimitIsAnInputError) {
         EXPECT_EQ(e.field(), "dim[1]");
         EXPECT_NE(std::string(e.what()).find("GL_MAX_3D_TEXTURE_SIZE"), std::string::npos);
     }
-}
-
-TEST(Raycast, BindingsMatchGlsl) {
-    std::ifstream in(std::string(CURETTE_SOURCE_DIR) + "/shaders/bindings.glsl");
-    ASSERT_TRUE(in);
-    std::stringstream text;
-    text << in.rdbuf();
-    std::map<std::string, unsigned> glsl;
-    std::regex define(R"(#define\s+(\w+)\s+(\d+))");
-    std::string s = text.str();
-    for (std::sregex_iterator it(s.begin(), s.end(), define), end; it != end; ++it)
-        glsl[(*it)[1]] = static_cast<unsigned>(std::stoul((*it)[2]));
-    EXPECT_EQ(glsl.at("BINDING_VOLUME"), binding::volume);
-    EXPECT_EQ(glsl.at("BINDING_TRANSFER_FUNCTION"), binding::transferFunction);
-    EXPECT_EQ(glsl.at("BINDING_GRADIENT_OPACITY"), binding::gradientOpacity);
-    EXPECT_EQ(glsl.at("BINDING_OCCUPANCY"), binding::occupancy);
-    EXPECT_EQ(glsl.at("BINDING_SEEN_BRICKS"), binding::seenBricks);
-    EXPECT_EQ(glsl.at("BINDING_AMBIENT"), binding::ambient);
-    EXPECT_EQ(glsl.at("BINDING_OPACITY"), binding::opacity);
-    EXPECT_EQ(glsl.at("BINDING_PRECOMPUTED_AO"), binding::precomputedAo);
-    EXPECT_EQ(glsl.at("BINDING_MASK"), binding::mask);
-    EXPECT_EQ(glsl.at("BINDING_CLIP_DEPTH"), binding::clipDepth);
-    EXPECT_EQ(glsl.at("BINDING_CLIP_DILATED"), binding::clipDilated);
-    EXPECT_EQ(glsl.at("IMAGE_OUTPUT"), binding::imageOutput);
-    EXPECT_EQ(glsl.at("IMAGE_OPACITY"), binding::imageOpacity);
-    EXPECT_EQ(glsl.at("IMAGE_MASK"), binding::imageMask);
-    EXPECT_EQ(glsl.at("IMAGE_AMBIENT"), binding::imageAmbient);
-    EXPECT_EQ(glsl.at("IMAGE_DILATION"), binding::imageDilation);
-    EXPECT_EQ(glsl.at("IMAGE_OCCLUSION_NEXT"), binding::imageOcclusionNext);
-    EXPECT_EQ(glsl.at("BINDING_OCCLUSION_PREVIOUS"), binding::occlusionPrevious);
-    EXPECT_EQ(glsl.at("BINDING_TUBE_DEPTH"), binding::tubeDepth);
-    EXPECT_EQ(glsl.at("BINDING_TUBE_COLOR"), binding::tubeColor);
-    EXPECT_EQ(glsl.at("BINDING_TUBE_NORMAL"), binding::tubeNormal);
-    EXPECT_EQ(glsl.at("BINDING_PARTIAL_OCCLUSION"), binding::partialOcclusion);
-    EXPECT_EQ(glsl.at("IMAGE_PARTIAL_OCCLUSION"), binding::imagePartialOcclusion);
-    EXPECT_EQ(glsl.at("SSBO_TUBE_RINGS"), binding::ssboTubeRings);
-    EXPECT_EQ(glsl.at("SSBO_TUBE_STREAMLINES"), binding::ssboTubeStreamlines);
-    EXPECT_EQ(glsl.at("SSBO_TUBE_CIRCLE"), binding::ssboTubeCircle);
-    EXPECT_EQ(glsl.at("SSBO_TUBE_POSITIONS"), binding::ssboTubePositions);
-    EXPECT_EQ(glsl.at("SSBO_TUBE_DIRECTIONS"), binding::ssboTubeDirections);
-    EXPECT_EQ(glsl.at("SSBO_TUBE_COLORS"), binding::ssboTubeColors);
-    EXPECT_EQ(glsl.at("SSBO_TUBE_INDICES"), binding::ssboTubeIndices);
-    EXPECT_EQ(glsl.at("SSBO_TILE_SPANS"), binding::ssboTileSpans);
-    EXPECT_EQ(glsl.at("SSBO_POISSON_DISK"), binding::ssboPoissonDisk);
-    EXPECT_EQ(glsl.at("SSBO_SAMPLE_COUNTER"), binding::ssboSampleCounter);
-    EXPECT_EQ(glsl.at("SSBO_LAO_DIRECTIONS"), binding::ssboLaoDirections);
-    EXPECT_EQ(glsl.at("SSBO_RECOMPUTE_LIST"), binding::ssboRecomputeList);
-    EXPECT_EQ(glsl.at("SSBO_DISPATCH"), binding::ssboDispatch);
-    EXPECT_EQ(glsl.at("SSBO_ANTIALIASING"), binding::ssboAntiAliasing);
-    EXPECT_EQ(glsl.at("UBO_CLIP_MESHES"), binding::uboClipMeshes);
 }
 
 }  // namespace

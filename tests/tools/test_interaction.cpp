@@ -20,14 +20,39 @@ namespace {
 InteractionState twoSpheres() {
     InteractionState s;
     for (int i = 0; i < 2; ++i) {
-        MeshState m;
-        m.id = s.nextMeshId++;
-        m.name = "sphere " + std::to_string(i);
-        m.geometry = meshFromDescription(R"({"shape": "sphere", "radius_mm": 10})", "test", ".");
-        m.pose.position = m.initialPose.position = {10.0 * i, 0, 0};
-        s.meshes.push_back(m);
+        SceneClipMesh sphere{.name = "sphere " + std::to_string(i), .geometry = meshFromDescription(R"({"shape": "sphere", "radius_mm": 10})", "test", ".")};
+        sphere.pose.position = {10.0 * i, 0, 0};
+        s.meshes.push_back(MeshState::make(s.nextMeshId++, sphere));
     }
     return s;
+}
+
+// Every path that makes a mesh (scene, edit, device, session file) goes through MeshState::make: a scene
+// mesh's keys all arrive, and reset_pose returns to the pose it was made with.
+TEST(Interaction, AMeshStateKeepsEverySceneKey) {
+    SceneClipMesh scene{.name = "cutter", .geometry = meshFromDescription(R"({"shape": "sphere", "radius_mm": 5})", "test", ".")};
+    scene.pose.position = {1, 2, 3};
+    scene.scale = {2, 1, 0.5};
+    scene.clipsTubes = true;
+    MeshState m = MeshState::make(7, scene, "{}");
+    EXPECT_EQ(m.id, 7);
+    EXPECT_EQ(m.name, "cutter");
+    EXPECT_EQ(m.description, "{}");
+    EXPECT_EQ(m.geometry, scene.geometry);
+    EXPECT_EQ(m.pose.position, scene.pose.position);
+    EXPECT_EQ(m.initialPose.position, scene.pose.position);
+    EXPECT_EQ(m.scale, scene.scale);
+    EXPECT_TRUE(m.clipsTubes);
+    // A scene's meshes and one an edit adds keep clips_tubes and scale alike.
+    InteractionState s;
+    s.meshes.push_back(m);
+    s.nextMeshId = 8;
+    s.applyEdits({{Setting::MeshAdd, -1, nlohmann::json::parse(R"({"mesh": {"shape": "box", "size_mm": [4, 4, 4]}, "clips_tubes": true, "scale": 3})")}},
+                 "test");
+    ASSERT_EQ(s.meshes.size(), 2u);
+    EXPECT_TRUE(s.meshes[1].clipsTubes);
+    EXPECT_EQ(s.meshes[1].scale, glm::dvec3(3));
+    EXPECT_EQ(s.meshes[1].name, "added 8");
 }
 
 TEST(Interaction, CameraFrameMotionDragsResetAddRemoveAndShading) {

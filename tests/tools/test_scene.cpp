@@ -1,5 +1,7 @@
 // Scene files: every key read strictly, errors naming the key, relative paths, clip meshes.
 #include "scene/scene.h"
+#include "scene/scene_keys.h"
+#include "render/model/setting_limits.h"
 #include "base/error.h"
 #include "base/json_reader.h"
 #include "tests/tools/run_curette.h"
@@ -118,6 +120,56 @@ TEST(Scene, DeeplyNestedFilesAreRefusedNotACrash) {
     EXPECT_NE(r.output.find("nested at most 64 levels"), std::string::npos) << r.output;
     EXPECT_LT(r.output.size(), 400u) << "one line, not the value";
     std::filesystem::remove(file);
+}
+
+}  // namespace
+}  // namespace curette
+
+namespace curette {
+namespace {
+
+// The scene reader accepts a DOS or LAO value exactly when the pass that checks it does (one table,
+// render/model/setting_limits.h): 89.99 degrees was refused by the file and accepted in code before.
+TEST(Scene, DosAndLaoKeysAcceptWhatThePassesAccept) {
+    auto readsDos = [](const char* key, double v) {
+        nlohmann::json j = {{key, v}};
+        try {
+            readDos(JsonReader(j, "scene.json", "dos"));
+            return true;
+        } catch (const InputError&) {
+            return false;
+        }
+    };
+    auto passAccepts = [](const NumberLimit& l, double v) {
+        try {
+            requireWithin(l, v, "<dos settings>", "key");
+            return true;
+        } catch (const InputError&) {
+            return false;
+        }
+    };
+    for (double v : {-0.1, 0.0, 45.0, 89.9, 89.99, 90.0, 95.0}) EXPECT_EQ(readsDos("cone_angle_deg", v), passAccepts(limits::dosConeAngleDeg, v)) << v;
+    EXPECT_TRUE(readsDos("cone_angle_deg", 89.99));
+    EXPECT_FALSE(readsDos("cone_angle_deg", 90.0));
+    for (int grid : {0, 1, 16, 17}) {
+        nlohmann::json j = {{"grid", grid}};
+        bool read = true;
+        try {
+            readDos(JsonReader(j, "scene.json", "dos"));
+        } catch (const InputError&) {
+            read = false;
+        }
+        EXPECT_EQ(read, limits::dosGrid.contains(grid)) << grid;
+    }
+    nlohmann::json lao = {{"step_mm", 0.0}};
+    try {
+        readLao(JsonReader(lao, "scene.json", "ambient_occlusion"));
+        ADD_FAILURE() << "step_mm 0 read";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(limits::laoStepMm.expected()), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(limits::dosConeAngleDeg.expected(), "a number in [0, 90)");
+    EXPECT_EQ(limits::laoSamples.expected(), "an integer in [1, 1024]");
 }
 
 }  // namespace

@@ -19,12 +19,9 @@ gl::Context& context() {
 
 InteractionState sceneWithTubeCutter() {
     InteractionState s;
-    MeshState m;
-    m.id = s.nextMeshId++;
-    m.name = "window";
-    m.geometry = meshFromDescription(R"({"shape": "box", "size_mm": [20, 20, 20]})", "test", ".");
-    m.clipsTubes = true;   // scene key clips_tubes
-    s.meshes.push_back(m);
+    s.meshes.push_back(MeshState::make(s.nextMeshId++, {.name = "window",
+                                                        .geometry = meshFromDescription(R"({"shape": "box", "size_mm": [20, 20, 20]})", "test", "."),
+                                                        .clipsTubes = true}));   // scene key clips_tubes
     return s;
 }
 

@@ -204,13 +204,8 @@ void CaoBench::setMeshes(Renderer& renderer, int count, int frame) {
     InteractionState& state = states[&renderer];
     if (static_cast<int>(state.meshes.size()) != count) {
         state.meshes.clear();
-        for (int i = 0; i < count; ++i) {
-            MeshState m;
-            m.id = i;
-            m.name = i == 0 ? "moving sphere" : "second sphere";
-            m.geometry = i == 0 ? sphere : secondSphere;
-            state.meshes.push_back(m);
-        }
+        for (int i = 0; i < count; ++i)
+            state.meshes.push_back(MeshState::make(i, {.name = i == 0 ? "moving sphere" : "second sphere", .geometry = i == 0 ? sphere : secondSphere}));
     }
     glm::dvec3 p = pathPoint(g, frame, seed);
     state.meshes[0].pose = clip::RigidPose{p, {}};

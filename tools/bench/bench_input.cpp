@@ -119,11 +119,9 @@ int benchInput(const CommandLine& cl) {
     LiveInput live(std::make_unique<input::FakeHidBackend>(ports), input::defaultMapping(), 40.0, 60.0);
     InteractionState state;
     for (int i = 0; i < 2; ++i) {
-        MeshState m;
-        m.id = state.nextMeshId++;
-        m.name = "sphere " + std::to_string(i);
-        m.geometry = meshFromDescription(R"({"shape": "sphere", "radius_mm": 20})", "<bench>", ".");
-        state.meshes.push_back(m);
+        SceneClipMesh sphere{.name = "sphere " + std::to_string(i),
+                             .geometry = meshFromDescription(R"({"shape": "sphere", "radius_mm": 20})", "<bench>", ".")};
+        state.meshes.push_back(MeshState::make(state.nextMeshId++, sphere));
     }
     OrbitCamera camera;
     std::vector<double> pollUs, pipelineUs, totalUs;
