@@ -85,17 +85,7 @@ std::string fileNameTimestamp() {
 
 std::string sessionFileName() { return "curette-session-" + fileNameTimestamp() + ".jsonl"; }
 
-}  // namespace
-
-int view(const Arguments& args) {
-    CommandLine cl(args, {{"scene", true, "scene file (JSON)"},
-                          {"size", true, "window size WxH (default 1024x768)"},
-                          {"mapping", true, "device mapping JSON (default: the shipped assets/input/default_mapping.json)"},
-                          {"record", true, "record a session to this file from the start (F9 toggles recording too)"},
-                          {"no-devices", false, "keyboard and mouse only (do not open HID devices)"},
-                          {"quality", true, "exact|adaptive: previews while moving, exact when still (default: adaptive on a software renderer, exact on a GPU; --play: exact)"},
-                          {"play", true, "play this recorded session in the viewer's loop instead of live input, then screenshot and exit"},
-                          {"screenshot", true, "with --play: the PNG of the window after the last frame (default curette-play.png)"}});
+int view(const CommandLine& cl) {
     glm::ivec2 windowSize = CommandLine::parseSize("size", cl.valueOr("size", "1024x768"));
     std::optional<Session> play;
     if (auto p = cl.value("play")) play = readSession(*p, false);
@@ -387,6 +377,21 @@ int view(const Arguments& args) {
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
     return 0;
+}
+
+}  // namespace
+
+Command viewCommand() {
+    return {{"view", "--scene S", "the interactive viewer: devices, keyboard and mouse, settings panels, the removal report; F9 records a session, --play F plays one",
+             {{"scene", true, "scene file (JSON)"},
+              {"size", true, "window size WxH (default 1024x768)", "WxH"},
+              {"mapping", true, "device mapping JSON (default: the shipped assets/input/default_mapping.json)"},
+              {"record", true, "record a session to this file from the start (F9 toggles recording too)"},
+              {"no-devices", false, "keyboard and mouse only (do not open HID devices)"},
+              {"quality", true, "exact|adaptive: previews while moving, exact when still (default: adaptive on a software renderer, exact on a GPU; --play: exact)", "exact|adaptive"},
+              {"play", true, "play this recorded session in the viewer's loop instead of live input, then screenshot and exit"},
+              {"screenshot", true, "with --play: the PNG of the window after the last frame (default curette-play.png)"}}},
+            &view};
 }
 
 }  // namespace curette::commands
