@@ -144,9 +144,23 @@ std::string CommandLine::optionUsage(const std::vector<OptionSpec>& specs) {
     return text;
 }
 
+std::string wrapText(const std::string& text, const std::string& indent, std::size_t width) {
+    std::string out, line;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = std::min(text.find(' ', start), text.size());
+        std::string word = text.substr(start, end - start);
+        start = end + 1;
+        if (word.empty()) continue;
+        if (!line.empty() && line.size() + 1 + word.size() > width) out += line + "\n", line.clear();
+        line += line.empty() ? indent + word : " " + word;
+    }
+    return line.empty() ? out : out + line + "\n";
+}
+
 std::string commandHelp(const CommandSpec& command) {
     std::string text = "usage: curette " + command.name + (command.synopsis.empty() ? "" : " " + command.synopsis) +
-                       (command.options.empty() ? "" : " [options]") + "\n\n" + command.summary + "\n";
+                       (command.options.empty() ? "" : " [options]") + "\n\n" + wrapText(command.summary, "");
     std::vector<OptionSpec> options = command.options;
     options.push_back({"help", false, "this help"});
     return text + "\noptions:\n" + CommandLine::optionUsage(options);

@@ -70,6 +70,8 @@ private:
 
 // `--name PLACEHOLDER` (or `--name` for a flag), as usage writes it.
 std::string optionForm(const OptionSpec& spec);
+// `text` (words split at spaces) in lines of at most `width` characters, each starting with `indent`.
+std::string wrapText(const std::string& text, const std::string& indent, std::size_t width = 110);
 // `curette NAME --help`: the synopsis, the summary and every option.
 std::string commandHelp(const CommandSpec& command);
 

@@ -4,6 +4,7 @@
 #include "base/error.h"
 #include "render/model/shading_mode.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #ifndef CURETTE_VERSION
@@ -17,31 +18,8 @@ namespace curette::commands {
 
 namespace {
 
-constexpr std::size_t kWidth = 110;
-
 std::string firstWord(const std::string& name) { return name.substr(0, name.find(' ')); }
 bool isHelp(const std::string& arg) { return arg == "--help" || arg == "-h"; }
-
-// `words` filled into lines of at most kWidth characters, each starting with `indent`.
-std::string wrap(const std::vector<std::string>& words, const std::string& indent) {
-    std::string text, line;
-    for (const std::string& w : words) {
-        if (!line.empty() && line.size() + 1 + w.size() > kWidth) text += line + "\n", line.clear();
-        line += line.empty() ? indent + w : " " + w;
-    }
-    return line.empty() ? text : text + line + "\n";
-}
-
-std::vector<std::string> splitWords(const std::string& text) {
-    std::vector<std::string> words;
-    std::size_t start = 0;
-    while (start < text.size()) {
-        std::size_t end = std::min(text.find(' ', start), text.size());
-        if (end > start) words.push_back(text.substr(start, end - start));
-        start = end + 1;
-    }
-    return words;
-}
 
 // Whether `synopsis` names --`name` (followed by a space, a bracket or its end, so --size is not --size-x).
 bool names(const std::string& synopsis, const std::string& name) {
@@ -62,13 +40,18 @@ bool hasGpuOption(const CommandSpec& spec) {
 // A command in the top-level usage: its synopsis, what it does, and every option but --gpu (a footnote) in
 // brackets (the ones the synopsis names are left out).
 std::string usageBlock(const CommandSpec& spec) {
-    std::string text = "  " + spec.name + (spec.synopsis.empty() ? "" : " " + spec.synopsis) + "\n" + wrap(splitWords(spec.summary), "      ");
-    std::vector<std::string> options;
+    std::string text = "  " + spec.name + (spec.synopsis.empty() ? "" : " " + spec.synopsis) + "\n" + wrapText(spec.summary, "      ");
+    std::string options;
     for (const OptionSpec& o : spec.options) {
         if (o.name == "gpu" || names(spec.synopsis, o.name)) continue;
-        options.push_back("[" + optionForm(o) + "]");
+        // Non-breaking inside a bracket: the wrap splits at spaces, so the form's space is put back after.
+        std::string form = optionForm(o);
+        std::replace(form.begin(), form.end(), ' ', '\x1f');
+        options += (options.empty() ? "[" : " [") + form + "]";
     }
-    return text + wrap(options, "      ");
+    std::string wrapped = wrapText(options, "      ");
+    std::replace(wrapped.begin(), wrapped.end(), '\x1f', ' ');
+    return text + wrapped;
 }
 
 std::vector<const Command*> group(const std::string& name) {
@@ -109,9 +92,11 @@ std::string usage() {
     }
     if (!gpu.empty()) gpu.back().pop_back();
     text += "\nshading modes: " + shadingModeList() + "\n";
-    std::vector<std::string> footnote = splitWords("--gpu N|llvmpipe|surfaceless chooses the headless GL context of:");
-    footnote.insert(footnote.end(), gpu.begin(), gpu.end());
-    text += wrap(footnote, "");
+    std::string footnote = "--gpu N|llvmpipe|surfaceless chooses the headless GL context of:";
+    for (std::string g : gpu) footnote += " " + (std::replace(g.begin(), g.end(), ' ', '\x1f'), g);
+    std::string wrapped = wrapText(footnote, "");
+    std::replace(wrapped.begin(), wrapped.end(), '\x1f', ' ');
+    text += wrapped;
     text += "exit codes: 0 success, 2 bad input (the message names file, field and expected form),\n"
             "            3 system problem (GL driver, disk), 1 a failed check or anything else\n";
     return text;

@@ -46,7 +46,7 @@ int synth(const CommandLine& cl) {
 
 std::vector<Command> tractsCommands() {
     return {{{"tracts synth", "--from DIR --count N --out F.tck",
-              "a whole-brain-scale tractogram from a few bundles by jittered copies (deterministic: --seed, --jitter MM)",
+              "a whole-brain-scale tractogram from a few bundles by jittered copies (deterministic: --seed, --jitter)",
               {{"from", true, "tract files or folders of them (comma-separated; folders are searched recursively)"},
                {"count", true, "streamlines to write (default 100000)"},
                {"seed", true, "seed of the jitter (default 1)"},
