@@ -2,6 +2,8 @@
 
 #include "base/error.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 
 namespace curette {
@@ -9,6 +11,13 @@ namespace curette {
 static const std::string kCommandLine = "<command line>";
 
 CommandLine::CommandLine(std::vector<std::string> args, std::vector<OptionSpec> specs) : specs_(std::move(specs)) {
+    for (const std::string& arg : args) {
+        if (arg == "--") break;
+        if (arg == "--help" || arg == "-h") {
+            helpRequested_ = true;
+            return;
+        }
+    }
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         if (arg.rfind("--", 0) != 0 || arg == "--") {
@@ -102,19 +111,64 @@ std::vector<int> CommandLine::parseIntList(const std::string& option, const std:
     return list;
 }
 
-std::string CommandLine::usage() const {
+std::string optionForm(const OptionSpec& spec) {
+    if (!spec.takesValue) return "--" + spec.name;
+    std::string placeholder = spec.placeholder;
+    if (placeholder.empty())
+        for (char c : spec.name) placeholder += c == '-' ? '_' : static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return "--" + spec.name + " " + placeholder;
+}
+
+std::string CommandLine::optionUsage(const std::vector<OptionSpec>& specs) {
     std::string text;
-    for (const OptionSpec& s : specs_) {
-        std::string left = "  --" + s.name + (s.takesValue ? " VALUE" : "");
-        left.resize(std::max<std::size_t>(left.size() + 2, 28), ' ');
-        text += left + s.help + "\n";
+    constexpr std::size_t kColumn = 30, kWidth = 110;   // the help's column, and the lines' width it wraps to
+    for (const OptionSpec& s : specs) {
+        std::string line = "  " + optionForm(s);
+        line.resize(std::max<std::size_t>(line.size() + 2, kColumn), ' ');
+        std::size_t lineStart = 0, start = 0;
+        while (start < s.help.size()) {
+            std::size_t end = std::min(s.help.find(' ', start), s.help.size());
+            std::string word = s.help.substr(start, end - start);
+            bool first = line.size() - lineStart <= kColumn;
+            if (!first && line.size() - lineStart + 1 + word.size() > kWidth) {
+                line += "\n";
+                lineStart = line.size();
+                line += std::string(kColumn, ' ') + word;
+            } else {
+                line += (first ? "" : " ") + word;
+            }
+            start = end + 1;
+        }
+        text += line + "\n";
     }
     return text;
 }
 
+std::string wrapText(const std::string& text, const std::string& indent, std::size_t width) {
+    std::string out, line;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = std::min(text.find(' ', start), text.size());
+        std::string word = text.substr(start, end - start);
+        start = end + 1;
+        if (word.empty()) continue;
+        if (!line.empty() && line.size() + 1 + word.size() > width) out += line + "\n", line.clear();
+        line += line.empty() ? indent + word : " " + word;
+    }
+    return line.empty() ? out : out + line + "\n";
+}
+
+std::string commandHelp(const CommandSpec& command) {
+    std::string text = "usage: curette " + command.name + (command.synopsis.empty() ? "" : " " + command.synopsis) +
+                       (command.options.empty() ? "" : " [options]") + "\n\n" + wrapText(command.summary, "");
+    std::vector<OptionSpec> options = command.options;
+    options.push_back({"help", false, "this help"});
+    return text + "\noptions:\n" + CommandLine::optionUsage(options);
+}
+
 OptionSpec gpuOption() {
     return {"gpu", true, "headless GL: an EGL device index (curette info --gl lists them), llvmpipe (software) or surfaceless "
-                         "(default: the first hardware device, else surfaceless)"};
+                         "(default: the first hardware device, else surfaceless)", "N|llvmpipe|surfaceless"};
 }
 
 std::vector<OptionSpec> withGpuOption(std::vector<OptionSpec> specs) {

@@ -1,7 +1,6 @@
 #pragma once
 // What the viewer's frame loop (viewer/view_frame_loop.h, which knows no renderer) needs to know of a renderer
-// this frame: one definition for the viewer (tools/commands/view.cpp) and `bench view`, which drives the same
-// loop headless.
+// this frame, for the viewer's iteration (viewer/viewer_driver.h), which the window and `bench view` share.
 
 #include "viewer/view_frame_loop.h"
 #include "render/renderer.h"

@@ -3,8 +3,8 @@
 // frames"): each frame it is told what moved, what the renderer is already showing and whether step I is still
 // to run, and it says what to do: run slices of step I for a budget, and render a preview (reduced resolution,
 // steps I, IV and V left out: Renderer::renderPreview) or the exact frame (Renderer::render), or nothing.
-// `curette view` (GLFW) and `curette bench view` (EGL, a session played back in real time) both run it, so the
-// bench measures the viewer's own policy.
+// `curette view` (GLFW) and `curette bench view` (EGL, a session played back in real time) both run it through
+// one iteration (viewer/viewer_driver.h), so the bench measures the viewer's own policy.
 //
 // The policy:
 //   - adaptive quality: while something moved within the last `settleSeconds`, previews; once nothing has

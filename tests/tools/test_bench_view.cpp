@@ -7,6 +7,7 @@
 #include "session/loaded_scene.h"
 #include "session/session.h"
 #include "session/session_step.h"
+#include "viewer/viewer_driver.h"
 #include "render/model/lao_directions.h"
 #include "render/renderer.h"
 
@@ -77,6 +78,52 @@ TEST(BenchView, TheLastFrameIsExactAndEqualsAFreshRenderOfTheSessionsLastState) 
     EXPECT_EQ(j["last_frame"]["image_hash"].get<std::string>(), freshRenderOfLastState(session, {64, 48}, 6))
         << "the exact frame after the previews differs from a fresh render of the last state";
     std::filesystem::remove_all(dir);
+}
+
+// The viewer's iteration itself (viewer/viewer_driver.h, what the window and bench view both run): from the
+// session's last state it previews while step I runs in slices, then shows the exact frame, which is a fresh
+// renderer's image of that state.
+TEST(ViewerDriver, PreviewsDuringStepIThenShowsTheExactFrameOfAFreshRender) {
+    std::filesystem::path file = kSource + "/assets/sessions/head-carved-move.jsonl";
+    Session session = readSession(file, false);
+    std::filesystem::path scenePath = file.parent_path() / session.header.scene;
+    LoadedScene loaded = loadSceneWithVolume(scenePath);
+    ASSERT_TRUE(parseLaoPattern("6", loaded.scene.lao.directions));
+    auto context = gl::createHeadlessContext();
+    Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, renderer);
+    SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
+                     initialFrame(loaded.scene, renderer.geometry()));
+    for (std::size_t n = 0; n < session.frames.size(); ++n) step.follow(session.frames[n], scenePath.parent_path(), "frame " + std::to_string(n));
+    FrameLoopSettings settings;
+    settings.quality = ViewQuality::Adaptive;
+    settings.exactBudgetMs = 1;   // the exact frame in slices
+    ViewerState viewer(settings);
+    const glm::ivec2 size{64, 48};
+    const glm::vec4 background(loaded.scene.background);
+    int previewsDuringStepI = 0, exactSlices = 0;
+    bool exact = false;
+    for (int i = 0; i < 100000 && !exact; ++i) {
+        ViewerIteration it = stepViewer(viewer, renderer, step, loaded.tracts, size, 10.0 + i, false, background);
+        previewsDuringStepI += it.precomputing && it.decision.render == FrameKind::Preview;
+        exactSlices += it.decision.render == FrameKind::Exact;
+        exact = it.exactCompleted;
+        if (it.precomputing) {
+            EXPECT_NE(it.decision.render, FrameKind::Exact) << "no exact frame before step I is done";
+        }
+    }
+    ASSERT_TRUE(exact);
+    EXPECT_GE(previewsDuringStepI, 1);
+    EXPECT_GE(exactSlices, 2) << "at a 1 ms budget the exact frame came in slices";
+    EXPECT_TRUE(viewer.shownExact);
+    EXPECT_EQ(viewer.stereo, StereoMode::Off);
+    // Nothing moved and the exact frame is on screen: the next iteration renders nothing.
+    ViewerIteration idle = stepViewer(viewer, renderer, step, loaded.tracts, size, 1e6, false, background);
+    EXPECT_EQ(idle.decision.render, FrameKind::None);
+    EXPECT_FALSE(idle.rendered);
+    // Read before the fresh render, which makes its own context current.
+    std::string hash = imageHash(toRgba8(renderer.readImage(), background));
+    EXPECT_EQ(hash, freshRenderOfLastState(file, size, 6));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The `curette` executable: exit codes, one clear error line, PNGs written atomically (nothing left behind on
 // failure), `info` on the real head.
 #include "tests/tools/run_curette.h"
+#include "tools/commands/commands.h"
 
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <sys/wait.h>
 
@@ -29,6 +31,86 @@ TEST(Cli, UsageAndUnknownCommands) {
     Invocation unknown = run("paint");
     EXPECT_EQ(unknown.exitCode, 2);
     EXPECT_NE(unknown.output.find("unknown command"), std::string::npos);
+}
+
+// Every command's help from the same table its parser reads: it exits 0 and names every option, and every
+// option has a line of help (so an option added without help fails here).
+TEST(Cli, EveryCommandHasHelpNamingEveryOption) {
+    using curette::commands::commandTable;
+    ASSERT_GE(commandTable().size(), 17u);
+    for (const curette::commands::Command& c : commandTable()) {
+        for (const char* flag : {" --help", " -h"}) {
+            Invocation r = run(c.spec.name + flag);
+            EXPECT_EQ(r.exitCode, 0) << c.spec.name << flag << "\n" << r.output;
+            EXPECT_EQ(r.output.rfind("usage: curette " + c.spec.name, 0), 0u) << r.output;
+            for (const curette::OptionSpec& o : c.spec.options) {
+                EXPECT_FALSE(o.help.empty()) << c.spec.name << " --" << o.name << " has no help";
+                EXPECT_NE(r.output.find("  --" + o.name + (o.takesValue ? " " : "  ")), std::string::npos)
+                    << c.spec.name << " --help does not name --" << o.name << ":\n" << r.output;
+            }
+        }
+    }
+    // A group's help lists its sub-commands.
+    for (const char* group : {"bench", "tracts"}) {
+        Invocation r = run(std::string(group) + " --help");
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        for (const curette::commands::Command& c : commandTable())
+            if (c.spec.name.rfind(std::string(group) + " ", 0) == 0) {
+                EXPECT_NE(r.output.find("  " + c.spec.name), std::string::npos) << r.output;
+            }
+    }
+}
+
+// The top-level usage names every command and, in that command's lines, every option (--gpu in a footnote that
+// names the commands that take it).
+TEST(Cli, TheUsageNamesEveryCommandAndItsOptions) {
+    Invocation r = run("--help");
+    ASSERT_EQ(r.exitCode, 0);
+    for (const curette::commands::Command& c : curette::commands::commandTable()) {
+        std::size_t start = r.output.find("\n  " + c.spec.name + (c.spec.synopsis.empty() ? "\n" : " " + c.spec.synopsis + "\n"));
+        ASSERT_NE(start, std::string::npos) << c.spec.name << " is not in the usage:\n" << r.output;
+        std::size_t end = start + 1;
+        while ((end = r.output.find('\n', end + 1)) != std::string::npos && r.output.compare(end + 1, 4, "    ") == 0) {}
+        std::string block = r.output.substr(start, end - start);
+        std::size_t footnote = r.output.find("--gpu N|llvmpipe|surfaceless chooses");
+        ASSERT_NE(footnote, std::string::npos) << r.output;
+        for (const curette::OptionSpec& o : c.spec.options) {
+            if (o.name == "gpu") EXPECT_NE(r.output.find(c.spec.name, footnote), std::string::npos) << c.spec.name << " not in the --gpu note";
+            else EXPECT_NE(block.find("--" + o.name), std::string::npos) << "--" << o.name << " missing from:\n" << block;
+        }
+    }
+    Invocation noArguments = run("");
+    EXPECT_EQ(noArguments.exitCode, 2);
+    EXPECT_EQ(noArguments.output, r.output) << "without a command: the same usage, as an error";
+}
+
+TEST(Cli, VersionIsTheProjectVersion) {
+    std::string text = curette::testing::readTextFile(kSource + "/CMakeLists.txt");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(text, m, std::regex(R"(project\(curette VERSION ([0-9.]+))")));
+    Invocation r = run("--version");
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_EQ(r.output.rfind("curette " + m[1].str(), 0), 0u) << r.output;
+}
+
+// Unknown options and sub-commands exit 2 and say which; so does a group without its sub-command.
+TEST(Cli, UnknownOptionsExit2NamingThem) {
+    for (const curette::commands::Command& c : curette::commands::commandTable()) {
+        Invocation r = run(c.spec.name + " --no-such-option");
+        EXPECT_EQ(r.exitCode, 2) << c.spec.name << "\n" << r.output;
+        EXPECT_NE(r.output.find("--no-such-option"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("error"), std::string::npos) << r.output;
+    }
+    for (const char* arguments : {"bench paint", "tracts paint"}) {
+        Invocation r = run(arguments);
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_NE(r.output.find("\"paint\""), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("--help"), std::string::npos) << "says where the sub-commands are listed: " << r.output;
+    }
+    EXPECT_EQ(run("bench").exitCode, 2);
+    Invocation value = run("render --size");
+    EXPECT_EQ(value.exitCode, 2);
+    EXPECT_NE(value.output.find("--size"), std::string::npos) << value.output;
 }
 
 TEST(Cli, InfoDescribesTheHead) {

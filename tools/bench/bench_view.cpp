@@ -17,8 +17,7 @@
 #include "session/loaded_scene.h"
 #include "session/session.h"
 #include "session/session_step.h"
-#include "viewer/view_frame_inputs.h"
-#include "viewer/view_frame_loop.h"
+#include "viewer/viewer_driver.h"
 #include "base/error.h"
 #include "render/model/lao_directions.h"
 #include "render/renderer.h"
@@ -80,6 +79,184 @@ double loadAverage() {
     return load;
 }
 
+// The frame loop's settings: the defaults of the viewer on this renderer, then the options.
+FrameLoopSettings loopSettings(const CommandLine& cl, bool softwareRenderer) {
+    FrameLoopSettings settings;
+    settings.quality = defaultViewQuality(softwareRenderer);
+    if (auto q = cl.value("quality")) {
+        std::optional<ViewQuality> parsed = parseViewQuality(*q);
+        if (!parsed) throw InputError("<command line>", "--quality", "exact or adaptive", "\"" + *q + "\"");
+        settings.quality = *parsed;
+    }
+    settings.settleSeconds = CommandLine::parseDouble("settle", cl.valueOr("settle", std::to_string(settings.settleSeconds)), 0, 10);
+    settings.precomputeBudgetMs =
+        CommandLine::parseDouble("precompute-budget", cl.valueOr("precompute-budget", std::to_string(settings.precomputeBudgetMs)), 1, 10000);
+    settings.previewTargetMs =
+        CommandLine::parseDouble("preview-target", cl.valueOr("preview-target", std::to_string(settings.previewTargetMs)), 1, 10000);
+    // 0: the exact frame whole, in one iteration (as before it was sliced; and as exact quality does).
+    settings.exactBudgetMs = CommandLine::parseDouble("exact-budget", cl.valueOr("exact-budget", std::to_string(settings.exactBudgetMs)), 0, 100000);
+    return settings;
+}
+
+// One iteration of the viewer's loop (viewer/viewer_driver.h, what the window runs between polling events and
+// swapping buffers), as the bench records it.
+struct Viewer {
+    ViewerState state;
+    Renderer& renderer;
+    SessionStep& step;
+    const std::vector<Tractogram>& tracts;
+    glm::ivec2 size;
+    glm::vec4 background;
+
+    LoopFrame iterate(double now, bool moved) {
+        ViewerIteration it = stepViewer(state, renderer, step, tracts, size, now, moved, background);
+        LoopFrame out;
+        out.kind = it.decision.render;
+        out.size = it.decision.size;
+        out.inMotion = it.decision.inMotion;
+        out.precomputing = it.precomputing;
+        out.exactShown = it.exactCompleted;
+        out.renderMs = it.renderMs;
+        out.ms = it.ms;
+        out.progress = renderer.precomputeProgress();
+        out.passes = it.passes;
+        // The viewer waits for events at most 1/120 s when it has nothing to draw; so does the bench.
+        if (it.decision.render == FrameKind::None && it.decision.precomputeBudgetMs == 0) std::this_thread::sleep_for(std::chrono::microseconds(8333));
+        return out;
+    }
+};
+
+// Phase 1: the first frame, step I in slices, until the exact frame is shown.
+struct FirstFrame {
+    std::vector<LoopFrame> frames;
+    double firstImageMs = -1, step1Ms = 0, firstExactMs = 0;
+    std::vector<double> step1Frames;   // the iterations' work while step I ran
+};
+
+FirstFrame runFirstFrame(Viewer& viewer) {
+    FirstFrame r;
+    auto phaseStart = Clock::now();
+    auto sinceStart = [&] { return msBetween(phaseStart, Clock::now()) / 1000.0; };
+    for (;;) {
+        LoopFrame f = viewer.iterate(sinceStart(), false);
+        f.t = sinceStart();
+        if (f.kind != FrameKind::None && r.firstImageMs < 0) r.firstImageMs = 1000 * f.t;
+        if (f.precomputing) r.step1Ms = 1000 * f.t;
+        r.frames.push_back(f);
+        if (f.exactShown) {
+            r.firstExactMs = 1000 * f.t;
+            break;
+        }
+    }
+    for (const LoopFrame& f : r.frames)
+        if (f.precomputing) r.step1Frames.push_back(f.ms);
+    return r;
+}
+
+// Phase 2: the session in real time.
+struct Playback {
+    std::vector<LoopFrame> frames;
+    double lastMotionRecorded = -1;   // recorded time (from the session's start) of the last frame that changed anything
+    double lastMotionApplied = -1;    // wall time it was applied at
+    double exactAfterMotion = -1;     // wall time the exact frame after it was on screen
+};
+
+Playback playInRealTime(Viewer& viewer, const Session& session, const std::filesystem::path& file, const std::filesystem::path& sceneFolder) {
+    Playback r;
+    std::size_t next = 0;
+    double sessionStart = session.frames.front().time;
+    auto phaseStart = Clock::now();
+    auto sinceStart = [&] { return msBetween(phaseStart, Clock::now()) / 1000.0; };
+    for (;;) {
+        double t = sinceStart();
+        bool moved = false;
+        int followed = 0;
+        while (next < session.frames.size() && session.frames[next].time - sessionStart <= t) {
+            const SessionFrame& rf = session.frames[next];
+            OrbitCamera cameraBefore = viewer.step.frame().camera;
+            StepChanges changes = viewer.step.follow(rf, sceneFolder, file.string() + " line " + std::to_string(next + 2));
+            if (changes.any() || !(viewer.step.frame().camera == cameraBefore)) {
+                moved = true;
+                r.lastMotionRecorded = rf.time - sessionStart;
+                r.lastMotionApplied = t;
+            }
+            ++next, ++followed;
+        }
+        LoopFrame f = viewer.iterate(t, moved);
+        f.t = sinceStart();
+        f.followed = followed;
+        r.frames.push_back(f);
+        bool sessionOver = next == session.frames.size();
+        if (sessionOver && f.exactShown) {
+            r.exactAfterMotion = f.t;
+            break;
+        }
+        if (sessionOver && f.kind == FrameKind::None && viewer.renderer.lastFrameExact() && !f.inMotion && !f.precomputing) {
+            r.exactAfterMotion = f.t;   // the exact frame was already on screen (nothing moved at the end)
+            break;
+        }
+    }
+    return r;
+}
+
+// What the playback's iterations say about the motion and the last exact frame.
+struct PlaybackSummary {
+    std::vector<double> intervals, previewMs, previewScale;
+    int skipped = 0, presented = 0;
+    double exactRenderMs = 0, settleFrameMaxMs = 0;
+    int exactSlices = 0;
+    std::map<std::string, double> exactPassMs;
+};
+
+PlaybackSummary summarise(const Playback& playback, glm::ivec2 size) {
+    PlaybackSummary r;
+    // Frame intervals while in motion: between the ends of consecutive presented frames of the playback, both in
+    // motion (what the eye sees as the frame rate); the recorded frames each presented frame skipped.
+    double previousEnd = -1;
+    for (const LoopFrame& f : playback.frames) {
+        if (f.followed > 1) r.skipped += f.followed - 1;
+        if (f.kind == FrameKind::None) continue;
+        ++r.presented;
+        if (f.inMotion && previousEnd >= 0) r.intervals.push_back(1000 * (f.t - previousEnd));
+        if (f.kind == FrameKind::Preview && f.inMotion) {
+            r.previewMs.push_back(f.renderMs);
+            r.previewScale.push_back(double(f.size.x) / size.x);
+        }
+        previousEnd = f.inMotion ? f.t : -1;
+    }
+    // The last exact frame's work: the iterations that ran it (one, or its slices), and the longest of all the
+    // iterations after the last motion was applied (how long the window waited at most while it settled);
+    // and its work by pass (steps IV, V and VI, and the clip maps when they were not drawn by the last preview).
+    for (auto f = playback.frames.rbegin(); f != playback.frames.rend() && f->kind == FrameKind::Exact; ++f) {
+        r.exactRenderMs += f->renderMs, ++r.exactSlices;
+        for (const FrameTimings::Entry& e : f->passes.passes) r.exactPassMs[passInfo(e.pass).name] += e.ms;
+    }
+    for (const LoopFrame& f : playback.frames)
+        if (playback.lastMotionApplied >= 0 && f.t - f.ms / 1000.0 >= playback.lastMotionApplied)
+            r.settleFrameMaxMs = std::max(r.settleFrameMaxMs, f.ms);
+    return r;
+}
+
+// --check: the image hash of a fresh renderer and a fresh session step that follows every recorded frame (the
+// step syncs what changed since it last synced, so the played one cannot serve a second renderer): meshes and
+// setting edits.
+std::string freshRenderHash(gl::Context& context, const LoadedScene& loaded, const Session& session, const std::filesystem::path& file,
+                            const std::filesystem::path& sceneFolder, glm::ivec2 size, glm::vec4 background) {
+    Renderer fresh(context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, fresh);
+    VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
+    SessionStep freshStep(InteractionState::fromSessionStart(session.header, loaded.scene, sceneFolder, file.string()),
+                          initialFrame(loaded.scene, geometry));
+    for (std::size_t n = 0; n < session.frames.size(); ++n)
+        freshStep.follow(session.frames[n], sceneFolder, file.string() + " line " + std::to_string(n + 2));
+    freshStep.syncTo(fresh, loaded.tracts);
+    FrameDescription freshFrame = freshStep.frame();
+    freshFrame.shading = freshStep.state().shading;
+    freshFrame.size = size;
+    fresh.render(freshFrame);
+    return imageHash(toRgba8(fresh.readImage(), background));
+}
+
 }  // namespace
 
 int benchView(const CommandLine& cl) {
@@ -99,20 +276,7 @@ int benchView(const CommandLine& cl) {
     applyUnseenVoxelsOption(cl, loaded.scene.lao);
 
     auto context = gl::createHeadlessContext(gpuChoice(cl));
-    FrameLoopSettings settings;
-    settings.quality = defaultViewQuality(context->info().softwareRenderer);
-    if (auto q = cl.value("quality")) {
-        std::optional<ViewQuality> parsed = parseViewQuality(*q);
-        if (!parsed) throw InputError("<command line>", "--quality", "exact or adaptive", "\"" + *q + "\"");
-        settings.quality = *parsed;
-    }
-    settings.settleSeconds = CommandLine::parseDouble("settle", cl.valueOr("settle", std::to_string(settings.settleSeconds)), 0, 10);
-    settings.precomputeBudgetMs =
-        CommandLine::parseDouble("precompute-budget", cl.valueOr("precompute-budget", std::to_string(settings.precomputeBudgetMs)), 1, 10000);
-    settings.previewTargetMs =
-        CommandLine::parseDouble("preview-target", cl.valueOr("preview-target", std::to_string(settings.previewTargetMs)), 1, 10000);
-    // 0: the exact frame whole, in one iteration (as before it was sliced; and as exact quality does).
-    settings.exactBudgetMs = CommandLine::parseDouble("exact-budget", cl.valueOr("exact-budget", std::to_string(settings.exactBudgetMs)), 0, 100000);
+    FrameLoopSettings settings = loopSettings(cl, context->info().softwareRenderer);
     glm::vec4 background(loaded.scene.background);
 
     double loadBefore = loadAverage();
@@ -123,158 +287,34 @@ int benchView(const CommandLine& cl) {
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
                      initialFrame(loaded.scene, geometry));
-    ViewFrameLoop loop(settings);
+    Viewer viewer{ViewerState(settings), renderer, step, loaded.tracts, size, background};
     renderer.finish();
     renderer.collectTimings();
     double setupMs = msBetween(setupStart, Clock::now());
 
-    // One iteration of the viewer's loop: the current state through the session step, the loop's decision, and
-    // its execution (what view.cpp does between polling events and swapping buffers).
-    auto iterate = [&](double now, bool moved) {
-        FrameDescription frame = step.frame();
-        frame.shading = step.state().shading;
-        frame.size = size;
-        step.syncTo(renderer, loaded.tracts);   // as the viewer: meshes, and a session's setting edits
-        FrameLoopInputs in = frameLoopInputs(renderer, loop, frame, now, moved);
-        FrameDecision d = loop.decide(in);
-        double stepMm = renderer.resolveStepMm(frame.raycast);
-        LoopFrame out;
-        out.kind = d.render;
-        out.size = d.size;
-        out.inMotion = d.inMotion;
-        out.precomputing = in.precomputePending;
-        auto start = Clock::now();
-        if (d.precomputeBudgetMs > 0) renderer.advancePrecompute(d.precomputeBudgetMs);
-        auto renderStart = Clock::now();
-        if (d.render != FrameKind::None) {
-            bool shown = renderDecidedImage(renderer, d, decidedFrame(frame, d.render, d.size, d.rayStepScale, stepMm));
-            renderer.finish();
-            out.exactShown = d.render == FrameKind::Exact && shown;
-        }
-        auto end = Clock::now();
-        out.renderMs = msBetween(renderStart, end);
-        out.ms = msBetween(start, end);
-        out.progress = renderer.precomputeProgress();
-        out.passes = renderer.collectTimings();
-        if (d.render != FrameKind::None) loop.rendered(d, out.renderMs);
-        // The viewer waits for events at most 1/120 s when it has nothing to draw; so does the bench.
-        if (d.render == FrameKind::None && d.precomputeBudgetMs == 0) std::this_thread::sleep_for(std::chrono::microseconds(8333));
-        return out;
-    };
-
-    // Phase 1: the first frame, step I in slices, until the exact frame is shown.
     std::printf("curette bench view: %s (%zu frames, %.2f s), %dx%d, quality %s, %s\n", file.c_str(), session.frames.size(),
                 session.frames.back().time - session.frames.front().time, size.x, size.y, viewQualityName(settings.quality),
                 context->info().renderer.c_str());
-    std::vector<LoopFrame> first;
-    auto phaseStart = Clock::now();
-    auto sinceStart = [&] { return msBetween(phaseStart, Clock::now()) / 1000.0; };
-    double firstImageMs = -1, step1Ms = 0, firstExactMs = 0;
-    for (;;) {
-        LoopFrame f = iterate(sinceStart(), false);
-        f.t = sinceStart();
-        if (f.kind != FrameKind::None && firstImageMs < 0) firstImageMs = 1000 * f.t;
-        if (f.precomputing) step1Ms = 1000 * f.t;
-        first.push_back(f);
-        if (f.exactShown) {
-            firstExactMs = 1000 * f.t;
-            break;
-        }
-    }
-    std::vector<double> step1Frames;
-    for (const LoopFrame& f : first)
-        if (f.precomputing) step1Frames.push_back(f.ms);
+    FirstFrame firstFrame = runFirstFrame(viewer);
+    const std::vector<LoopFrame>& first = firstFrame.frames;
+    const double firstImageMs = firstFrame.firstImageMs, step1Ms = firstFrame.step1Ms, firstExactMs = firstFrame.firstExactMs;
+    const std::vector<double>& step1Frames = firstFrame.step1Frames;
 
-    // Phase 2: the session in real time.
-    std::vector<LoopFrame> played;
-    std::size_t next = 0;
-    double sessionStart = session.frames.front().time;
-    double lastMotionRecorded = -1;   // recorded time (from the session's start) of the last frame that changed anything
-    double lastMotionApplied = -1;    // wall time it was applied at
-    double exactAfterMotion = -1;     // wall time the exact frame after it was on screen
-    phaseStart = Clock::now();
-    for (;;) {
-        double t = sinceStart();
-        bool moved = false;
-        int followed = 0;
-        while (next < session.frames.size() && session.frames[next].time - sessionStart <= t) {
-            const SessionFrame& rf = session.frames[next];
-            OrbitCamera cameraBefore = step.frame().camera;
-            StepChanges changes = step.follow(rf, scenePath.parent_path(), file.string() + " line " + std::to_string(next + 2));
-            if (changes.any() || !(step.frame().camera == cameraBefore)) {
-                moved = true;
-                lastMotionRecorded = rf.time - sessionStart;
-                lastMotionApplied = t;
-            }
-            ++next, ++followed;
-        }
-        LoopFrame f = iterate(t, moved);
-        f.t = sinceStart();
-        f.followed = followed;
-        played.push_back(f);
-        bool sessionOver = next == session.frames.size();
-        if (sessionOver && f.exactShown) {
-            exactAfterMotion = f.t;
-            break;
-        }
-        if (sessionOver && f.kind == FrameKind::None && renderer.lastFrameExact() && !f.inMotion && !f.precomputing) {
-            exactAfterMotion = f.t;   // the exact frame was already on screen (nothing moved at the end)
-            break;
-        }
-    }
-    // Frame intervals while in motion: between the ends of consecutive presented frames of the playback, both in
-    // motion (what the eye sees as the frame rate); the recorded frames each presented frame skipped.
-    std::vector<double> intervals, previewMs, previewScale;
-    int skipped = 0, presented = 0;
-    double previousEnd = -1;
-    for (const LoopFrame& f : played) {
-        if (f.followed > 1) skipped += f.followed - 1;
-        if (f.kind == FrameKind::None) continue;
-        ++presented;
-        if (f.inMotion && previousEnd >= 0) intervals.push_back(1000 * (f.t - previousEnd));
-        if (f.kind == FrameKind::Preview && f.inMotion) {
-            previewMs.push_back(f.renderMs);
-            previewScale.push_back(double(f.size.x) / size.x);
-        }
-        previousEnd = f.inMotion ? f.t : -1;
-    }
-    // The last exact frame's work: the iterations that ran it (one, or its slices), and the longest of all the
-    // iterations after the last motion was applied (how long the window waited at most while it settled).
-    double exactRenderMs = 0, settleFrameMaxMs = 0;
-    int exactSlices = 0;
-    // ... and its work by pass (steps IV, V and VI, and the clip maps when they were not drawn by the last preview).
-    std::map<std::string, double> exactPassMs;
-    for (auto f = played.rbegin(); f != played.rend() && f->kind == FrameKind::Exact; ++f) {
-        exactRenderMs += f->renderMs, ++exactSlices;
-        for (const FrameTimings::Entry& e : f->passes.passes) exactPassMs[passInfo(e.pass).name] += e.ms;
-    }
-    for (const LoopFrame& f : played)
-        if (lastMotionApplied >= 0 && f.t - f.ms / 1000.0 >= lastMotionApplied) settleFrameMaxMs = std::max(settleFrameMaxMs, f.ms);
-    double fromRecordedMotion = lastMotionRecorded >= 0 ? 1000 * (exactAfterMotion - lastMotionRecorded) : 0;
-    double fromAppliedMotion = lastMotionApplied >= 0 ? 1000 * (exactAfterMotion - lastMotionApplied) : 0;
-    FrameDescription lastFrame = step.frame();
-    lastFrame.shading = step.state().shading;
-    lastFrame.size = size;
+    Playback playback = playInRealTime(viewer, session, file, scenePath.parent_path());
+    const std::vector<LoopFrame>& played = playback.frames;
+    PlaybackSummary summary = summarise(playback, size);
+    const std::vector<double>&intervals = summary.intervals, &previewMs = summary.previewMs, &previewScale = summary.previewScale;
+    const int skipped = summary.skipped, presented = summary.presented, exactSlices = summary.exactSlices;
+    const double exactRenderMs = summary.exactRenderMs, settleFrameMaxMs = summary.settleFrameMaxMs;
+    const std::map<std::string, double>& exactPassMs = summary.exactPassMs;
+    double fromRecordedMotion = playback.lastMotionRecorded >= 0 ? 1000 * (playback.exactAfterMotion - playback.lastMotionRecorded) : 0;
+    double fromAppliedMotion = playback.lastMotionApplied >= 0 ? 1000 * (playback.exactAfterMotion - playback.lastMotionApplied) : 0;
+    FrameDescription lastFrame = viewerFrame(viewer.state, step, size);
     bool lastIsExact = renderer.lastFrameExact() && renderer.showing(lastFrame);
     std::string hash = imageHash(toRgba8(renderer.readImage(), background));
 
     std::optional<std::string> freshHash;
-    if (cl.flag("check")) {
-        // A fresh renderer and a fresh session step that follows every recorded frame (the step syncs what changed
-        // since it last synced, so the played one cannot serve a second renderer): meshes and setting edits.
-        Renderer fresh(*context, loaded.volume, loaded.scene.transferFunction);
-        configureRenderer(loaded, fresh);
-        SessionStep freshStep(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
-                              initialFrame(loaded.scene, geometry));
-        for (std::size_t n = 0; n < session.frames.size(); ++n)
-            freshStep.follow(session.frames[n], scenePath.parent_path(), file.string() + " line " + std::to_string(n + 2));
-        freshStep.syncTo(fresh, loaded.tracts);
-        FrameDescription freshFrame = freshStep.frame();
-        freshFrame.shading = freshStep.state().shading;
-        freshFrame.size = size;
-        fresh.render(freshFrame);
-        freshHash = imageHash(toRgba8(fresh.readImage(), background));
-    }
+    if (cl.flag("check")) freshHash = freshRenderHash(*context, loaded, session, file, scenePath.parent_path(), size, background);
 
     double loadAfter = loadAverage();
     Table table("bench view: the viewer's frame loop on " + file.filename().string() + ", " + std::to_string(size.x) + "x" +

@@ -13,115 +13,100 @@
 #include "tools/bench/lao_options.h"
 #include "tools/command_line.h"
 #include "tools/commands/commands.h"
-#include "base/error.h"
 
 namespace curette::commands {
 
-int bench(const Arguments& args) {
-    if (args.empty())
-        throw InputError("<command line>", "bench", "what to measure: raycast, cao, dos, ismos, cut-face, input, report, stereo, view or tracts (curette bench raycast --scene S)",
-                         "nothing");
-    std::string what = args[0];
-    Arguments rest(args.begin() + 1, args.end());
-    if (what == "raycast") {
-        CommandLine cl(rest, withGpuOption({{"scene", true, "scene file"},
-                              {"size", true, "image size (default 512x512)"},
-                              {"frames", true, "frames measured per configuration (default 8)"},
-                              {"reference-pixels", true, "pixels checked against the CPU reference (default 48)"},
-                              {"json", true, "JSON output file (default bench-raycast.json)"}}));
-        return bench::benchRaycast(cl);
-    }
-    if (what == "cao") {
-        CommandLine cl(rest, withGpuOption({{"scene", true, "scene file (its volume, TF and LAO settings; the bench adds the spheres)"},
-                              {"rays", true, "LAO ray counts K, e.g. 6,14,26,54 (default)"},
-                              {"meshes", true, "mesh counts to measure, 1 and/or 2 (default 1,2)"},
-                              {"frames", true, "frames per configuration (default 3)"},
-                              {"size", true, "image size (default 512x512)"},
-                              {"ground-truth-voxels", true, "voxels checked against 512-ray LAO (default 400)"},
-                              {"compare-dispatch", false, "compare step V variants at every K (default: K = 26 only)"},
-                              {"depth-box-tests", true, "on (default) or off: the ray caster and step IV test every sample against every mesh"},
-                              {"second-mesh", true, "moves (default: with the first, as in the paper) or still (stays where it overlaps the first at the start)"},
-                              bench::unseenVoxelsOption(),
-                              {"json", true, "JSON output file (default bench-cao.json)"}}));
-        return bench::benchCao(cl);
-    }
-    if (what == "dos") {
-        CommandLine cl(rest, withGpuOption({{"scene", true, "scene file with tubes (e.g. assets/scenes/fibers.json)"},
-                              {"size", true, "image size (default 384x384)"},
-                              {"frames", true, "frames per configuration (default 3)"},
-                              {"reference-pixels", true, "pixels checked against the Monte-Carlo reference (default 24)"},
-                              {"reference-directions", true, "cone directions of the reference (default 48)"},
-                              {"json", true, "JSON output file (default bench-dos.json)"}}));
-        return bench::benchDos(cl);
-    }
-    if (what == "ismos") {
-        CommandLine cl(rest, withGpuOption({{"scene", true, "scene file (its volume, TF, lights and ISMOS settings)"},
-                              {"size", true, "image size (default 256x256)"},
-                              {"frames", true, "frames per configuration (default 3)"},
-                              {"reference-pixels", true, "pixels checked against the physical reference (default 150)"},
-                              {"reference-points", true, "stratified points per light disk of the reference (default 64)"},
-                              {"json", true, "JSON output file (default bench-ismos.json)"}}));
-        return bench::benchIsmos(cl);
-    }
-    if (what == "cut-face") {
-        CommandLine cl(rest, withGpuOption({{"scene", true, "scene file with a clip mesh (default assets/scenes/head-cut-face.json)"},
-                              {"uniform", false, "a box of homogeneous tissue carved by a sphere instead of a scene"},
-                              {"size", true, "image size (default 384x384)"},
-                              {"frames", true, "frames timed per configuration (default 3)"},
-                              {"images", true, "folder to write each configuration's image to (PNG)"},
-                              {"normal-depth", true, "mm behind the face lit by its normal (default: the scene's)"},
-                              {"json", true, "JSON output file (default bench-cut-face.json)"}}));
-        return bench::benchCutFace(cl);
-    }
-    if (what == "input") {
-        CommandLine cl(rest, {{"reports", true, "random reports per device family (default 20000)"},
-                              {"frames", true, "frames of the latency measurement (default 20000)"},
-                              {"json", true, "JSON output file (default bench-input.json)"}});
-        return bench::benchInput(cl);
-    }
-    if (what == "report") {
-        CommandLine cl(rest, withGpuOption({{"scene", true, "scene file with clip meshes (labels and tubes are reported too)"},
-                              {"repeats", true, "reports measured, each with the meshes moved 0.5 mm (default 8)"},
-                              {"oracle-voxels", true, "voxels checked against the CPU winding-number oracle (default 1500)"},
-                              {"json", true, "JSON output file (default bench-report.json)"}}));
-        return bench::benchReport(cl);
-    }
-    if (what == "stereo") {
-        CommandLine cl(rest, withGpuOption({{"scene", true, "scene file (its first frame is the pair's centre)"},
-                                            {"size", true, "image size of each eye (default 256x256)"},
-                                            {"eye-separation", true, "eye separation in mm (default 65)"},
-                                            {"stride", true, "left-eye pixels tried: every Nth column and row (default 2)"},
-                                            {"depth-tolerance", true, "how far apart the eyes' surface points may be, mm (default 2 ray steps)"},
-                                            {"modes", true, "shading modes to compare (default solid,phong,lao,cao,dos,ismos)"},
-                                            {"json", true, "JSON output file (default bench-stereo.json)"}}));
-        return bench::benchStereo(cl);
-    }
-    if (what == "view") {
-        CommandLine cl(rest, withGpuOption({{"session", true, "session file (JSON Lines) played back in real time"},
-                                            {"size", true, "window size WxH (default 1024x768)"},
-                                            {"quality", true, "exact|adaptive (default: adaptive on a software renderer, exact on a GPU)"},
-                                            {"settle", true, "seconds without motion after which the motion counts as stopped (default 0.1)"},
-                                            {"precompute-budget", true, "ms of step I per frame while it runs (default 60)"},
-                                            {"exact-budget", true, "adaptive quality: ms of the exact frame per frame, in slices (default 60; 0: whole)"},
-                                            {"preview-target", true, "ms a motion preview is steered to (default 70)"},
-                                            {"check", false, "also render the last state in a fresh renderer and compare image hashes"},
-                                            {"rays", true, "LAO ray count K instead of the scene's (6, 14, 26, 54 or any fibonacci count)"},
-                                            bench::unseenVoxelsOption(),
-                                            bench::recastOption(),
-                                            {"json", true, "JSON output file (default bench-view.json)"}}));
-        return bench::benchView(cl);
-    }
-    if (what == "tracts") {
-        CommandLine cl(rest, withGpuOption({{"scene", true, "scene file with tubes (default assets/scenes/tracts-100k.json)"},
-                                            {"counts", true, "streamline counts, the first N of each tube entry (default 1000,10000,100000)"},
-                                            {"size", true, "image size (default 512x512)"},
-                                            {"frames", true, "frames timed per configuration and mode (default 3)"},
-                                            {"modes", true, "shading modes timed (default phong,dos)"},
-                                            {"images", true, "folder to write each configuration's first frame to (PNG)"},
-                                            {"json", true, "JSON output file (default bench-tracts.json)"}}));
-        return bench::benchTracts(cl);
-    }
-    throw InputError("<command line>", "bench " + what, "one of: raycast, cao, dos, ismos, cut-face, input, report, stereo, view, tracts", "\"" + what + "\"");
+std::vector<Command> benchCommands() {
+    return {
+        {{"bench raycast", "--scene S", "the ray caster's speed per configuration, with its error against the CPU reference next to it",
+          withGpuOption({{"scene", true, "scene file"},
+                {"size", true, "image size (default 512x512)", "WxH"},
+                {"frames", true, "frames measured per configuration (default 8)"},
+                {"reference-pixels", true, "pixels checked against the CPU reference (default 48)"},
+                {"json", true, "JSON output file (default bench-raycast.json)"}})},
+         &bench::benchRaycast},
+        {{"bench cao", "--scene S", "CAO against LAO over moving spheres: speed per ray count and mesh count, and the error against 512-ray LAO",
+          withGpuOption({{"scene", true, "scene file (its volume, TF and LAO settings; the bench adds the spheres)"},
+                {"rays", true, "LAO ray counts K, e.g. 6,14,26,54 (default)"},
+                {"meshes", true, "mesh counts to measure, 1 and/or 2 (default 1,2)"},
+                {"frames", true, "frames per configuration (default 3)"},
+                {"size", true, "image size (default 512x512)", "WxH"},
+                {"ground-truth-voxels", true, "voxels checked against 512-ray LAO (default 400)"},
+                {"compare-dispatch", false, "compare step V variants at every K (default: K = 26 only)"},
+                {"depth-box-tests", true, "on (default) or off: the ray caster and step IV test every sample against every mesh"},
+                {"second-mesh", true, "moves (default: with the first, as in the paper) or still (stays where it overlaps the first at the start)"},
+                bench::unseenVoxelsOption(),
+                {"json", true, "JSON output file (default bench-cao.json)"}})},
+         &bench::benchCao},
+        {{"bench dos", "--scene S", "directional occlusion shading with tubes: speed, and the error against a Monte-Carlo reference",
+          withGpuOption({{"scene", true, "scene file with tubes (e.g. assets/scenes/fibers.json)"},
+                {"size", true, "image size (default 384x384)", "WxH"},
+                {"frames", true, "frames per configuration (default 3)"},
+                {"reference-pixels", true, "pixels checked against the Monte-Carlo reference (default 24)"},
+                {"reference-directions", true, "cone directions of the reference (default 48)"},
+                {"json", true, "JSON output file (default bench-dos.json)"}})},
+         &bench::benchDos},
+        {{"bench ismos", "--scene S", "ISMOS (soft shadows of area lights): speed, and the error against the physical reference",
+          withGpuOption({{"scene", true, "scene file (its volume, TF, lights and ISMOS settings)"},
+                {"size", true, "image size (default 256x256)", "WxH"},
+                {"frames", true, "frames per configuration (default 3)"},
+                {"reference-pixels", true, "pixels checked against the physical reference (default 150)"},
+                {"reference-points", true, "stratified points per light disk of the reference (default 64)"},
+                {"json", true, "JSON output file (default bench-ismos.json)"}})},
+         &bench::benchIsmos},
+        {{"bench cut-face", "[--scene S | --uniform]", "how rough the cut face of a carve looks in each shading mode, cut-face rules off and on, next to the time per frame",
+          withGpuOption({{"scene", true, "scene file with a clip mesh (default assets/scenes/head-cut-face.json)"},
+                {"uniform", false, "a box of homogeneous tissue carved by a sphere instead of a scene"},
+                {"size", true, "image size (default 384x384)", "WxH"},
+                {"frames", true, "frames timed per configuration (default 3)"},
+                {"images", true, "folder to write each configuration's image to (PNG)"},
+                {"normal-depth", true, "mm behind the face lit by its normal (default: the scene's)"},
+                {"json", true, "JSON output file (default bench-cut-face.json)"}})},
+         &bench::benchCutFace},
+        {{"bench input", "", "report parsing throughput and report-to-pose latency",
+          {{"reports", true, "random reports per device family (default 20000)"},
+                {"frames", true, "frames of the latency measurement (default 20000)"},
+                {"json", true, "JSON output file (default bench-input.json)"}}},
+         &bench::benchInput},
+        {{"bench report", "--scene S", "the removal report's time per stage, and its GPU inputs against the CPU oracle",
+          withGpuOption({{"scene", true, "scene file with clip meshes (labels and tubes are reported too)"},
+                {"repeats", true, "reports measured, each with the meshes moved 0.5 mm (default 8)"},
+                {"oracle-voxels", true, "voxels checked against the CPU winding-number oracle (default 1500)"},
+                {"json", true, "JSON output file (default bench-report.json)"}})},
+         &bench::benchReport},
+        {{"bench stereo", "--scene S", "per shading mode, how alike the two eyes shade one surface point",
+          withGpuOption({{"scene", true, "scene file (its first frame is the pair's centre)"},
+                {"size", true, "image size of each eye (default 256x256)", "WxH"},
+                {"eye-separation", true, "eye separation in mm (default 65)"},
+                {"stride", true, "left-eye pixels tried: every Nth column and row (default 2)"},
+                {"depth-tolerance", true, "how far apart the eyes' surface points may be, mm (default 2 ray steps)"},
+                {"modes", true, "shading modes to compare (default solid,phong,lao,cao,dos,ismos)"},
+                {"json", true, "JSON output file (default bench-stereo.json)"}})},
+         &bench::benchStereo},
+        {{"bench view", "--session F", "the viewer's frame loop driven headless by a session played back in real time",
+          withGpuOption({{"session", true, "session file (JSON Lines) played back in real time"},
+                {"size", true, "window size WxH (default 1024x768)", "WxH"},
+                {"quality", true, "exact|adaptive (default: adaptive on a software renderer, exact on a GPU)", "exact|adaptive"},
+                {"settle", true, "seconds without motion after which the motion counts as stopped (default 0.1)"},
+                {"precompute-budget", true, "ms of step I per frame while it runs (default 60)"},
+                {"exact-budget", true, "adaptive quality: ms of the exact frame per frame, in slices (default 60; 0: whole)"},
+                {"preview-target", true, "ms a motion preview is steered to (default 70)"},
+                {"check", false, "also render the last state in a fresh renderer and compare image hashes"},
+                {"rays", true, "LAO ray count K instead of the scene's (6, 14, 26, 54 or any fibonacci count)"},
+                bench::unseenVoxelsOption(),
+                bench::recastOption(),
+                {"json", true, "JSON output file (default bench-view.json)"}})},
+         &bench::benchView},
+        {{"bench tracts", "[--scene S]", "lines and tubes at whole-brain scale: build, upload, GPU memory, frame time",
+          withGpuOption({{"scene", true, "scene file with tubes (default assets/scenes/tracts-100k.json)"},
+                {"counts", true, "streamline counts, the first N of each tube entry (default 1000,10000,100000)"},
+                {"size", true, "image size (default 512x512)", "WxH"},
+                {"frames", true, "frames timed per configuration and mode (default 3)"},
+                {"modes", true, "shading modes timed (default phong,dos)"},
+                {"images", true, "folder to write each configuration's first frame to (PNG)"},
+                {"json", true, "JSON output file (default bench-tracts.json)"}})},
+         &bench::benchTracts},
+    };
 }
 
 }  // namespace curette::commands

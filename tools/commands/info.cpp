@@ -90,20 +90,7 @@ int describeGl(const CommandLine& cl) {
     return 0;
 }
 
-}  // namespace
-
-int info(const Arguments& args) {
-    CommandLine cl(args, {{"gl", false, "instead of a file: the EGL devices and platforms, and the GL context headless commands get"},
-                          gpuOption(),
-                          {"raw-dims", true, "raw file: dimensions XxYxZ"},
-                          {"raw-type", true, "raw file: uint8|int16|uint16|int32|float32|float64"},
-                          {"raw-spacing", true, "raw file: spacing in mm, e.g. 1,1,2 (default 1,1,1)"},
-                          {"raw-big-endian", false, "raw file: samples are big-endian"},
-                          {"raw-header-bytes", true, "raw file: bytes to skip first"},
-                          {"raw-gzip", false, "raw file: the file is gzip-compressed"},
-                          {"volume", true, "4-D/5-D files: the volume to describe (0-based, default 0)"},
-                          {"series", true, "DICOM: the series to describe, by number or SeriesInstanceUID"},
-                          {"show-identifiers", false, "DICOM: print patient name and ids (never printed otherwise)"}});
+int info(const CommandLine& cl) {
     if (cl.flag("gl")) {
         if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no FILE with --gl (curette info --gl [--gpu N])");
         return describeGl(cl);
@@ -182,6 +169,24 @@ int info(const Arguments& args) {
                     std::string(static_cast<std::size_t>(bar), '#').c_str());
     }
     return 0;
+}
+
+}  // namespace
+
+Command infoCommand() {
+    return {{"info", "FILE | --gl", "what a volume file (or DICOM folder) holds: dimensions, spacing, affine, type, value range, histogram; with --gl the EGL devices and platforms and the GL context headless commands get",
+             {{"gl", false, "instead of a file: the EGL devices and platforms, and the GL context headless commands get"},
+              gpuOption(),
+              {"raw-dims", true, "raw file: dimensions XxYxZ"},
+              {"raw-type", true, "raw file: uint8|int16|uint16|int32|float32|float64"},
+              {"raw-spacing", true, "raw file: spacing in mm, e.g. 1,1,2 (default 1,1,1)"},
+              {"raw-big-endian", false, "raw file: samples are big-endian"},
+              {"raw-header-bytes", true, "raw file: bytes to skip first"},
+              {"raw-gzip", false, "raw file: the file is gzip-compressed"},
+              {"volume", true, "4-D/5-D files: the volume to describe (0-based, default 0)"},
+              {"series", true, "DICOM: the series to describe, by number or SeriesInstanceUID"},
+              {"show-identifiers", false, "DICOM: print patient name and ids (never printed otherwise)"}}},
+            &info};
 }
 
 }  // namespace curette::commands

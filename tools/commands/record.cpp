@@ -113,20 +113,7 @@ input::KeyboardMouseState scriptedLightKeys(int f, int frames, double phase) {
     return k;
 }
 
-}  // namespace
-
-int record(const Arguments& args) {
-    CommandLine cl(args, {{"scene", true, "scene file (JSON)"},
-                          {"out", true, "session file to write (.jsonl)"},
-                          {"synthetic", true, "comma-separated devices: " + kindList() + " (optional with --move-lights)"},
-                          {"frames", true, "frames to record (default 150)"},
-                          {"fps", true, "frames per second of session time (default 30)"},
-                          {"report-hz", true, "reports per second per device (default 125)"},
-                          {"seed", true, "seed of the scripted motion (default 1)"},
-                          {"mapping", true, "mapping JSON (default: the shipped assets/input/default_mapping.json)"},
-                          {"size", true, "image size WxH recorded for the frames (default: the scene's)"},
-                          {"unplug", true, "FRAME: unplug the last device there and plug it back one second later"},
-                          {"move-lights", false, "also turn the lights with scripted keys (I/J/K/L, O) and Shift + left drags"}});
+int record(const CommandLine& cl) {
     std::filesystem::path scenePath = cl.required("scene"), out = cl.required("out");
     int frames = CommandLine::parseInt("frames", cl.valueOr("frames", "150"), 1, 1000000);
     double fps = CommandLine::parseDouble("fps", cl.valueOr("fps", "30"), 1, 1000);
@@ -215,6 +202,24 @@ int record(const Arguments& args) {
     std::printf("wrote %s: %d frames, %zu synthetic devices, %zu meshes, scene %s\n", out.c_str(), frames, kinds.size(), state.meshes.size(),
                 sceneFromSession.c_str());
     return 0;
+}
+
+}  // namespace
+
+Command recordCommand() {
+    return {{"record", "--scene S --out F.jsonl --synthetic DEVICES", "record a session headless from scripted devices",
+             {{"scene", true, "scene file (JSON)"},
+              {"out", true, "session file to write (.jsonl)"},
+              {"synthetic", true, "comma-separated devices: " + kindList() + " (optional with --move-lights)"},
+              {"frames", true, "frames to record (default 150)"},
+              {"fps", true, "frames per second of session time (default 30)"},
+              {"report-hz", true, "reports per second per device (default 125)"},
+              {"seed", true, "seed of the scripted motion (default 1)"},
+              {"mapping", true, "mapping JSON (default: the shipped assets/input/default_mapping.json)"},
+              {"size", true, "image size WxH recorded for the frames (default: the scene's)", "WxH"},
+              {"unplug", true, "FRAME: unplug the last device there and plug it back one second later"},
+              {"move-lights", false, "also turn the lights with scripted keys (I/J/K/L, O) and Shift + left drags"}}},
+            &record};
 }
 
 }  // namespace curette::commands

@@ -29,21 +29,7 @@ Image renderPicture(Renderer& renderer, const FrameDescription& frame, StereoMod
     return composeStereo(stereo, pair.left, pair.right, background);
 }
 
-}  // namespace
-
-int render(const Arguments& args) {
-    CommandLine cl(args, withGpuOption({{"scene", true, "scene file (JSON)"},
-                                        {"out", true, "output PNG (written atomically); with --turntable a folder"},
-                                        {"size", true, "image size WxH (default: the scene's; with --stereo, of each eye)"},
-                                        {"shading", true, "solid|phong|lao|cao|dos|ismos (default: the scene's)"},
-                                        {"azimuth", true, "camera azimuth in degrees (default: the scene's)"},
-                                        {"elevation", true, "camera elevation in degrees (default: the scene's)"},
-                                        {"stereo", true, "side-by-side|anaglyph: an off-axis stereo pair (side-by-side: 2W x H)"},
-                                        {"eye-separation", true, "stereo eye separation in mm (default 65: orthostereo, render/model/stereo.h)"},
-                                        {"turntable", true, "N frames turning the camera once about the vertical axis, into the --out folder"},
-                                        {"fps", true, "with --turntable: frames per second of the MP4 (default 30)"},
-                                        {"timings", false, "print the GPU time of every pass and the GPU memory of every resource"},
-                                        {"plan", false, "print the frame plan: each pass in order, what it reads and writes (without --out: only that)"}}));
+int render(const CommandLine& cl) {
     if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no positional arguments for render");
     std::optional<int> turntable;
     if (auto n = cl.value("turntable")) turntable = CommandLine::parseInt("turntable", *n, 1, 100000);
@@ -133,6 +119,25 @@ int render(const Arguments& args) {
                         static_cast<unsigned long long>(ao->lastStats().voxels));
     }
     return 0;
+}
+
+}  // namespace
+
+Command renderCommand() {
+    return {{"render", "--scene S --out F.png", "render one frame headless (EGL) and write a PNG; --stereo an off-axis pair, --turntable N frames around the vertical axis and an MP4 (ffmpeg)",
+             withGpuOption({{"scene", true, "scene file (JSON)"},
+              {"out", true, "output PNG (written atomically); with --turntable a folder"},
+              {"size", true, "image size WxH (default: the scene's; with --stereo, of each eye)", "WxH"},
+              {"shading", true, "solid|phong|lao|cao|dos|ismos (default: the scene's)", "MODE"},
+              {"azimuth", true, "camera azimuth in degrees (default: the scene's)"},
+              {"elevation", true, "camera elevation in degrees (default: the scene's)"},
+              {"stereo", true, "side-by-side|anaglyph: an off-axis stereo pair (side-by-side: 2W x H)", "side-by-side|anaglyph"},
+              {"eye-separation", true, "stereo eye separation in mm (default 65: orthostereo, render/model/stereo.h)"},
+              {"turntable", true, "N frames turning the camera once about the vertical axis, into the --out folder"},
+              {"fps", true, "with --turntable: frames per second of the MP4 (default 30)"},
+              {"timings", false, "print the GPU time of every pass and the GPU memory of every resource"},
+              {"plan", false, "print the frame plan: each pass in order, what it reads and writes (without --out: only that)"}})},
+            &render};
 }
 
 }  // namespace curette::commands

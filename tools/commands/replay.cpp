@@ -63,19 +63,7 @@ void plotRemoval(const std::filesystem::path& dir) {
          "using 2:3 skip 1 with lines title 'removed mL', '' using 2:5 skip 1 axes x1y2 with lines title 'cut streamlines'");
 }
 
-}  // namespace
-
-int replay(const Arguments& args) {
-    CommandLine cl(args, withGpuOption({{"out", true, "directory for PNGs, frames.csv and frames.png"},
-                          {"every", true, "render every Nth frame (default 1)"},
-                          {"check", false, "verify CAO == LAO per frame, write timing/recompute/hash CSV and a plot"},
-                          {"from-reports", false, "re-derive poses from the raw reports and check them"},
-                          {"lenient", false, "replay the valid prefix of a damaged session"},
-                          {"size", true, "render at WxH instead of the recorded size"},
-                          {"no-render", false, "with --from-reports: only check the poses, render nothing"},
-                          {"report", false, "with --out: the removal report every Nth frame, removal.csv and removal.png"},
-                          {"mp4", false, "with --out: also DIR/replay.mp4 of the frames, at the recorded rate (needs ffmpeg on PATH)"},
-                          {"save-scene", true, "write the state after the last frame as a scene file (session/plan_scene.h), camera included"}}));
+int replay(const CommandLine& cl) {
     if (cl.positional().size() != 1) throw InputError("<command line>", "FILE", "one session file: curette replay FILE [options]");
     std::filesystem::path file = cl.positional()[0];
     int every = CommandLine::parseInt("every", cl.valueOr("every", "1"), 1, 1 << 20);
@@ -237,6 +225,23 @@ int replay(const Arguments& args) {
     if (checked) std::printf(", CAO == LAO on %d of %d checked frames", checked - caoMismatches, checked);
     std::printf("\n");
     return poseMismatches || caoMismatches ? 1 : 0;
+}
+
+}  // namespace
+
+Command replayCommand() {
+    return {{"replay", "F.jsonl", "re-render a recorded session headless, frame by frame, and check it",
+             withGpuOption({{"out", true, "directory for PNGs, frames.csv and frames.png"},
+              {"every", true, "render every Nth frame (default 1)"},
+              {"check", false, "verify CAO == LAO per frame, write timing/recompute/hash CSV and a plot"},
+              {"from-reports", false, "re-derive poses from the raw reports and check them"},
+              {"lenient", false, "replay the valid prefix of a damaged session"},
+              {"size", true, "render at WxH instead of the recorded size", "WxH"},
+              {"no-render", false, "with --from-reports: only check the poses, render nothing"},
+              {"report", false, "with --out: the removal report every Nth frame, removal.csv and removal.png"},
+              {"mp4", false, "with --out: also DIR/replay.mp4 of the frames, at the recorded rate (needs ffmpeg on PATH)"},
+              {"save-scene", true, "write the state after the last frame as a scene file (session/plan_scene.h), camera included"}})},
+            &replay};
 }
 
 }  // namespace curette::commands

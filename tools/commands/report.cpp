@@ -13,13 +13,9 @@
 
 namespace curette::commands {
 
-int report(const Arguments& args) {
-    CommandLine cl(args, withGpuOption({{"scene", true, "scene file (JSON; default with --session: the session's scene)"},
-                          {"session", true, "a recorded session (JSONL): report the carve at one of its frames"},
-                          {"frame", true, "with --session: the frame index (default: the last frame)"},
-                          {"out", true, "directory for report.json, the CSVs and the exports"},
-                          {"lps", false, "write the cavity surface in LPS (default RAS)"},
-                          {"no-exports", false, "only report.json and the CSVs"}}));
+namespace {
+
+int report(const CommandLine& cl) {
     if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no positional arguments for report");
     std::filesystem::path out = cl.required("out");
     if (cl.value("frame") && !cl.value("session")) throw InputError("<command line>", "--frame", "together with --session");
@@ -63,6 +59,19 @@ int report(const Arguments& args) {
     std::printf("report in %.0f ms (GPU field and tract flags %.0f ms); wrote %s\n", report.timings.totalMs + reporter.lastGpuMs(),
                 reporter.lastGpuMs(), out.c_str());
     return 0;
+}
+
+}  // namespace
+
+Command reportCommand() {
+    return {{"report", "--scene S --out DIR", "what the carve removes (mL, per structure, per tract bundle, margins) and the plan's exports: labelmap (.nii.gz, .seg.nrrd), cavity surface (STL, glTF), plan scene, cut and spared tracts (.tck)",
+             withGpuOption({{"scene", true, "scene file (JSON; default with --session: the session's scene)"},
+              {"session", true, "a recorded session (JSONL): report the carve at one of its frames"},
+              {"frame", true, "with --session: the frame index (default: the last frame)"},
+              {"out", true, "directory for report.json, the CSVs and the exports"},
+              {"lps", false, "write the cavity surface in LPS (default RAS)"},
+              {"no-exports", false, "only report.json and the CSVs"}})},
+            &report};
 }
 
 }  // namespace curette::commands

@@ -13,16 +13,9 @@
 
 namespace curette::commands {
 
-int tracts(const Arguments& args) {
-    if (args.empty() || args[0] != "synth")
-        throw InputError("<command line>", "tracts", "a tracts sub-command: synth (curette tracts synth --from DIR --count N --out F.tck)",
-                         args.empty() ? "nothing" : "\"" + args[0] + "\"");
-    CommandLine cl(Arguments(args.begin() + 1, args.end()),
-                   {{"from", true, "tract files or folders of them (comma-separated; folders are searched recursively)"},
-                    {"count", true, "streamlines to write (default 100000)"},
-                    {"seed", true, "seed of the jitter (default 1)"},
-                    {"jitter", true, "bound on each point's displacement, mm (default 3)"},
-                    {"out", true, "the .tck file to write"}});
+namespace {
+
+int synth(const CommandLine& cl) {
     if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no positional arguments for tracts synth");
     std::filesystem::path out = cl.required("out");
     if (out.extension() != ".tck") throw InputError("<command line>", "--out", "a .tck file name", "\"" + out.string() + "\"");
@@ -47,6 +40,19 @@ int tracts(const Arguments& args) {
                 out.c_str(), result.streamlineCount(), result.points.size(), static_cast<unsigned long long>(settings.seed), settings.jitterMm,
                 sourceStreamlines, sources.size());
     return 0;
+}
+
+}  // namespace
+
+std::vector<Command> tractsCommands() {
+    return {{{"tracts synth", "--from DIR --count N --out F.tck",
+              "a whole-brain-scale tractogram from a few bundles by jittered copies (deterministic: --seed, --jitter)",
+              {{"from", true, "tract files or folders of them (comma-separated; folders are searched recursively)"},
+               {"count", true, "streamlines to write (default 100000)"},
+               {"seed", true, "seed of the jitter (default 1)"},
+               {"jitter", true, "bound on each point's displacement, mm (default 3)"},
+               {"out", true, "the .tck file to write"}}},
+             &synth}};
 }
 
 }  // namespace curette::commands

@@ -2,7 +2,8 @@
 // mouse drive the clip meshes through the mapping (input/mapping.h); left drag orbits the camera and the wheel
 // zooms; Shift + left drag or I/J/K/L turns the selected light (O: the next one), as recorded input actions. F9 (or a mapped button) starts and stops recording a session; P or F12 saves a screenshot. The overlay
 // shows which device holds which mesh, the shading, and the time of every pass of the frame plan. What to render
-// each frame is the frame loop's decision (viewer/view_frame_loop.h, shared with `curette bench view`): with
+// each frame is the frame loop's decision (viewer/view_frame_loop.h), run by the viewer's iteration
+// (viewer/viewer_driver.h, the same one `curette bench view` runs headless): with
 // --quality adaptive (the default on a software renderer) previews at reduced resolution while something moves
 // and the exact frame once the motion has settled; step I runs in slices with a preview meanwhile, so the window
 // never freezes for it; the overlay says PREVIEW or EXACT and shows step I's progress. The plan panel shows the removal report (removed mL,
@@ -19,9 +20,8 @@
 #include "session/live_input.h"
 #include "session/loaded_scene.h"
 #include "session/session_step.h"
-#include "viewer/view_frame_inputs.h"
-#include "viewer/view_frame_loop.h"
 #include "viewer/view_panels.h"
+#include "viewer/viewer_driver.h"
 #include "base/error.h"
 #include "base/log.h"
 #include "input/hid/fake_backend.h"
@@ -85,17 +85,268 @@ std::string fileNameTimestamp() {
 
 std::string sessionFileName() { return "curette-session-" + fileNameTimestamp() + ".jsonl"; }
 
-}  // namespace
+// The window around the viewer's iteration (viewer/viewer_driver.h): what view() sets up, and what only a
+// window has between frames (the cursor, the overlay's messages, the recording, the keys pressed once).
+struct ViewWindow {
+    gl::WindowContext& window;
+    const LoadedScene& loaded;
+    std::string scenePath;
+    Renderer& renderer;
+    SessionStep& step;
+    ViewPanels& panels;
+    LiveInput& live;
+    const std::optional<Session>& play;
+    std::string playScreenshot;       // --play: the PNG written after the last frame
+    ViewerState viewer;
+    bool exactEveryFrame;
+    Presenter presenter;
+    CarveReporter reporter;
+    ViewerReport report{};
+    std::unique_ptr<LiveRecording> recording{};
+    std::size_t played = 0;           // --play: the recorded frames followed
+    bool orbiting = false, dragging = false, stereoKeyWasDown = false, exportKeyWasDown = false;
+    glm::dvec2 lastCursor{0.0};
+    int screenshots = 0;
+    double previous = glfwGetTime();
+    std::deque<std::string> messages{};
 
-int view(const Arguments& args) {
-    CommandLine cl(args, {{"scene", true, "scene file (JSON)"},
-                          {"size", true, "window size WxH (default 1024x768)"},
-                          {"mapping", true, "device mapping JSON (default: the shipped assets/input/default_mapping.json)"},
-                          {"record", true, "record a session to this file from the start (F9 toggles recording too)"},
-                          {"no-devices", false, "keyboard and mouse only (do not open HID devices)"},
-                          {"quality", true, "exact|adaptive: previews while moving, exact when still (default: adaptive on a software renderer, exact on a GPU; --play: exact)"},
-                          {"play", true, "play this recorded session in the viewer's loop instead of live input, then screenshot and exit"},
-                          {"screenshot", true, "with --play: the PNG of the window after the last frame (default curette-play.png)"}});
+    FrameDescription& frame() { return step.frame(); }
+    InteractionState& state() { return step.state(); }
+    glm::vec4 background() const { return glm::vec4(loaded.scene.background); }
+    bool keyDown(int key) { return !ImGui::GetIO().WantCaptureKeyboard && glfwGetKey(window.window(), key) == GLFW_PRESS; }
+
+    void startRecording(const std::filesystem::path& path, double now) {
+        recording = std::make_unique<LiveRecording>(path, std::filesystem::absolute(scenePath).string(), state(), live, now);
+        std::printf("recording %s\n", path.c_str());
+    }
+    void stopRecording() {
+        recording->finish();
+        std::printf("wrote %s (%zu frames)\n", recording->path().c_str(), recording->frames());
+        recording.reset();
+    }
+
+    // One frame of the window; false when the loop is to end (a played session's last image is written).
+    bool iterate();
+
+private:
+    struct Polled {
+        double now = 0, dt = 0;
+        glm::ivec2 framebuffer{0};
+        OrbitCamera cameraBefore;
+        input::KeyboardMouseState keys;
+    };
+    Polled poll();
+    StepChanges applyInput(const Polled& p, InputFrame& input);
+    void record(const Polled& p, const InputFrame& input);
+    void drawOverlay();
+    bool renderAndPresent(const Polled& p, bool moved);
+    void refreshReport(double now);
+};
+
+// Events, the camera and the keys of this frame.
+ViewWindow::Polled ViewWindow::poll() {
+    Polled p;
+    glfwPollEvents();
+    p.now = glfwGetTime();
+    p.dt = std::min(0.1, p.now - previous);
+    previous = p.now;
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    ImGuiIO& io = ImGui::GetIO();
+    GLFWwindow* w = window.window();
+    p.framebuffer = window.framebufferSize();
+    glm::ivec2 windowPoints;
+    glfwGetWindowSize(w, &windowPoints.x, &windowPoints.y);
+    double pixelsPerPoint = windowPoints.y > 0 ? static_cast<double>(p.framebuffer.y) / windowPoints.y : 1.0;
+
+    // The camera: left drag orbits, the wheel zooms. It changes before input is applied, and the recorded
+    // frame holds the camera the input was applied with.
+    glm::dvec2 cursor;
+    glfwGetCursorPos(w, &cursor.x, &cursor.y);
+    glm::dvec2 delta = (cursor - lastCursor) * pixelsPerPoint;
+    lastCursor = cursor;
+    bool left = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    bool right = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    // Shift + left drag turns the selected light instead (an input action, so sessions record it).
+    bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    p.cameraBefore = frame().camera;
+    if (left && orbiting && !shift) frame().camera.orbit(-0.4 * delta.x / pixelsPerPoint, 0.4 * delta.y / pixelsPerPoint);
+    if (!io.WantCaptureMouse && io.MouseWheel != 0) frame().camera.zoom(std::pow(0.9, io.MouseWheel));
+
+    // Keyboard and mouse as the input pipeline sees them.
+    if (!io.WantCaptureKeyboard) {
+        p.keys.keys = latchedKeys;
+        for (int k = 0; k < static_cast<int>(input::Key::Count); ++k)
+            if (glfwGetKey(w, kGlfwKeys[k]) == GLFW_PRESS) p.keys.keys |= 1u << k;
+    }
+    latchedKeys = 0;
+    if (right && dragging) p.keys.rightDragPixels = delta;
+    if (left && orbiting && shift) p.keys.lightDragPixels = delta;
+    orbiting = left;
+    dragging = right;
+    return p;
+}
+
+// Devices and keys -> actions -> the scene (the session step every command runs), or the played session's next
+// frame. The mesh panel's hold requests of the frame before go in with this frame's input (and its recorded frame).
+StepChanges ViewWindow::applyInput(const Polled& p, InputFrame& input) {
+    input = live.step(p.now, p.keys, p.dt, static_cast<int>(state().meshes.size()), panels.takeHoldRequests());
+    StepChanges changes;
+    if (!play) {
+        try {
+            changes = step.apply(input.actions, p.framebuffer.y, panels.draw(state(), frame().camera, live.pipeline()));
+        } catch (const InputError& e) {   // a panel value the scene reader refuses: said, not applied
+            messages.push_back(e.what());
+        }
+    } else if (played < play->frames.size()) {
+        step.follow(play->frames[played], loaded.scene.file.parent_path(), play->file.string() + " line " + std::to_string(played + 2));
+        ++played;
+    }
+    for (std::string& m : panels.takeMessages()) messages.push_back(std::move(m));
+    for (std::string& m : live.takeMessages()) {
+        messages.push_back(std::move(m));
+        if (messages.size() > 6) messages.pop_front();
+    }
+    return changes;
+}
+
+// F9 (or a mapped button) starts and stops recording; a recording takes the frame as input applied it.
+void ViewWindow::record(const Polled& p, const InputFrame& input) {
+    if (recording) {
+        if (state().toggleRecording) stopRecording();
+        else recording->addFrame(p.now, p.dt, p.framebuffer, frame().camera, state(), p.keys, input);
+    } else if (state().toggleRecording) {
+        startRecording(sessionFileName(), p.now);
+    }
+    state().toggleRecording = false;
+}
+
+// Overlay: timings, shading, who holds which mesh, recording, device messages, the removal report.
+void ViewWindow::drawOverlay() {
+    const InteractionState& s = state();
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
+    ImGui::Begin("curette", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
+    // Shading changes only through input (1-6, C, mapped buttons), so a session replays it from its reports.
+    ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-6, C) | %dx%d | stereo %s (F3)", viewer.lastFrameMs,
+                viewer.lastTimings.ambientOcclusionMs(), shadingModeName(frame().shading), renderer.outputSize().x, renderer.outputSize().y,
+                stereoModeName(viewer.stereo));
+    // What is on screen: the exact frame (CAO == LAO, full resolution) or a preview; step I's progress.
+    ImGui::TextColored(viewer.shownExact ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", viewer.shownExact ? "EXACT" : "PREVIEW");
+    ImGui::SameLine();
+    if (ImGui::Checkbox("exact every frame", &exactEveryFrame)) viewer.loop.setQuality(exactEveryFrame ? ViewQuality::Exact : ViewQuality::Adaptive);
+    if (renderer.exactProgress() > 0) {   // the exact frame in slices (the preview stays on screen meanwhile)
+        ImGui::ProgressBar(static_cast<float>(renderer.exactProgress()), ImVec2(320, 0), "");
+        ImGui::SameLine();
+        ImGui::Text("exact frame %.0f %%", 100 * renderer.exactProgress());
+    }
+    if (renderer.precomputePending(frame())) {
+        ImGui::ProgressBar(static_cast<float>(renderer.precomputeProgress()), ImVec2(320, 0), "");
+        ImGui::SameLine();
+        ImGui::Text("step I (LAO precompute) %.0f %%: shaded without AO until done", 100 * renderer.precomputeProgress());
+    }
+    for (const FrameTimings::Entry& e : viewer.lastTimings.passes) ImGui::Text("  %-22s %8.1f ms", passInfo(e.pass).name, e.ms);
+    auto meshLabel = [&](int index) {
+        return index >= 0 && index < static_cast<int>(s.meshes.size()) ? "mesh " + std::to_string(index) + " \"" + s.meshes[static_cast<std::size_t>(index)].name + "\""
+                                                                      : std::string("no mesh");
+    };
+    const input::Mapper& mapper = live.pipeline().mapper();
+    for (std::size_t b = 0; b < mapper.config().bindings.size(); ++b) {
+        const input::DeviceBinding& binding = mapper.config().bindings[b];
+        int device = mapper.boundDevice(static_cast<int>(b));
+        if (device < 0) continue;
+        std::string product;
+        for (const auto& d : live.devices().devices())
+            if (d->info.id == device) product = d->info.product;
+        ImGui::Text("%s #%d (device %d, %s) -> %s", binding.family.c_str(), binding.index, device, product.c_str(),
+                    meshLabel(mapper.heldMesh(static_cast<int>(b))).c_str());
+    }
+    ImGui::Text("keyboard -> %s (Tab: next)", meshLabel(live.pipeline().keyboardSelection()).c_str());
+    if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %s: %zu frames (F9 stops)", recording->path().c_str(), recording->frames());
+    for (const std::string& m : messages) ImGui::TextWrapped("%s", m.c_str());
+    if (const std::optional<plan::Report>& r = report.report()) {
+        ImGui::Separator();
+        ImGui::Text("removed %.2f mL%s (%.0f ms; F5 writes the plan)", r->removedMl, report.current(renderer.clipMeshes()) ? "" : " (updating)",
+                    report.ms());
+        for (const plan::StructureRow& row : r->structures) {
+            if (!row.touched && !row.isProtected) continue;
+            ImVec4 colour = row.isProtected && row.touched ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
+            ImGui::TextColored(colour, "  %-24s %7.2f mL %5.1f %%  %s %5.1f mm", row.name.c_str(), row.removedMl, 100 * row.share,
+                               row.touched ? "depth" : "margin", row.touched ? row.intrusionDepthMm : row.marginMm);
+        }
+        for (const plan::BundleRow& b : r->bundles) {
+            ImVec4 colour = b.isProtected && b.cut ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
+            ImGui::TextColored(colour, "  %-24s %5llu of %llu cut  %6.1f mm removed  margin %5.1f mm", b.name.c_str(),
+                               static_cast<unsigned long long>(b.cut), static_cast<unsigned long long>(b.streamlines), b.removedLengthMm,
+                               b.marginMm);
+        }
+        for (const std::string& warning : r->warnings()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", warning.c_str());
+    }
+    float scale = static_cast<float>(viewer.renderScale);
+    if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) viewer.renderScale = scale;
+    ImGui::Text("light %d of %zu (O: next; I/J/K/L or Shift + left drag: turn it)", s.selectedLight + 1, s.lights.size());
+    ImGui::TextUnformatted("left drag: orbit  wheel: zoom  WASDQE, arrows, PgUp/PgDn, right drag: move mesh\n"
+                           "Tab: next mesh  R: reset  Ins/Del: add/remove  F9: record  P: screenshot  F3: stereo");
+    ImGui::End();
+    ImGui::Render();
+}
+
+// The viewer's iteration (shared with bench view), then the screenshot (P, F12) and the image presented. Returns
+// false after a played session's last frame, exact, is written without the overlay.
+bool ViewWindow::renderAndPresent(const Polled& p, bool moved) {
+    bool stereoKeyDown = keyDown(GLFW_KEY_F3);
+    if (stereoKeyDown && !stereoKeyWasDown) viewer.stereo = nextStereoMode(viewer.stereo);
+    stereoKeyWasDown = stereoKeyDown;
+    stepViewer(viewer, renderer, step, loaded.tracts, p.framebuffer, p.now, moved, background());
+    bool stereo = viewer.stereo != StereoMode::Off;
+    if (state().screenshot) {
+        std::string name = "curette-screenshot-" + std::to_string(++screenshots) + ".png";
+        writePng(name, stereo ? viewer.stereoView.image() : renderer.readImage(), background());
+        std::printf("saved %s\n", name.c_str());
+    }
+    presenter.present(stereo ? viewer.stereoView.texture() : renderer.outputTexture(), p.framebuffer, background());
+    if (play && played == play->frames.size() && viewer.shownExact) {   // the last frame, exact, without the overlay
+        writePngRgba8(playScreenshot, p.framebuffer.x, p.framebuffer.y, window.readBackBuffer());
+        std::printf("played %zu frames of %s; wrote %s (%dx%d)\n", played, play->file.c_str(), playScreenshot.c_str(), p.framebuffer.x,
+                    p.framebuffer.y);
+        return false;
+    }
+    return true;
+}
+
+// The removal report once the meshes are still; F5 writes it and the plan's exports.
+void ViewWindow::refreshReport(double now) {
+    report.refresh(reporter, renderer.clipMeshes(), now);
+    bool exportKeyDown = keyDown(GLFW_KEY_F5);
+    if (exportKeyDown && !exportKeyWasDown && report.report()) {
+        messages.push_back(report.exportPlan(reporter, renderer.clipMeshes(), state(), fileNameTimestamp()));
+        std::printf("%s\n", messages.back().c_str());
+        if (messages.size() > 6) messages.pop_front();
+    }
+    exportKeyWasDown = exportKeyDown;
+}
+
+bool ViewWindow::iterate() {
+    Polled p = poll();
+    InputFrame input;
+    StepChanges changes = applyInput(p, input);
+    bool cameraMoving = !(frame().camera == p.cameraBefore);
+    record(p, input);
+    drawOverlay();
+    if (p.framebuffer.x > 0 && p.framebuffer.y > 0) {
+        if (!renderAndPresent(p, changes.any() || cameraMoving)) return false;
+        refreshReport(p.now);
+    }
+    state().screenshot = false;
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    window.swapBuffers();
+    // At most 120 frames a second when idle: devices are drained each frame, and nothing spins.
+    double spare = 1.0 / 120.0 - (glfwGetTime() - p.now);
+    if (spare > 0) glfwWaitEventsTimeout(spare);
+    return true;
+}
+
+int view(const CommandLine& cl) {
     glm::ivec2 windowSize = CommandLine::parseSize("size", cl.valueOr("size", "1024x768"));
     std::optional<Session> play;
     if (auto p = cl.value("play")) play = readSession(*p, false);
@@ -113,45 +364,17 @@ int view(const Arguments& args) {
     FrameLoopSettings loopSettings;
     // A played session is for its last image: exact every frame unless asked otherwise.
     loopSettings.quality = quality.value_or(play ? ViewQuality::Exact : defaultViewQuality(window->info().softwareRenderer));
-    ViewFrameLoop loop(loopSettings);
-    bool exactEveryFrame = loopSettings.quality == ViewQuality::Exact;
     Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
-    Presenter presenter;
-    // The plan overlay: the removal report, recomputed once the meshes have been still for kReportDelayS
-    // (a report costs a GPU pass and a CPU pass over the grid; while a mesh moves the frames come first).
-    constexpr double kReportDelayS = 0.2;
-    CarveReporter reporter(loaded, renderer.geometry());
-    std::optional<plan::Report> report;
-    std::uint64_t reportedVersion = 0, seenVersion = 0;
-    double versionChangedAt = -1e9, reportMs = 0;
-    bool exportKeyWasDown = false;
-    // F3 cycles stereo (off, side-by-side, anaglyph; render/model/stereo.h): a way of showing, not a scene action, so
-    // sessions do not record it.
-    StereoMode stereo = StereoMode::Off;
-    StereoView stereoView;
-    bool stereoKeyWasDown = false;
-    int exports = 0;
-
     SessionStep step(play ? InteractionState::fromSessionStart(play->header, loaded.scene, loaded.scene.file.parent_path(), play->file.string())
                           : InteractionState::fromScene(loaded.scene),
                      initialFrame(loaded.scene, renderer.geometry()));
     ViewPanels panels(loaded, shippedPresetDirectory());
-    std::size_t played = 0;
-    FrameDescription& frame = step.frame();
-    InteractionState& state = step.state();
     LiveInput live(openHid(!cl.flag("no-devices") && !play), mapping, 40.0, 60.0);
-    std::unique_ptr<LiveRecording> recording;
-    auto startRecording = [&](const std::filesystem::path& path, double now) {
-        recording = std::make_unique<LiveRecording>(path, std::filesystem::absolute(scenePath).string(), state, live, now);
-        std::printf("recording %s\n", path.c_str());
-    };
-    auto stopRecording = [&] {
-        recording->finish();
-        std::printf("wrote %s (%zu frames)\n", recording->path().c_str(), recording->frames());
-        recording.reset();
-    };
-    if (auto path = cl.value("record")) startRecording(*path, glfwGetTime());
+    ViewWindow viewWindow{*window, loaded, scenePath, renderer, step, panels, live, play, cl.valueOr("screenshot", "curette-play.png"),
+                          ViewerState(loopSettings), loopSettings.quality == ViewQuality::Exact, Presenter(),
+                          CarveReporter(loaded, renderer.geometry())};
+    if (auto path = cl.value("record")) viewWindow.startRecording(*path, glfwGetTime());
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -160,233 +383,30 @@ int view(const Arguments& args) {
     ImGui_ImplGlfw_InitForOpenGL(window->window(), true);
     ImGui_ImplOpenGL3_Init("#version 450");
 
-    double renderScale = 1.0;  // the exact frame's resolution (the preview's is the frame loop's)
-    bool shownExact = false;   // the image on screen is the exact frame (stereo: both eyes exact at full size)
-    bool orbiting = false, dragging = false;
-    glm::dvec2 lastCursor{0.0};
-    int screenshots = 0;
-    double lastFrameMs = 0, previous = glfwGetTime();
-    FrameTimings lastTimings;
-    std::deque<std::string> messages;
     std::signal(SIGINT, requestQuit);
     std::signal(SIGTERM, requestQuit);
-    while (!window->shouldClose() && !quitRequested) {
-        glfwPollEvents();
-        double now = glfwGetTime();
-        double dt = std::min(0.1, now - previous);
-        previous = now;
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        ImGuiIO& io = ImGui::GetIO();
-        GLFWwindow* w = window->window();
-        glm::ivec2 framebuffer = window->framebufferSize();
-        glm::ivec2 windowPoints;
-        glfwGetWindowSize(w, &windowPoints.x, &windowPoints.y);
-        double pixelsPerPoint = windowPoints.y > 0 ? static_cast<double>(framebuffer.y) / windowPoints.y : 1.0;
-
-        // The camera: left drag orbits, the wheel zooms. It changes before input is applied, and the recorded
-        // frame holds the camera the input was applied with.
-        glm::dvec2 cursor;
-        glfwGetCursorPos(w, &cursor.x, &cursor.y);
-        glm::dvec2 delta = (cursor - lastCursor) * pixelsPerPoint;
-        lastCursor = cursor;
-        bool left = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-        bool right = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-        // Shift + left drag turns the selected light instead (an input action, so sessions record it).
-        bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
-        OrbitCamera cameraBefore = frame.camera;
-        if (left && orbiting && !shift) frame.camera.orbit(-0.4 * delta.x / pixelsPerPoint, 0.4 * delta.y / pixelsPerPoint);
-        if (!io.WantCaptureMouse && io.MouseWheel != 0) frame.camera.zoom(std::pow(0.9, io.MouseWheel));
-
-        // Keyboard and mouse as the input pipeline sees them.
-        input::KeyboardMouseState keys;
-        if (!io.WantCaptureKeyboard) {
-            keys.keys = latchedKeys;
-            for (int k = 0; k < static_cast<int>(input::Key::Count); ++k)
-                if (glfwGetKey(w, kGlfwKeys[k]) == GLFW_PRESS) keys.keys |= 1u << k;
-        }
-        latchedKeys = 0;
-        if (right && dragging) keys.rightDragPixels = delta;
-        if (left && orbiting && shift) keys.lightDragPixels = delta;
-        orbiting = left;
-        dragging = right;
-
-        // Devices and keys -> actions -> the scene (the session step every command runs). The mesh panel's
-        // hold requests of the frame before go in with this frame's input (and its recorded frame).
-        InputFrame input = live.step(now, keys, dt, static_cast<int>(state.meshes.size()), panels.takeHoldRequests());
-        StepChanges changes;
-        if (!play) {
-            try {
-                changes = step.apply(input.actions, framebuffer.y, panels.draw(state, frame.camera, live.pipeline()));
-            } catch (const InputError& e) {   // a panel value the scene reader refuses: said, not applied
-                messages.push_back(e.what());
-            }
-        } else if (played < play->frames.size()) {
-            step.follow(play->frames[played], loaded.scene.file.parent_path(), play->file.string() + " line " + std::to_string(played + 2));
-            ++played;
-        }
-        for (std::string& m : panels.takeMessages()) messages.push_back(std::move(m));
-        for (std::string& m : live.takeMessages()) {
-            messages.push_back(std::move(m));
-            if (messages.size() > 6) messages.pop_front();
-        }
-        bool cameraMoving = !(frame.camera == cameraBefore);
-
-        if (recording) {
-            if (state.toggleRecording) stopRecording();
-            else recording->addFrame(now, dt, framebuffer, frame.camera, state, keys, input);
-        } else if (state.toggleRecording) {
-            startRecording(sessionFileName(), now);
-        }
-        state.toggleRecording = false;
-
-        // Overlay: timings, shading, who holds which mesh, recording, device messages.
-        ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
-        ImGui::Begin("curette", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
-        // Shading changes only through input (1-6, C, mapped buttons), so a session replays it from its reports.
-        ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-6, C) | %dx%d | stereo %s (F3)", lastFrameMs, lastTimings.ambientOcclusionMs(),
-                    shadingModeName(frame.shading), renderer.outputSize().x, renderer.outputSize().y, stereoModeName(stereo));
-        // What is on screen: the exact frame (CAO == LAO, full resolution) or a preview; step I's progress.
-        ImGui::TextColored(shownExact ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", shownExact ? "EXACT" : "PREVIEW");
-        ImGui::SameLine();
-        if (ImGui::Checkbox("exact every frame", &exactEveryFrame)) loop.setQuality(exactEveryFrame ? ViewQuality::Exact : ViewQuality::Adaptive);
-        if (renderer.exactProgress() > 0) {   // the exact frame in slices (the preview stays on screen meanwhile)
-            ImGui::ProgressBar(static_cast<float>(renderer.exactProgress()), ImVec2(320, 0), "");
-            ImGui::SameLine();
-            ImGui::Text("exact frame %.0f %%", 100 * renderer.exactProgress());
-        }
-        if (renderer.precomputePending(frame)) {
-            ImGui::ProgressBar(static_cast<float>(renderer.precomputeProgress()), ImVec2(320, 0), "");
-            ImGui::SameLine();
-            ImGui::Text("step I (LAO precompute) %.0f %%: shaded without AO until done", 100 * renderer.precomputeProgress());
-        }
-        for (const FrameTimings::Entry& e : lastTimings.passes) ImGui::Text("  %-22s %8.1f ms", passInfo(e.pass).name, e.ms);
-        auto meshLabel = [&](int index) {
-            return index >= 0 && index < static_cast<int>(state.meshes.size()) ? "mesh " + std::to_string(index) + " \"" + state.meshes[static_cast<std::size_t>(index)].name + "\""
-                                                                              : std::string("no mesh");
-        };
-        const input::Mapper& mapper = live.pipeline().mapper();
-        for (std::size_t b = 0; b < mapper.config().bindings.size(); ++b) {
-            const input::DeviceBinding& binding = mapper.config().bindings[b];
-            int device = mapper.boundDevice(static_cast<int>(b));
-            if (device < 0) continue;
-            std::string product;
-            for (const auto& d : live.devices().devices())
-                if (d->info.id == device) product = d->info.product;
-            ImGui::Text("%s #%d (device %d, %s) -> %s", binding.family.c_str(), binding.index, device, product.c_str(),
-                        meshLabel(mapper.heldMesh(static_cast<int>(b))).c_str());
-        }
-        ImGui::Text("keyboard -> %s (Tab: next)", meshLabel(live.pipeline().keyboardSelection()).c_str());
-        if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %s: %zu frames (F9 stops)", recording->path().c_str(), recording->frames());
-        for (const std::string& m : messages) ImGui::TextWrapped("%s", m.c_str());
-        if (report) {
-            ImGui::Separator();
-            ImGui::Text("removed %.2f mL%s (%.0f ms; F5 writes the plan)", report->removedMl,
-                        reportedVersion == renderer.clipMeshes().version() ? "" : " (updating)", reportMs);
-            for (const plan::StructureRow& r : report->structures) {
-                if (!r.touched && !r.isProtected) continue;
-                ImVec4 colour = r.isProtected && r.touched ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
-                ImGui::TextColored(colour, "  %-24s %7.2f mL %5.1f %%  %s %5.1f mm", r.name.c_str(), r.removedMl, 100 * r.share,
-                                   r.touched ? "depth" : "margin", r.touched ? r.intrusionDepthMm : r.marginMm);
-            }
-            for (const plan::BundleRow& b : report->bundles) {
-                ImVec4 colour = b.isProtected && b.cut ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
-                ImGui::TextColored(colour, "  %-24s %5llu of %llu cut  %6.1f mm removed  margin %5.1f mm", b.name.c_str(),
-                                   static_cast<unsigned long long>(b.cut), static_cast<unsigned long long>(b.streamlines), b.removedLengthMm,
-                                   b.marginMm);
-            }
-            for (const std::string& warning : report->warnings()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", warning.c_str());
-        }
-        float scale = static_cast<float>(renderScale);
-        if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) renderScale = scale;
-        ImGui::Text("light %d of %zu (O: next; I/J/K/L or Shift + left drag: turn it)", state.selectedLight + 1, state.lights.size());
-        ImGui::TextUnformatted("left drag: orbit  wheel: zoom  WASDQE, arrows, PgUp/PgDn, right drag: move mesh\n"
-                               "Tab: next mesh  R: reset  Ins/Del: add/remove  F9: record  P: screenshot  F3: stereo");
-        ImGui::End();
-        ImGui::Render();
-
-        if (framebuffer.x > 0 && framebuffer.y > 0) {
-            step.syncTo(renderer, loaded.tracts);
-            glm::ivec2 exactSize = glm::max(glm::ivec2(glm::dvec2(framebuffer) * renderScale), glm::ivec2(1));
-            frame.size = exactSize;
-            FrameDecision decision = loop.decide(frameLoopInputs(renderer, loop, frame, now, changes.any() || cameraMoving));
-            double stepMm = renderer.resolveStepMm(frame.raycast);
-            if (decision.render != FrameKind::None) frame.size = decision.size;
-            FrameDescription decided = decidedFrame(frame, decision.render, frame.size, decision.rayStepScale, stepMm);
-            bool stereoKeyDown = !io.WantCaptureKeyboard && glfwGetKey(w, GLFW_KEY_F3) == GLFW_PRESS;
-            if (stereoKeyDown && !stereoKeyWasDown) stereo = nextStereoMode(stereo);
-            stereoKeyWasDown = stereoKeyDown;
-            auto renderStart = std::chrono::steady_clock::now();
-            bool rendered = false;
-            if (stereo != StereoMode::Off) {
-                rendered = stereoView.update(renderer, frame, stereo, kDefaultEyeSeparationMm, glm::vec4(loaded.scene.background));
-                if (rendered) shownExact = frame.size == exactSize;   // the pair is exact frames, at the decided size
-            } else {
-                if (decision.precomputeBudgetMs > 0) renderer.advancePrecompute(decision.precomputeBudgetMs);
-                auto imageStart = std::chrono::steady_clock::now();
-                rendered = renderDecidedImage(renderer, decision, decided) || decision.precomputeBudgetMs > 0;
-                renderer.finish();
-                loop.rendered(decision, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - imageStart).count());
-                shownExact = renderer.lastFrameExact();
-            }
-            if (rendered) {
-                renderer.finish();
-                lastFrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - renderStart).count();
-                lastTimings = renderer.collectTimings();
-            }
-            if (state.screenshot) {
-                std::string name = "curette-screenshot-" + std::to_string(++screenshots) + ".png";
-                writePng(name, stereo != StereoMode::Off ? stereoView.image() : renderer.readImage(), glm::vec4(loaded.scene.background));
-                std::printf("saved %s\n", name.c_str());
-            }
-            presenter.present(stereo != StereoMode::Off ? stereoView.texture() : renderer.outputTexture(), framebuffer,
-                              glm::vec4(loaded.scene.background));
-            if (play && played == play->frames.size() && shownExact) {   // the last frame, exact, without the overlay
-                std::string name = cl.valueOr("screenshot", "curette-play.png");
-                writePngRgba8(name, framebuffer.x, framebuffer.y, window->readBackBuffer());
-                std::printf("played %zu frames of %s; wrote %s (%dx%d)\n", played, play->file.c_str(), name.c_str(), framebuffer.x, framebuffer.y);
-                break;
-            }
-
-            std::uint64_t version = renderer.clipMeshes().version();
-            if (version != seenVersion) seenVersion = version, versionChangedAt = now;
-            if (version != reportedVersion && now - versionChangedAt >= kReportDelayS) {
-                auto start = std::chrono::steady_clock::now();
-                report = reporter.compute(renderer.clipMeshes());
-                reportMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-                reportedVersion = version;
-            }
-            bool exportKeyDown = !io.WantCaptureKeyboard && glfwGetKey(w, GLFW_KEY_F5) == GLFW_PRESS;
-            if (exportKeyDown && !exportKeyWasDown && report) {
-                if (reportedVersion != version) report = reporter.compute(renderer.clipMeshes()), reportedVersion = version;
-                std::string name = "curette-plan-";
-                name += fileNameTimestamp();
-                if (exports++ > 0) name += std::string(1, '-').append(std::to_string(exports));
-                std::filesystem::path dir = name;
-                try {
-                    reporter.write(dir, *report, state, PlanExportOptions{});
-                    messages.push_back("wrote the plan to " + dir.string());
-                } catch (const std::exception& e) {
-                    messages.push_back(std::string("could not write the plan: ") + e.what());
-                }
-                std::printf("%s\n", messages.back().c_str());
-                if (messages.size() > 6) messages.pop_front();
-            }
-            exportKeyWasDown = exportKeyDown;
-        }
-        state.screenshot = false;
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        window->swapBuffers();
-        // At most 120 frames a second when idle: devices are drained each frame, and nothing spins.
-        double spare = 1.0 / 120.0 - (glfwGetTime() - now);
-        if (spare > 0) glfwWaitEventsTimeout(spare);
-    }
-    if (recording) stopRecording();
+    viewWindow.previous = glfwGetTime();
+    while (!window->shouldClose() && !quitRequested && viewWindow.iterate()) {}
+    if (viewWindow.recording) viewWindow.stopRecording();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
     return 0;
+}
+
+}  // namespace
+
+Command viewCommand() {
+    return {{"view", "--scene S", "the interactive viewer: devices, keyboard and mouse, settings panels, the removal report; F9 records a session, --play F plays one",
+             {{"scene", true, "scene file (JSON)"},
+              {"size", true, "window size WxH (default 1024x768)", "WxH"},
+              {"mapping", true, "device mapping JSON (default: the shipped assets/input/default_mapping.json)"},
+              {"record", true, "record a session to this file from the start (F9 toggles recording too)"},
+              {"no-devices", false, "keyboard and mouse only (do not open HID devices)"},
+              {"quality", true, "exact|adaptive: previews while moving, exact when still (default: adaptive on a software renderer, exact on a GPU; --play: exact)", "exact|adaptive"},
+              {"play", true, "play this recorded session in the viewer's loop instead of live input, then screenshot and exit"},
+              {"screenshot", true, "with --play: the PNG of the window after the last frame (default curette-play.png)"}}},
+            &view};
 }
 
 }  // namespace curette::commands
