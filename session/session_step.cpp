@@ -40,13 +40,20 @@ SessionStep::SessionStep(InteractionState state, FrameDescription frame) : state
     synced_ = {state_.transferFunctionVersion, state_.tubesVersion, state_.tubeShadingVersion};
 }
 
-StepChanges SessionStep::compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, const std::vector<Light>& lightsBefore,
-                                 bool meshesChanged) {
+SessionStep::Before SessionStep::begin() {
+    Before before{state_.sessionPoses(), state_.shading, state_.lights};
+    state_.addedMeshIds.clear();
+    state_.removedMeshIds.clear();
+    state_.appliedEdits.clear();
+    return before;
+}
+
+StepChanges SessionStep::compare(const Before& before, bool meshesChanged) {
     StepChanges c;
     c.meshes = meshesChanged;
-    c.poses = !samePoses(before, state_.sessionPoses());
-    c.shading = state_.shading != shadingBefore;
-    c.lights = state_.lights != lightsBefore;
+    c.poses = !samePoses(before.poses, state_.sessionPoses());
+    c.shading = state_.shading != before.shading;
+    c.lights = state_.lights != before.lights;
     c.settings = !state_.appliedEdits.empty();
     for (const SettingEdit& e : state_.appliedEdits) c.meshes = c.meshes || e.setting == Setting::MeshShape;
     frameFromState(state_, frame_);
@@ -55,24 +62,14 @@ StepChanges SessionStep::compare(const std::vector<SessionMesh>& before, Shading
 
 StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int viewportHeight, const std::vector<SettingEdit>& edits,
                                const std::string& source) {
-    std::vector<SessionMesh> before = state_.sessionPoses();
-    ShadingMode shadingBefore = state_.shading;
-    std::vector<Light> lightsBefore = state_.lights;
-    state_.addedMeshIds.clear();
-    state_.removedMeshIds.clear();
-    state_.appliedEdits.clear();
+    Before before = begin();
     state_.apply(actions, frame_.camera, viewportHeight);
     state_.applyEdits(edits, source);
-    return compare(before, shadingBefore, lightsBefore, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty());
+    return compare(before, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty());
 }
 
 StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::path& sceneDirectory, const std::string& where) {
-    std::vector<SessionMesh> before = state_.sessionPoses();
-    ShadingMode shadingBefore = state_.shading;
-    std::vector<Light> lightsBefore = state_.lights;
-    state_.addedMeshIds.clear();
-    state_.removedMeshIds.clear();
-    state_.appliedEdits.clear();
+    Before before = begin();
     // Meshes an edit adds or removes are also in meshes_added/meshes_removed: the edit makes them (it
     // carries every key of the mesh), after the ones the frame's actions made, as live.
     std::set<int> addedByEdits, removedByEdits;
@@ -105,7 +102,7 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     state_.shading = f.shading;
     frame_.camera = f.camera;
     frame_.size = f.size;
-    return compare(before, shadingBefore, lightsBefore, !f.meshesAdded.empty() || !f.meshesRemoved.empty());
+    return compare(before, !f.meshesAdded.empty() || !f.meshesRemoved.empty());
 }
 
 void SessionStep::syncTo(clip::ClipMeshSet& set) const { syncClipMeshes(state_, set); }

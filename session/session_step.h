@@ -75,8 +75,15 @@ public:
     void syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts);
 
 private:
-    StepChanges compare(const std::vector<SessionMesh>& before, ShadingMode shadingBefore, const std::vector<Light>& lightsBefore,
-                        bool meshesChanged);
+    // What a step compares against (the poses, shading and lights before it); begin() also clears the last
+    // step's lists of added and removed meshes and applied edits.
+    struct Before {
+        std::vector<SessionMesh> poses;
+        ShadingMode shading;
+        std::vector<Light> lights;
+    };
+    Before begin();
+    StepChanges compare(const Before& before, bool meshesChanged);
 
     InteractionState state_;
     FrameDescription frame_;
