@@ -48,6 +48,9 @@ public:
     // A slice of `units` took `ms` of wall time (GPU waited for); slices under half a millisecond are not timed.
     void measured(std::uint32_t units, double ms);
     void restart() { unitsPerMs_ = 0, last_ = 0; }
+    // A new run of the same work: the rate carries over, the last slice's size does not (a frame's first slice
+    // is not capped by the tail of the one before).
+    void newRun() { last_ = 0; }
 
 private:
     Rate rule_;

@@ -120,6 +120,7 @@ FrameRun Renderer::beginRun(const FrameDescription& frame, bool exact) {
     FrameRun run{.frame = frame, .shaded = frame, .exact = exact, .stamp = stampOf(frame), .previews = previewsRendered_};
     if (exact) {
         run.plan = plan(frame);
+        for (SliceSizer* sizer : {&stepIVSizer_, &stepVSizer_, &rayCastSizer_}) sizer->newRun();
     } else {
         // A preview is the frame's plan without steps I, IV and V, shading with previewAmbient()'s volume, or
         // phong while V_PAO is not there. Its clip maps are the frame's own (cao wants the dilated ones), exactly as
