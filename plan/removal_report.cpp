@@ -197,6 +197,7 @@ Removal measureTissue(Report& report, const VolumeData& volume, const TransferFu
     removal.box = field.box();
     const VoxelBox& box = removal.box;
     removal.tissue = tissueInBox(volume, tf, settings, labelSets.empty() ? nullptr : labelSets.front().labels, box);
+    for (const LabelSet& set : labelSets) addProtectedLabels(removal.tissue, box, *set.labels, set.protectedIds);
     removal.removedRegion = removedRegionOnGrid(field, removal.tissue);
     std::uint64_t removedSamples = 0;  // sum of t(v) * count(v): the total in units of voxel / (9 + N)
     std::size_t at = 0;

@@ -48,4 +48,16 @@ std::vector<std::uint8_t> tissueInBox(const VolumeData& volume, const TransferFu
     return tissue;
 }
 
+void addProtectedLabels(std::vector<std::uint8_t>& tissue, const VoxelBox& box, const LabelMap& labels, const std::vector<int>& protectedIds) {
+    if (protectedIds.empty()) return;
+    std::vector<bool> isProtected(65536, false);
+    for (int id : protectedIds)
+        if (id >= 0 && id < 65536) isProtected[static_cast<std::size_t>(id)] = true;
+    std::size_t at = 0;
+    for (int k = box.origin.z; k < box.origin.z + box.size.z; ++k)
+        for (int j = box.origin.y; j < box.origin.y + box.size.y; ++j)
+            for (int i = box.origin.x; i < box.origin.x + box.size.x; ++i, ++at)
+                if (isProtected[labels.ids[labels.linearIndex(i, j, k)]]) tissue[at] = 1;
+}
+
 }  // namespace curette::plan

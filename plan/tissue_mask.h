@@ -31,4 +31,9 @@ struct ReportSettings {
 std::vector<std::uint8_t> tissueInBox(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
                                       const LabelMap* labels, const VoxelBox& box);
 
+// A protected label is tissue whatever the rule and the TF: a carve into a structure the TF hides (a glass TF,
+// a gyrus drawn by its label's style) still removes it and warns. Marks `labels`' voxels with one of
+// `protectedIds` in `tissue` (over `box`, as tissueInBox made it).
+void addProtectedLabels(std::vector<std::uint8_t>& tissue, const VoxelBox& box, const LabelMap& labels, const std::vector<int>& protectedIds);
+
 }  // namespace curette::plan

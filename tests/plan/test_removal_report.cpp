@@ -109,6 +109,41 @@ TEST(RemovalReport, PerLabelVolumesAndSharesOnATwoLabelVolume) {
     EXPECT_THROW(computeReport(s.volume, stepTf(), ReportSettings{}, s.field, {{"w", &wrong, &table, {}}}, {}), InputError);
 }
 
+// A protected label counts as tissue whatever the tissue rule and the TF: a carve into a protected structure the
+// TF hides (air values, transparent under the TF, as a glass TF leaves a gyrus the labels draw) removes it and
+// warns, with the same figures as where its voxels are opaque. An unprotected label there removes nothing.
+TEST(RemovalReport, AProtectedLabelIsTissueWhateverTheTransferFunction) {
+    const glm::dvec3 c(0.31, 0.12, -0.27);
+    const double radius = 7.0;
+    Scene s = carve({1.0, 1.0, 1.0}, 14.0, sphere(c, radius));
+    LabelMap labels = labelsFrom(s, [&](glm::dvec3 p) { return p.x < c.x ? 4 : 5; });
+    LabelTable table;
+    table.entries = {{4, "protected gyrus", glm::dvec4(1.0)}, {5, "other", glm::dvec4(1.0)}};
+    LabelSet set{"atlas", &labels, &table, {4}};
+    VolumeData air = uniformVolume(s.dims, s.affine, 0);   // transparent under stepTf()
+    Report hidden = computeReport(air, stepTf(), ReportSettings{}, s.field, {set}, {});
+    Report opaque = computeReport(s.volume, stepTf(), ReportSettings{}, s.field, {set}, {});
+    const StructureRow* gyrus = row(hidden, 4);
+    const StructureRow* visible = row(opaque, 4);
+    ASSERT_TRUE(gyrus && visible);
+    EXPECT_TRUE(gyrus->touched);
+    EXPECT_GT(gyrus->removedMl, 0.0);
+    EXPECT_EQ(gyrus->removedMl, visible->removedMl);
+    EXPECT_EQ(gyrus->marginMm, 0.0);
+    ASSERT_EQ(hidden.warnings().size(), 1u);
+    EXPECT_NE(hidden.warnings()[0].find("protected structure atlas/protected gyrus"), std::string::npos);
+    EXPECT_EQ(row(hidden, 5), nullptr) << "the unprotected label in transparent voxels is not tissue";
+    EXPECT_EQ(hidden.removedMl, gyrus->removedMl);
+    // The same under the label tissue rule naming only the other label.
+    ReportSettings byLabel;
+    byLabel.tissue = TissueRule::Labels;
+    byLabel.tissueLabelIds = {5};
+    Report r = computeReport(air, stepTf(), byLabel, s.field, {set}, {});
+    ASSERT_NE(row(r, 4), nullptr);
+    EXPECT_EQ(row(r, 4)->removedMl, visible->removedMl);
+    EXPECT_EQ(r.warnings().size(), 1u);
+}
+
 // A sphere of radius 8 at c carves; a slab label occupies the voxel centres with z >= zc. With the top of the
 // sphere at t = c.z + 8 and s the z spacing (R's top centre lies in (t - s, t]):
 //   zc < t (intrusion): depth = (top centre of R in the slab) - (zc - s), within s/2 of t - zc + s/2,

@@ -170,10 +170,13 @@ TEST(ReportCli, ASphereCarveIsMeasuredPerStructureAndBundleAndExported) {
 }
 
 TEST(ReportCli, TissueCanBeALabelSet) {
+    // "right" is protected, so it is tissue under any rule: tissue "left" alone removes the whole sphere, "right"
+    // alone only its part beyond the left cap.
     double leftMl = capVolume(kRadius, kRadius - (kCentre.x - 19.5)) / 1000.0;
     double sphereMl = clip::makeSphere(kRadius, 4).signedVolume() / 1000.0;
     for (auto [extra, expected] : std::vector<std::pair<std::string, double>>{
-             {",\n  \"report\": {\"tissue\": \"labels\", \"tissue_labels\": [\"left\"]}", leftMl},
+             {",\n  \"report\": {\"tissue\": \"labels\", \"tissue_labels\": [\"left\"]}", sphereMl},
+             {",\n  \"report\": {\"tissue\": \"labels\", \"tissue_labels\": [\"right\"]}", sphereMl - leftMl},
              {",\n  \"report\": {\"tissue\": \"labels\"}", sphereMl}}) {
         fs::path dir = scratch("tissue-labels");
         fs::path scene = writePlanScene(dir, extra);
