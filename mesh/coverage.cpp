@@ -9,16 +9,17 @@ std::vector<glm::dvec3> antiAliasingOffsets(int count) {
         return r;
     };
     std::vector<glm::dvec3> offsets;
-    for (int i = 1; i <= count; ++i) offsets.emplace_back(2 * halton(i, 2) - 1, 2 * halton(i, 3) - 1, 2 * halton(i, 5) - 1);
+    for (int i = 1; i <= count; ++i) offsets.emplace_back(glm::dvec3(2 * halton(i, 2) - 1, 2 * halton(i, 3) - 1, 2 * halton(i, 5) - 1) * kCellSampleHalfWidth);
     return offsets;
 }
 
 int insideSampleCountInIndexSpace(const std::function<bool(glm::dvec3 index)>& insideAtIndex, glm::dvec3 centreIndex,
                                   const std::vector<glm::dvec3>& offsets) {
-    // Algorithm 2 lines 3-5: the centre and the eight diagonal corners at +-1 index step.
+    // Algorithm 2 lines 3-5: the centre and the eight corners of the voxel's (inset) cell.
     int inside = insideAtIndex(centreIndex) ? 1 : 0;
     for (int corner = 0; corner < 8; ++corner) {
-        glm::dvec3 o((corner & 1) ? 1.0 : -1.0, (corner & 2) ? 1.0 : -1.0, (corner & 4) ? 1.0 : -1.0);
+        const double h = kCellSampleHalfWidth;
+        glm::dvec3 o((corner & 1) ? h : -h, (corner & 2) ? h : -h, (corner & 4) ? h : -h);
         inside += insideAtIndex(centreIndex + o) ? 1 : 0;
     }
     const int extra = static_cast<int>(offsets.size());

@@ -1,7 +1,7 @@
 #pragma once
 // How much of a voxel a clip region covers: step IV of CAO (Algorithm 2, lines 3-10) on the CPU. A voxel is
-// probed at 9 samples (its centre and the eight corners one index step away along the diagonals); only when
-// those 9 disagree, at N more fixed offsets in [-1, 1]^3 (line 9). The GPU twin is shaders/voxel_clip.comp.
+// probed at 9 samples (its centre and the eight corners of its own cell); only when those 9 disagree, at N
+// more fixed offsets inside the same cell (line 9). The GPU twin is shaders/clip_coverage.glsl.
 // This file is the one CPU definition of that sample count: the CPU reference of step IV
 // (render/reference/lao_reference.cpp, clipVoxels) and the planning report's removal field (plan/) use it.
 
@@ -12,8 +12,15 @@
 
 namespace curette::clip {
 
+// How far from a voxel's centre its samples lie, per axis, in index units: the corners of the voxel's own
+// cell (the paper's "corners of the voxel"), inset by 1/64 voxel. Own cell, so the count is the covered
+// fraction of that voxel and not of the 2-voxel cube around it; inset, so a clip face lying exactly on a
+// cell face (a carve that stops at a boundary) is credited to the voxel it covers and not to the one beyond.
+// The GLSL twin is CELL_SAMPLE_HALF_WIDTH (shaders/clip_coverage.glsl).
+inline constexpr double kCellSampleHalfWidth = 0.484375;
+
 // The N extra anti-aliasing offsets of step IV (Algorithm 2, line 9) in voxel index units: Halton points
-// (bases 2, 3, 5) in [-1, 1]^3, fixed so every run classifies the same. One definition for the GPU buffer and
+// (bases 2, 3, 5) in the sample cell [-kCellSampleHalfWidth, kCellSampleHalfWidth]^3, fixed so every run classifies the same. One definition for the GPU buffer and
 // the CPU twins.
 std::vector<glm::dvec3> antiAliasingOffsets(int count);
 

@@ -39,24 +39,7 @@ RemovalField removalFieldCpu(glm::ivec3 dims, const glm::dmat4& indexToWorld, gl
     field.samplesPerVoxel = 9 + static_cast<int>(offsets.size());
     field.insideSamples.assign(field.box().voxelCount(), 0);
 
-    // The eight corner samples of a voxel are the centres of its diagonal neighbours (integer index points),
-    // so the inside test at lattice points of the box grown by one is evaluated once and shared. The points
-    // are the same doubles the direct evaluation would use, so the result is bit-identical.
-    const glm::ivec3 cacheOrigin = field.origin - 1, cacheSize = field.size + 2;
-    std::vector<std::int8_t> lattice(VoxelBox{cacheOrigin, cacheSize}.voxelCount(), -1);
-    auto insideAtIndex = [&](glm::dvec3 index) {
-        glm::dvec3 rounded = glm::floor(index);
-        if (rounded == index) {
-            glm::ivec3 l = glm::ivec3(rounded) - cacheOrigin;
-            if (glm::all(glm::greaterThanEqual(l, glm::ivec3(0))) && glm::all(glm::lessThan(l, cacheSize))) {
-                std::size_t at = (static_cast<std::size_t>(l.z) * static_cast<std::size_t>(cacheSize.y) + static_cast<std::size_t>(l.y)) *
-                                     static_cast<std::size_t>(cacheSize.x) + static_cast<std::size_t>(l.x);
-                if (lattice[at] < 0) lattice[at] = inside(glm::dvec3(indexToWorld * glm::dvec4(index, 1.0))) ? 1 : 0;
-                return lattice[at] == 1;
-            }
-        }
-        return inside(glm::dvec3(indexToWorld * glm::dvec4(index, 1.0)));
-    };
+    auto insideAtIndex = [&](glm::dvec3 index) { return inside(glm::dvec3(indexToWorld * glm::dvec4(index, 1.0))); };
     for (int k = lo.z; k < hi.z; ++k)
         for (int j = lo.y; j < hi.y; ++j)
             for (int i = lo.x; i < hi.x; ++i) {
@@ -109,7 +92,7 @@ VoxelBox boxAroundMeshes(const std::vector<PosedMesh>& meshes, glm::ivec3 dims, 
         }
     }
     if (!(lo.x <= hi.x)) return {};
-    // One index step for the corner samples, one for rounding.
+    // Half an index step for the corner samples, the rest for rounding.
     glm::dvec3 first = glm::clamp(glm::floor(lo) - 2.0, glm::dvec3(0.0), glm::dvec3(dims));
     glm::dvec3 last = glm::clamp(glm::ceil(hi) + 3.0, glm::dvec3(0.0), glm::dvec3(dims));
     VoxelBox box{glm::ivec3(first), glm::ivec3(last - first)};

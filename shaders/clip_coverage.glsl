@@ -2,8 +2,9 @@
 // definition for step IV (voxel_clip.comp: the visible fraction scales V_o) and for the removal report
 // (removal_count.comp: the removed fraction is what the carve takes away). The CPU twin is
 // clip::insideSampleCount (mesh/coverage.h).
-// Nine samples, the centre and the eight corners one index step away along the diagonals; only where they
-// disagree, N more at fixed offsets in [-1, 1]^3 (antiAliasingOffsets, clip::antiAliasingOffsets).
+// Nine samples, the centre and the eight corners of the voxel's own cell, inset (CELL_SAMPLE_HALF_WIDTH,
+// clip::kCellSampleHalfWidth: the count is the covered fraction of this voxel's cell); only where they
+// disagree, N more at fixed offsets in the same cell (antiAliasingOffsets, clip::antiAliasingOffsets).
 // Binder: the pass sets indexToWorld and antiAliasingSamples and binds SSBO_ANTI_ALIASING; clip_test.glsl's
 // binder is clip::ClipMeshSet::apply.
 #include "bindings.glsl"
@@ -12,6 +13,7 @@
 layout(std430, binding = SSBO_ANTI_ALIASING) readonly buffer AntiAliasing { vec4 antiAliasingOffsets[]; };
 uniform mat4 indexToWorld;
 uniform int antiAliasingSamples;   // N
+#define CELL_SAMPLE_HALF_WIDTH 0.484375
 
 // Inside one of the meshes of the set `meshes` (bit i: mesh i); with allClipMeshes(), insideAnyClipMesh.
 bool clippedAtIndex(vec3 index, uint meshes) { return clipMeshHoldingAmong(meshes, (indexToWorld * vec4(index, 1.0)).xyz) >= 0; }
@@ -23,7 +25,8 @@ bool clippedAtIndex(vec3 index, uint meshes) { return clipMeshHoldingAmong(meshe
 int insideSampleCount(vec3 centre, uint meshes) {
     int inside = clippedAtIndex(centre, meshes) ? 1 : 0;
     for (int c = 0; c < 8; ++c) {
-        vec3 corner = vec3((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0);
+        const float h = CELL_SAMPLE_HALF_WIDTH;
+        vec3 corner = vec3((c & 1) != 0 ? h : -h, (c & 2) != 0 ? h : -h, (c & 4) != 0 ? h : -h);
         inside += clippedAtIndex(centre + corner, meshes) ? 1 : 0;
     }
     if (inside == 0) return 0;

@@ -11,9 +11,9 @@
 
 namespace curette {
 
-// The farthest any of a voxel's 9 + N clip samples (clip_coverage.glsl: the corners one index step away
-// along every axis, the N offsets in [-1, 1]^3) lies from its centre: a cell diagonal, and a thousandth
-// for float rounding. Step IV's near test (sampleReachMm) uses it.
+// A bound on how far any of a voxel's 9 + N clip samples (clip_coverage.glsl: within the voxel's own cell,
+// half a cell diagonal from its centre) lies from its centre: a whole cell diagonal and a thousandth, the
+// bound the dilation radius (ambient_occlusion.cpp) was derived with. Step IV's near tests use it.
 double clipSampleReachMm(const VolumeGeometry& geometry);
 
 // Steps IV and V visit the grid in bricks of kVisitBrickSize^3 voxels, one 64-invocation work group each

@@ -1,5 +1,7 @@
 #include "render/passes/ambient_occlusion.h"
 
+#include "mesh/coverage.h"
+
 #include "base/error.h"
 #include "base/progress.h"
 #include "gl/bindings.h"
@@ -90,12 +92,12 @@ double AmbientOcclusion::dilationRadiusMm(const LaoSettings& settings, const Vol
     //  - v's LAO (lao_ray.glsl) reads V_o trilinearly at points q with |q - v| <= (M - 1) * step  (reach);
     //  - V_o at q blends voxels u with |q - u| < 1 voxel step per axis (index space), so
     //    |u - q| <= cell diagonal = max over sign vectors of |A (+-1, +-1, +-1)|           (trilinear footprint);
-    //  - V_o at u changes only if one of u's nine clip samples (centre, corners at +-1 step along every axis;
-    //    the N extra samples are taken only when those nine disagree) changes side:
-    //    |s - u| <= cell diagonal                                                          (anti-aliasing reach).
-    // So R = reach + 2 * cell diagonal. The maps add one more term, the map-pixel quantisation of both v and
-    // s (sqrt(2) pixels) and a rounding epsilon, in clip::ClipMeshSet::kernelRadiusMm.
-    return reachMm(settings) + 2.0 * geometry.cellDiagonalMm();
+    //  - V_o at u changes only if one of u's clip samples (the centre and the corners of u's own cell, at
+    //    h = clip::kCellSampleHalfWidth steps along every axis; the N extra samples lie in that cell) changes side:
+    //    |s - u| <= h * cell diagonal                                                      (anti-aliasing reach).
+    // So R = reach + (1 + h) * cell diagonal. The maps add one more term, the map-pixel quantisation of both v
+    // and s (sqrt(2) pixels) and a rounding epsilon, in clip::ClipMeshSet::kernelRadiusMm.
+    return reachMm(settings) + (1.0 + clip::kCellSampleHalfWidth) * geometry.cellDiagonalMm();
 }
 
 gl::Defines AmbientOcclusion::laoDefines(float opacityExponent) const {

@@ -110,24 +110,24 @@ TEST(RemovalField, TheOffsetsMakeTheTotalSeveralTimesMoreAccurate) {
     EXPECT_LT(withOffsets, 0.5 * nineOnly);
 }
 
-TEST(RemovalField, PerVoxelFractionIsTheCoverageOfTheSampleBox) {
-    // A voxel cut by a plane: count / (9 + N) estimates the covered fraction of [-1, 1]^3 (index units) around
-    // its centre. With N = 32 the mean error over random planes is a few hundredths; the nine alone are
-    // coarse (multiples of 1/9, and blind to where between them the plane passes).
+TEST(RemovalField, PerVoxelFractionIsTheCoverageOfItsOwnCell) {
+    // A voxel cut by a plane: count / (9 + N) estimates the covered fraction of its own cell, [-0.5, 0.5]^3
+    // (index units) around its centre. With N = 32 the mean error over random planes is a few hundredths; the
+    // nine alone are coarse (multiples of 1/9, and blind to where between them the plane passes).
     std::mt19937 random(11);
     std::normal_distribution<double> gauss;
-    std::uniform_real_distribution<double> offset(-0.8, 0.8);
+    std::uniform_real_distribution<double> offset(-0.4, 0.4);
     double errorWith = 0, errorNine = 0;
     const int planes = 40;
     for (int p = 0; p < planes; ++p) {
         glm::dvec3 n = glm::normalize(glm::dvec3(gauss(random), gauss(random), gauss(random)));
         const double a = offset(random) * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
         auto inside = [&](glm::dvec3 q) { return glm::dot(q, n) < a; };
-        // The exact covered fraction by a 64^3 midpoint rule over the box.
+        // The exact covered fraction by a 64^3 midpoint rule over the cell.
         int covered = 0;
         for (int k = 0; k < 64; ++k)
             for (int j = 0; j < 64; ++j)
-                for (int i = 0; i < 64; ++i) covered += inside(glm::dvec3(i + 0.5, j + 0.5, k + 0.5) / 32.0 - 1.0) ? 1 : 0;
+                for (int i = 0; i < 64; ++i) covered += inside(glm::dvec3(i + 0.5, j + 0.5, k + 0.5) / 64.0 - 0.5) ? 1 : 0;
         const double exact = covered / (64.0 * 64.0 * 64.0);
         const std::vector<glm::dvec3> offsets = clip::antiAliasingOffsets(32);
         errorWith += std::abs(clip::insideSampleCount(inside, glm::dmat4(1.0), glm::dvec3(0.0), offsets) / 41.0 - exact);

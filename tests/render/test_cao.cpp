@@ -2,6 +2,7 @@
 // random poses, conservative dilation, the shader clip test against analytic shapes, the seam rule, rigid
 // motion without map redraws, and defined behaviour on bad poses.
 #include "base/error.h"
+#include "mesh/coverage.h"
 #include "mesh/primitives.h"
 #include "gl/bindings.h"
 #include "render/label_overlay.h"
@@ -360,7 +361,7 @@ TEST(Cao, TurnedMeshesVisitOnlyTheirOrientedBoxesAndStayEqualToFullLao) {
     EXPECT_LT(visited, axisAligned / 2) << "the oriented boxes' bricks must hold well under the axis-aligned boxes";
 }
 
-// A scene where the dilation radius R = reach + 2 cell diagonals and the kernel's sqrt(2) map pixels are
+// A scene where the dilation radius R = reach + (1 + h) cell diagonals and the kernel's sqrt(2) map pixels are
 // both needed, not just safe. Every term of the derivation (render/passes/ambient_occlusion.cpp, render/passes/clip_mesh_set.cpp
 // kernelRadiusMm) is made to reach its bound along one line:
 //  - a 1 mm grid turned so its cell diagonal (1, 1, 1) points along world +x, and one LAO direction
@@ -368,15 +369,16 @@ TEST(Cao, TurnedMeshesVisitOnlyTheirOrientedBoxesAndStayEqualToFullLao) {
 //    lies at v + 1.1 (1, 1, 1) (index), and its trilinear footprint reaches the corner u = v + (2, 2, 2);
 //  - only the lattice plane of u is opaque (alpha 1 per mm), so V_AO(v) = (1 + (1 - V_o(u) f^3)^e) / 2 with
 //    f = 0.1: it changes (by ~2.5 R16 steps) when V_o(u) drops by one clip sample of 25;
-//  - a box whose -x face lies just before s = u + (1, 1, 1), u's corner clip sample: s is clipped, v is
-//    |s - v| = 3 cell diagonals = 5.196 mm from it, R = 5.369 mm;
+//  - a box whose -x face lies just before s = u + h (1, 1, 1), u's corner clip sample (h =
+//    clip::kCellSampleHalfWidth): s is clipped, v is |s - v| = (2 + h) cell diagonals = 4.305 mm from it,
+//    R = 4.478 mm;
 //  - the face is parallel to the box's clipping camera axis, so the map pixels quantise the distance: a
 //    kernel covers v only if floor(kernel / px) px >= 5.196 mm when s sits just past a pixel edge.
-// Box sizes (map pixel 0.36-0.45 mm) and offsets along x (one lattice step) are scanned. The correct radius
+// Box sizes (map pixel 0.39-0.48 mm) and offsets along x (one lattice step) are scanned. The correct radius
 // must give CAO == fresh LAO everywhere; a radius one cell diagonal short, or a kernel without the sqrt(2)
 // pixel term (injected: the radius is set so kernelRadiusMm equals R + epsilon; the renderer sets the
-// radius only at construction and in setLaoSettings, so it stays), must break it somewhere. Measured: the
-// correct radius 0 of 135 configurations differ, one cell diagonal short 122 of 135, no pixel term 11 of 135.
+// radius only at construction and in setLaoSettings, so it stays), must break it somewhere (the test prints
+// in how many configurations each does).
 constexpr double kSqrt3 = 1.7320508075688772;
 
 glm::dmat4 cellDiagonalAlongX(glm::ivec3 dims) {
@@ -386,7 +388,7 @@ glm::dmat4 cellDiagonalAlongX(glm::ivec3 dims) {
 }
 
 // World x of lattice plane i + j + k = level of cellDiagonalAlongX(24^3) (planes 1/sqrt(3) mm apart).
-double latticePlaneX(int level) { return (level - 3 * 11.5) / kSqrt3; }
+double latticePlaneX(double level) { return (level - 3 * 11.5) / kSqrt3; }
 
 CaoSpec tightSpec() {
     CaoSpec spec;
@@ -403,18 +405,18 @@ CaoSpec tightSpec() {
 }
 
 TEST(Cao, DilationRadiusIsTightEnoughToMatter) {
-    const double clippedPlaneX = latticePlaneX(33);   // the plane of the corner samples s = u + (1, 1, 1)
+    const double clippedPlaneX = latticePlaneX(30 + 3 * clip::kCellSampleHalfWidth);   // the corner samples s = u + h (1, 1, 1)
     enum Variant { Correct, OneCellDiagonalShort, NoPixelTerm };
     const char* names[] = {"correct radius", "radius one cell diagonal short", "kernel without the sqrt(2) pixel term"};
     int failing[3] = {0, 0, 0}, configurations = 0;
     for (Variant variant : {Correct, OneCellDiagonalShort, NoPixelTerm}) {
         configurations = 0;
-        for (double side = 11.0; side <= 15.01; side += 0.5) {
+        for (double side = 15.0; side <= 21.01; side += 0.5) {
             CaoAgainstFreshLao pair(tightSpec());
             const VolumeGeometry& g = pair.cao.renderer->geometry();
             const double R = AmbientOcclusion::dilationRadiusMm(pair.cao.renderer->laoSettings(), g);
-            // The scene needs R >= 3 cell diagonals (the chain v -> s); R = 3.1 of them today.
-            if (side == 11.0 && variant == Correct) std::printf("[ cao tight ] R %.4f mm, |s - v| %.4f mm\n", R, 3 * kSqrt3);
+            // The scene needs R >= 2 + h cell diagonals (the chain v -> s); R = 2.1 + h of them today.
+            if (side == 15.0 && variant == Correct) std::printf("[ cao tight ] R %.4f mm, |s - v| %.4f mm\n", R, (2 + clip::kCellSampleHalfWidth) * kSqrt3);
             auto box = std::make_shared<const clip::TriangleMesh>(clip::makeBox(glm::dvec3(8.0, side, 12.0)));
             pair.meshes([&](clip::ClipMeshSet& set) { set.add(box, glm::dvec3(1.0), clip::RigidPose{glm::dvec3(clippedPlaneX + 4.0, 0, 0), {}}, "box"); });
             clip::ClipMeshSet& caoSet = pair.cao.renderer->clipMeshes();
@@ -695,7 +697,7 @@ TEST(Cao, LaoOnlyWhereASampleSeesItChangesNoPixel) {
     const CaoSpec& spec = c.spec;
     auto carve = [](CaoScene& scene) {
         scene.renderer->clipMeshes().add(std::make_shared<const clip::TriangleMesh>(clip::makeSphere(6.0, 3)), glm::dvec3(1.0),
-                                         clip::RigidPose{glm::dvec3(4.5, -2.0, 5.0), {}}, "sphere");
+                                         clip::RigidPose{glm::dvec3(4.5, -2.0, 6.5), {}}, "sphere");
         scene.frame.size = {64, 64};
     };
     CaoScene seen(spec), every(spec);

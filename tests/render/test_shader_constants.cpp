@@ -1,6 +1,7 @@
 // The values C++ and GLSL share, read from both sides' source text: every binding and shared constant is
 // one name with one value, so changing either side alone fails here.
 #include "gl/bindings.h"
+#include "mesh/coverage.h"
 #include "mesh/limits.h"
 #include "render/model/brick_set.h"
 #include "render/model/frame.h"
@@ -79,6 +80,7 @@ TEST(ShaderConstants, LimitsMatchTheShaders) {
     EXPECT_EQ(glslDefines("phong.glsl").at("MAX_LIGHTS"), double(kMaxLights));
     EXPECT_EQ(glslDefines("ismos_occlusion.comp").at("MAX_ISMOS_LIGHTS"), double(kMaxLights));
     EXPECT_EQ(glslDefines("clip_test.glsl").at("MAX_CLIP_MESHES"), double(clip::kMaxClipMeshes));
+    EXPECT_EQ(glslDefines("clip_coverage.glsl").at("CELL_SAMPLE_HALF_WIDTH"), clip::kCellSampleHalfWidth);
 }
 
 TEST(ShaderConstants, LaoGroupSizeMatchesTheShaders) {
@@ -162,6 +164,7 @@ TEST(ShaderConstants, ClipMeshBlockMatchesTheCppStruct) {
         {"depthBoxLo", offsetof(CameraGpu, depthBoxLo), sizeof(CameraGpu::depthBoxLo)},
         {"depthBoxHi", offsetof(CameraGpu, depthBoxHi), sizeof(CameraGpu::depthBoxHi)},
         {"depthBall", offsetof(CameraGpu, depthBall), sizeof(CameraGpu::depthBall)},
+        {"depthMap", offsetof(CameraGpu, depthMap), sizeof(CameraGpu::depthMap)},
     };
     EXPECT_EQ(glsl, cpp);
     EXPECT_EQ(glslSize, sizeof(CameraGpu));
