@@ -3,8 +3,10 @@
 // per mesh count. Each mesh has a clipping camera (orthographic, attached to the mesh: a rigid motion changes
 // only worldToMap) and depth maps rendered once per geometry: interval 1 = (front 1, back 1), and for concave
 // meshes interval 2 = (front 2, back 2) from depth peeling. Empty pixels hold +inf (front) / -inf (back).
-// The dilated maps hold the same intervals grown by the LAO reach (step III). Lookups use the nearest map
-// pixel, the rule render/passes/clip_mesh_set.cpp's dilation radius derivation assumes.
+// The dilated maps hold the same intervals grown by the LAO reach (step III). The depth maps cover only the
+// mesh's bounds (the depth square) at a fine resolution of their own, so a face across the map lies within a
+// small fraction of a voxel of the mesh's; the dilated maps cover the map square at a coarser one. Lookups use
+// the nearest pixel of either, the rule render/passes/clip_mesh_set.cpp's derivations assume.
 #include "bindings.glsl"
 
 #define MAX_CLIP_MESHES 16
@@ -20,6 +22,8 @@ struct ClipMeshGpu {
     vec4 depthBoxHi;   // map side, z the local depth in mm): outside it no depth map answers "inside"
     vec4 depthBall;    // xyz: the depth ball's world centre, w: its radius (mm; ClipMeshSet::depthBallLocal):
                        // outside it no depth map answers "inside" either
+    vec4 depthMap;     // the depth square in map coordinates: depth x, y = (map x, y - depthMap.xy) * depthMap.z,
+                       // w: the depth maps' resolution (ClippingCamera::depthOffset, depthScale)
 };
 
 // A uniform block, not a storage buffer: the array is small and every invocation reads the same entries,
@@ -47,8 +51,9 @@ uint allClipMeshes() { return (1u << uint(clipMeshCount)) - 1u; }
 bool insideMeshMaps(int i, vec3 world, bool dilated) {
     ClipMeshGpu mesh = clipMeshes[i];
     vec3 m = (mesh.worldToMap * vec4(world, 1.0)).xyz;
-    if (any(lessThan(m.xy, vec2(0.0))) || any(greaterThanEqual(m.xy, vec2(1.0)))) return false;
-    ivec2 pixel = ivec2(m.xy * float(mesh.info.z));
+    vec2 xy = dilated ? m.xy : (m.xy - mesh.depthMap.xy) * mesh.depthMap.z;
+    if (any(lessThan(xy, vec2(0.0))) || any(greaterThanEqual(xy, vec2(1.0)))) return false;
+    ivec2 pixel = ivec2(xy * (dilated ? float(mesh.info.z) : mesh.depthMap.w));
     int layer = mesh.info.x;
     for (int interval = 0; interval < mesh.info.y; ++interval, layer += 2) {
         float front = dilated ? texelFetch(clipDilatedMaps, ivec3(pixel, layer), 0).r
@@ -176,7 +181,10 @@ int clipMeshHolding(vec3 world) { return clipMeshHoldingAmong(0xffffffffu, world
 float clipExitFraction(int i, vec3 inside, vec3 outside, out vec3 outwardWorld) {
     ClipMeshGpu mesh = clipMeshes[i];
     vec3 m0 = (mesh.worldToMap * vec4(inside, 1.0)).xyz, m1 = (mesh.worldToMap * vec4(outside, 1.0)).xyz;
-    int resolution = mesh.info.z;
+    // In the depth square's coordinates (its x, y are the map's scaled by depthMap.z).
+    m0.xy = (m0.xy - mesh.depthMap.xy) * mesh.depthMap.z;
+    m1.xy = (m1.xy - mesh.depthMap.xy) * mesh.depthMap.z;
+    int resolution = int(mesh.depthMap.w);
     ivec2 pixel0 = clamp(ivec2(m0.xy * float(resolution)), ivec2(0), ivec2(resolution - 1));
     int layer = mesh.info.x;
     for (int interval = 1; interval < mesh.info.y; ++interval) {
@@ -202,8 +210,9 @@ float clipExitFraction(int i, vec3 inside, vec3 outside, out vec3 outwardWorld) 
         float slope = (m1.z - m0.z) - dot(gradientTexels, du);
         s = clamp(s - g / (abs(slope) > 1e-12 ? slope : 1e-12), 0.0, 1.0);
     }
-    // grad (m.z - B) in map coordinates (x, y in [0, 1] per map side, z in mm).
-    vec3 gradientFront = vec3(-gradientTexels * float(resolution), 1.0);
+    // grad (m.z - B) in map coordinates (x, y in [0, 1] per map side, z in mm): depth-square texels per map unit
+    // are resolution * depthMap.z.
+    vec3 gradientFront = vec3(-gradientTexels * float(resolution) * mesh.depthMap.z, 1.0);
     vec3 outwardMap = back ? gradientFront : -gradientFront;
     outwardWorld = surface ? normalize(transpose(mat3(mesh.worldToMap)) * outwardMap) : normalize(outside - inside);
     return surface ? s : 1.0;

@@ -12,7 +12,8 @@ struct CameraGpu {
     float mapBox[4];
     float depthBoxLo[4], depthBoxHi[4];
     float depthBall[4];
+    float depthMap[4];   // xy: depth offset, z: depth scale, w: depth resolution (ClippingCamera::depthOffset)
 };
-static_assert(sizeof(CameraGpu) == 144);
+static_assert(sizeof(CameraGpu) == 160);
 
 }  // namespace curette::clip

@@ -109,6 +109,8 @@ double ClipMeshSet::kernelRadiusMm(int index) const {
     // the mesh and a voxel v within R of it map to pixels at most |v - s|_xy + sqrt(2) px apart (each lies within sqrt(2)/2 px of its pixel centre),
     // so a kernel of radius R + sqrt(2) px over pixel centres covers every such pair; a small epsilon absorbs
     // float rounding of the map transforms and depth comparisons.
+    // The point s is looked up in the depth reduced to the dilated map's pixels (dilation.comp's source,
+    // clip_reduce.comp), so px is the dilated map's pixel.
     double px = camera(index).pixelMm();
     return dilationRadiusMm_ + std::sqrt(2.0) * px + 1e-3 * dilationRadiusMm_ + 1e-3;
 }
@@ -136,24 +138,25 @@ void ClipMeshSet::uploadGeometry(Mesh& mesh) {
 }
 
 void ClipMeshSet::allocateArrays(int layers) {
-    auto makeArray = [&](const char* label) {
+    auto makeArray = [&](const char* label, int resolution, int count) {
         gl::Texture t = gl::createTexture(GL_TEXTURE_2D_ARRAY);
-        glTextureStorage3D(t.name(), 1, GL_R32F, resolution_, resolution_, layers);
+        glTextureStorage3D(t.name(), 1, GL_R32F, resolution, resolution, count);
         glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glObjectLabel(GL_TEXTURE, t.name(), -1, label);
         return t;
     };
-    depthMaps_ = makeArray("clip depth maps (Z_front, Z_back per interval)");
+    const int depth = settings_.depthResolution;
+    depthMaps_ = makeArray("clip depth maps (Z_front, Z_back per interval)", depth, layers);
     dilatedAllocated_ = dilatedNeeded_;
-    dilatedMaps_ = dilatedAllocated_ ? makeArray("clip dilated maps (D_front, D_back per interval)") : gl::Texture();
+    dilatedMaps_ = dilatedAllocated_ ? makeArray("clip dilated maps (D_front, D_back per interval)", resolution_, layers) : gl::Texture();
     allocatedLayers_ = layers;
     scratch_ = gl::createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(scratch_.name(), 1, GL_R32F, resolution_, resolution_);
-    scratchArray_ = gl::createTexture(GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(scratchArray_.name(), 1, GL_R32F, resolution_, resolution_, 1);
+    glTextureStorage2D(scratch_.name(), 1, GL_R32F, depth, depth);
+    reducedArray_ = makeArray("clip depth reduced to the dilated maps' pixels", resolution_, 1);
+    scratchArray_ = makeArray("clip dilation, first pass", resolution_, 1);
     depthBuffer_ = gl::createRenderbuffer();
-    glNamedRenderbufferStorage(depthBuffer_.name(), GL_DEPTH_COMPONENT32F, resolution_, resolution_);
+    glNamedRenderbufferStorage(depthBuffer_.name(), GL_DEPTH_COMPONENT32F, depth, depth);
     framebuffer_ = gl::createFramebuffer();
     glNamedFramebufferTexture(framebuffer_.name(), GL_COLOR_ATTACHMENT0, scratch_.name(), 0);
     glNamedFramebufferRenderbuffer(framebuffer_.name(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_.name());
@@ -194,6 +197,7 @@ std::size_t ClipMeshSet::geometryBytes() const {
 void ClipMeshSet::update() {
     if (!depthProgram_) {
         depthProgram_ = gl::Program::graphics("clip_depth.vert", "clip_depth.frag");
+        reduceProgram_ = gl::Program::compute("clip_reduce.comp");
         dilationProgram_ = gl::Program::compute("dilation.comp");
         vertexArray_ = gl::createVertexArray();
     }
@@ -219,7 +223,7 @@ void ClipMeshSet::update() {
     for (int i = 0; i < count(); ++i) {
         Mesh& m = meshes_[static_cast<std::size_t>(i)];
         if (m.mapsDirty) {
-            m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, mapResolution_);
+            m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, mapResolution_, settings_.depthResolution);
             m.camera.hullRadiusMm = m.hullRadius;
             renderMaps(i);
             m.mapsDirty = false;
@@ -238,7 +242,8 @@ void ClipMeshSet::renderMaps(int index) {
     Mesh& m = meshes_[static_cast<std::size_t>(index)];
     const int base = layersPerMesh * index;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.name());
-    glViewport(0, 0, mapResolution_, mapResolution_);
+    const int depth = settings_.depthResolution;
+    glViewport(0, 0, depth, depth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -269,9 +274,9 @@ void ClipMeshSet::renderMaps(int index) {
         glCullFace(front ? GL_BACK : GL_FRONT);
         depthProgram_.set("peelAgainst", layer >= 2 ? base + layer - 2 : -1);
         glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
-        if (layer == 2) m.intervals = anyFinite(scratch_.name(), mapResolution_) ? 2 : 1;
+        if (layer == 2) m.intervals = anyFinite(scratch_.name(), depth) ? 2 : 1;
         if (layer == 4) {
-            m.deeperThanTwoIntervals = anyFinite(scratch_.name(), mapResolution_);
+            m.deeperThanTwoIntervals = anyFinite(scratch_.name(), depth);
             if (m.deeperThanTwoIntervals) {
                 log::warn("clip mesh \"" + m.name + "\" has more than two depth intervals seen from its clipping camera "
                           "(local +z); beyond the second it clips like its hull (CAO section 3.4, step II)");
@@ -288,12 +293,12 @@ void ClipMeshSet::renderMaps(int index) {
                 glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
                 glDepthFunc(GL_LESS);
                 glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
-                                   base + 3, mapResolution_, mapResolution_, 1);
+                                   base + 3, depth, depth, 1);
             }
             break;
         }
         glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
-                           base + layer, mapResolution_, mapResolution_, 1);
+                           base + layer, depth, depth, 1);
     }
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
@@ -316,10 +321,22 @@ void ClipMeshSet::dilateMaps(int index) {
             glClearTexSubImage(dilatedMaps_.name(), 0, 0, 0, base + layer, mapResolution_, mapResolution_, 1, GL_RED, GL_FLOAT, &empty);
             continue;
         }
-        // Pass 1 along x into the scratch array, pass 2 along y into the dilated array.
+        // The depth reduced to the dilated maps' pixels, then pass 1 along x into the scratch array and pass 2
+        // along y into the dilated array.
+        gl::Program& reduce = reduceProgram_;
+        reduce.set("resolution", mapResolution_);
+        reduce.set("depthResolution", settings_.depthResolution);
+        reduce.set("depthOffset", glm::vec2(m.camera.depthOffset()));
+        reduce.set("depthScale", static_cast<float>(m.camera.depthScale()));
+        reduce.set("backMap", layer % 2 == 1 ? 1 : 0);
+        reduce.set("sourceLayer", base + layer);
         glBindTextureUnit(binding::clipDepth, depthMaps_.name());
+        glBindImageTexture(binding::imageDilation, reducedArray_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        reduce.dispatchCovering(items);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glBindTextureUnit(binding::clipDepth, reducedArray_.name());
         glBindImageTexture(binding::imageDilation, scratchArray_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
-        p.set("sourceLayer", base + layer);
+        p.set("sourceLayer", 0);
         p.set("destinationLayer", 0);
         p.set("direction", glm::ivec2(1, 0));
         p.dispatchCovering(items);
@@ -352,26 +369,29 @@ void ClipMeshSet::dilatedBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) con
     // Where a map lookup (clip_test.glsl insideMeshMaps, nearest pixel) can answer "inside":
     //  - a depth map pixel is finite only where rasterising the mesh covered its centre, so that centre lies
     //    in the mesh's local x, y bounds; its values are local depths in [localMin.z, localMax.z];
-    //  - a dilated pixel is finite only within floor(K / px) pixels along x and along y of a finite depth
+    //  - a reduced pixel (clip_reduce.comp: a dilated-map pixel's square widened by a depth pixel d) is finite
+    //    only where that widened square meets a finite depth pixel, so its centre lies within px/2 + 1.5 d of
+    //    the bounds along x and y;
+    //  - a dilated pixel is finite only within floor(K / px) pixels along x and along y of a finite reduced
     //    pixel (dilation.comp's two passes, K = kernelRadiusMm), and its value moves the depth by at most
     //    k(0, 0) = 2 (K - K/2) = K;
     //  - a point is looked up in the pixel holding it, at most half a pixel from that pixel's centre.
-    // So every point either map calls inside lies within K + px/2 of the bounds across the map and within K
-    // along the depth; the map box's float slack (mapBoxSlackMm) is added for the rounding of the lookup.
+    // So every point either map calls inside lies within K + px + 1.5 d of the bounds across the map (2 d
+    // below) and within K along the depth; the map box's float slack (mapBoxSlackMm) is added for rounding.
     const ClippingCamera& c = camera(index);
     double k = kernelRadiusMm(index), slack = mapBoxSlackMm(index);
-    glm::dvec3 grow(k + 0.5 * c.pixelMm() + slack, k + 0.5 * c.pixelMm() + slack, k + slack);
+    const double across = k + c.pixelMm() + 2.0 * c.depthPixelMm() + slack;
+    glm::dvec3 grow(across, across, k + slack);
     lo = c.localMin - grow;
     hi = c.localMax + grow;
 }
 
 void ClipMeshSet::depthBoxLocal(int index, glm::dvec3& lo, glm::dvec3& hi) const {
     // As dilatedBoxLocal without the dilation: a finite depth pixel's centre lies in the mesh's local x, y
-    // bounds and its values in its z bounds, and a point is looked up in the pixel holding it. A whole pixel
-    // (of the coarser of the camera's and the maps' resolutions) instead of half, the float slack and
-    // depthBoxMarginMm on top.
+    // bounds and its values in its z bounds, and a point is looked up in the depth pixel holding it. A whole
+    // depth pixel instead of half, the float slack and depthBoxMarginMm on top.
     const ClippingCamera& c = camera(index);
-    double pixel = c.mapSizeMm / std::max(std::min(c.resolution, mapResolution_), 1);
+    double pixel = c.depthPixelMm();
     double slack = mapBoxSlackMm(index) + depthBoxMarginMm;
     glm::dvec3 grow(pixel + slack, pixel + slack, slack);
     lo = c.localMin - grow;
@@ -389,9 +409,9 @@ ClipMeshSet::Ball ClipMeshSet::depthBallLocal(int index) const {
 }
 
 ClipMeshSet::Ball ClipMeshSet::reachBallLocal(int index) const {
-    // Every point within R of a point the depth maps call inside lies within hullRadiusMm + px / sqrt(2) + R of
-    // the centre (depthBallLocal). The dilated box's growth across the map, K + px / 2 + slack with
-    // K = R + sqrt(2) px + rounding (kernelRadiusMm), is more than px / sqrt(2) + R.
+    // Every point within R of a point the depth maps call inside lies within hullRadiusMm + d / sqrt(2) + R of
+    // the centre (depthBallLocal, d the depth pixel). The dilated box's growth across the map, K + px + 2 d +
+    // slack with K = R + sqrt(2) px + rounding (kernelRadiusMm), is more than d / sqrt(2) + R.
     glm::dvec3 lo, hi;
     dilatedBoxLocal(index, lo, hi);
     return hullBallGrownAs(index, hi);
@@ -451,6 +471,11 @@ void ClipMeshSet::uploadCameras() {
         glm::dvec3 centre(meshes_[i].pose.matrix() * glm::dvec4(ball.centre, 1.0));
         for (int k = 0; k < 3; ++k) cameras[i].depthBall[k] = static_cast<float>(centre[k]);
         cameras[i].depthBall[3] = static_cast<float>(ball.radius);
+        const ClippingCamera& c = meshes_[i].camera;
+        cameras[i].depthMap[0] = static_cast<float>(c.depthOffset().x);
+        cameras[i].depthMap[1] = static_cast<float>(c.depthOffset().y);
+        cameras[i].depthMap[2] = static_cast<float>(c.depthScale());
+        cameras[i].depthMap[3] = static_cast<float>(c.depthResolution);
     }
     if (!cameras.empty())
         glNamedBufferSubData(cameraBuffer_.name(), 0, static_cast<GLsizeiptr>(cameras.size() * sizeof(CameraGpu)), cameras.data());
@@ -469,17 +494,19 @@ void ClipMeshSet::apply(gl::Program& program) const {
 }
 
 std::vector<float> ClipMeshSet::readMap(int index, int layer, bool dilated) const {
-    std::vector<float> values(static_cast<std::size_t>(mapResolution_) * static_cast<std::size_t>(mapResolution_));
+    const int side = dilated ? mapResolution_ : settings_.depthResolution;
+    std::vector<float> values(static_cast<std::size_t>(side) * static_cast<std::size_t>(side));
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // the dilated maps are written by image stores
     glGetTextureSubImage(dilated ? dilatedMaps_.name() : depthMaps_.name(), 0, 0, 0, layersPerMesh * index + layer,
-                         mapResolution_, mapResolution_, 1, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)),
-                         values.data());
+                         side, side, 1, GL_RED, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(float)), values.data());
     return values;
 }
 
 std::size_t ClipMeshSet::gpuBytes() const {
-    std::size_t layer = static_cast<std::size_t>(resolution_) * static_cast<std::size_t>(resolution_) * 4u;
-    return layer * static_cast<std::size_t>(allocatedLayers_) * (dilatedAllocated_ ? 2u : 1u) + 3u * layer;
+    const std::size_t layer = static_cast<std::size_t>(resolution_) * static_cast<std::size_t>(resolution_) * 4u;
+    const std::size_t depthLayer = static_cast<std::size_t>(settings_.depthResolution) * static_cast<std::size_t>(settings_.depthResolution) * 4u;
+    // The depth and dilated arrays, the two single-layer arrays, and the render target with its depth buffer.
+    return (depthLayer + (dilatedAllocated_ ? layer : 0u)) * static_cast<std::size_t>(allocatedLayers_) + 2u * layer + 2u * depthLayer;
 }
 
 }  // namespace curette::clip

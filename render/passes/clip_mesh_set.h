@@ -2,7 +2,8 @@
 // The active clip meshes and their maps (CAO section 3.6: one clipping camera and map set per mesh). Owns
 // the GPU side of steps II and III: for each mesh, depth maps of one or two intervals (depth peeling for
 // concave meshes) and, when AO needs them, the dilated maps; all meshes' maps live in two 2-D array
-// textures sharing one resolution. A rigid motion changes only the mesh's camera matrix (an entry of a
+// textures, the depth maps at a fine resolution over each mesh's bounds, the dilated maps at one coarser
+// resolution over the bounds and the dilation margin (render/model/clipping_camera.h). A rigid motion changes only the mesh's camera matrix (an entry of a
 // uniform block);
 // maps are redrawn only when a mesh's geometry or scale, the dilation radius or the map resolution change.
 
@@ -21,9 +22,12 @@
 namespace curette::clip {
 
 struct ClipMapSettings {
-    double pixelMm = 0.5;        // target map pixel size (the renderer passes half the smallest voxel spacing)
+    double pixelMm = 0.5;        // target dilated-map pixel size (the renderer passes half the smallest voxel spacing)
     int minResolution = 64;
     int maxResolution = 1024;
+    // The depth maps' pixels per side over their square (the mesh's bounds): a face across the map lies within
+    // half a depth pixel, a 2000th of the mesh's extent, of where the mesh puts it.
+    int depthResolution = 1024;
 };
 
 class ClipMeshSet {
@@ -61,10 +65,12 @@ public:
     // Whether some map pixel of mesh `index` sees more than two intervals: interval 2 then ends at the
     // farthest back face (beyond the second interval the mesh clips like its hull).
     bool deeperThanTwoIntervals(int index) const { return meshes_[static_cast<std::size_t>(index)].deeperThanTwoIntervals; }
-    // The maps' resolution (pixels a side; the wanted one of the meshes last drawn) and the arrays' allocated
-    // one (at least that: it grows with headroom and shrinks only below half, to reallocate rarely).
+    // The dilated maps' resolution (pixels a side; the wanted one of the meshes last drawn) and the arrays'
+    // allocated one (at least that: it grows with headroom and shrinks only below half, to reallocate rarely).
     int resolution() const { return mapResolution_; }
     int allocatedResolution() const { return resolution_; }
+    // The depth maps' resolution (fixed: ClipMapSettings::depthResolution).
+    int depthResolution() const { return settings_.depthResolution; }
     double dilationRadiusMm() const { return dilationRadiusMm_; }
     // The radius the dilation kernel uses for mesh `index`: R plus sqrt(2) map pixels plus a rounding margin.
     double kernelRadiusMm(int index) const;
@@ -134,7 +140,8 @@ public:
     // pass): their clip tests are then compiled out, not skipped at run time (clip_test.glsl).
     void addDefines(gl::Defines& defines) const;
 
-    // Reads one map layer back (tests): layer 0..3 = front 1, back 1, front 2, back 2.
+    // Reads one map layer back (tests): layer 0..3 = front 1, back 1, front 2, back 2; depthResolution() or
+    // resolution() pixels a side.
     std::vector<float> readMap(int index, int layer, bool dilated) const;
     std::size_t gpuBytes() const;        // the map arrays
     std::size_t geometryBytes() const;   // the meshes' vertex and index buffers
@@ -175,12 +182,12 @@ private:
     bool dilatedAllocated_ = false;
     std::uint64_t version_ = 1, mapRenders_ = 0;
     bool depthBoxTests_ = true;
-    gl::Texture depthMaps_, dilatedMaps_, scratchArray_, scratch_;
+    gl::Texture depthMaps_, dilatedMaps_, reducedArray_, scratchArray_, scratch_;
     gl::Renderbuffer depthBuffer_;
     gl::Framebuffer framebuffer_;
     gl::VertexArray vertexArray_;
     gl::Buffer cameraBuffer_;
-    gl::Program depthProgram_, dilationProgram_;
+    gl::Program depthProgram_, reduceProgram_, dilationProgram_;
 };
 
 }  // namespace curette::clip
