@@ -1,7 +1,9 @@
 #include "plan/removal_report.h"
 
 #include "base/error.h"
+#include "mesh/coverage.h"
 #include "plan/distance_transform.h"
+#include "plan/margin.h"
 
 #include <algorithm>
 #include <chrono>
@@ -23,32 +25,6 @@ std::string labelName(const LabelTable* table, int id) {
         if (const LabelEntry* e = table->find(id)) return e->name;
     return "label " + std::to_string(id);
 }
-
-// Trilinear interpolation of the distance (not its square) at a world point; points beyond the grid take
-// the value at the nearest grid point.
-struct DistanceSampler {
-    const std::vector<double>* squared = nullptr;
-    glm::ivec3 dims{0};
-    glm::dmat4 worldToIndex{1.0};
-
-    double at(glm::ivec3 v) const {
-        return std::sqrt((*squared)[(static_cast<std::size_t>(v.z) * static_cast<std::size_t>(dims.y) + static_cast<std::size_t>(v.y)) *
-                                        static_cast<std::size_t>(dims.x) + static_cast<std::size_t>(v.x)]);
-    }
-    double operator()(glm::dvec3 world) const {
-        glm::dvec3 index = glm::clamp(glm::dvec3(worldToIndex * glm::dvec4(world, 1.0)), glm::dvec3(0.0), glm::dvec3(dims - 1));
-        glm::ivec3 base = glm::min(glm::ivec3(glm::floor(index)), glm::max(dims - 2, glm::ivec3(0)));
-        glm::dvec3 w = index - glm::dvec3(base);
-        double sum = 0;
-        for (int c = 0; c < 8; ++c) {
-            glm::ivec3 o((c & 1) ? 1 : 0, (c & 2) ? 1 : 0, (c & 4) ? 1 : 0);
-            glm::ivec3 v = glm::min(base + o, dims - 1);
-            double weight = (o.x ? w.x : 1 - w.x) * (o.y ? w.y : 1 - w.y) * (o.z ? w.z : 1 - w.z);
-            if (weight > 0) sum += weight * at(v);
-        }
-        return sum;
-    }
-};
 
 Tractogram subsetStreamlines(const Tractogram& in, const std::vector<std::uint8_t>& keep) {
     Tractogram out;
@@ -178,27 +154,38 @@ Report reportOf(const VolumeData& volume, const ReportSettings& settings, const 
     report.spacingMm = gridSpacingMm(volume.indexToWorld);
     report.voxelVolumeMl = std::abs(glm::determinant(glm::dmat3(volume.indexToWorld))) / 1000.0;
     report.samplesPerVoxel = field.samplesPerVoxel;
+    report.facePlacementMm = field.facePlacementMm;
     report.fieldBox = field.box();
     return report;
 }
 
 // What every later stage reads: the tissue over the field box and the removed region R on the whole grid.
 struct Removal {
+    glm::dmat4 indexToWorld{1.0};             // the scan's
     VoxelBox box;
     std::vector<std::uint8_t> tissue;         // over the field box
     std::vector<std::uint8_t> removedRegion;  // R, on the grid
-    std::vector<double> distanceToRemoved2;   // squared mm to R on the grid; empty when nothing needs it
+    std::vector<Touch> touch;                 // t(v) r(v) > 0 (whole: r = 1), on the grid: margins are measured to these
+    CellGaps gaps;                            // to the touched cells (plan/margin.h); empty when nothing needs it
 };
+
+// The bound of plan/removal_report.h "uncertainty" for a volume with `partialVoxels` partly covered voxels.
+double removedUncertaintyMl(const Report& report, std::uint64_t partialVoxels) {
+    const double smallest = std::min({report.spacingMm.x, report.spacingMm.y, report.spacingMm.z});
+    return double(partialVoxels) * report.voxelVolumeMl * (1.0 / report.samplesPerVoxel + report.facePlacementMm / smallest);
+}
 
 // Tissue and the removed fraction over the field box (nothing is removed outside it).
 Removal measureTissue(Report& report, const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
                       const RemovalField& field, const std::vector<LabelSet>& labelSets) {
     Removal removal;
+    removal.indexToWorld = volume.indexToWorld;
     removal.box = field.box();
     const VoxelBox& box = removal.box;
     removal.tissue = tissueInBox(volume, tf, settings, labelSets.empty() ? nullptr : labelSets.front().labels, box);
     for (const LabelSet& set : labelSets) addProtectedLabels(removal.tissue, box, *set.labels, set.protectedIds);
     removal.removedRegion = removedRegionOnGrid(field, removal.tissue);
+    removal.touch.assign(volume.voxelCount(), Touch::None);
     std::uint64_t removedSamples = 0;  // sum of t(v) * count(v): the total in units of voxel / (9 + N)
     std::size_t at = 0;
     for (int k = box.origin.z; k < box.origin.z + box.size.z; ++k)
@@ -207,9 +194,12 @@ Removal measureTissue(Report& report, const VolumeData& volume, const TransferFu
                 if (!removal.tissue[at] || field.insideSamples[at] == 0) continue;
                 removedSamples += field.insideSamples[at];
                 ++report.touchedVoxels;
+                report.partialVoxels += field.insideSamples[at] < field.samplesPerVoxel ? 1 : 0;
+                removal.touch[volume.linearIndex(i, j, k)] = field.insideSamples[at] == field.samplesPerVoxel ? Touch::Whole : Touch::Part;
                 report.removedRegionVoxels += removal.removedRegion[volume.linearIndex(i, j, k)];
             }
     report.removedMl = double(removedSamples) / double(field.samplesPerVoxel) * report.voxelVolumeMl;
+    report.removedUncertaintyMl = removedUncertaintyMl(report, report.partialVoxels);
     return removal;
 }
 
@@ -217,7 +207,7 @@ Removal measureTissue(Report& report, const VolumeData& volume, const TransferFu
 // field box.
 struct LabelSums {
     std::size_t ids = 0;
-    std::vector<std::uint64_t> voxels, touched, removedSamples;
+    std::vector<std::uint64_t> voxels, touched, partial, removedSamples;
     std::vector<double> closest2;
     std::vector<glm::ivec3> regionLo, regionHi;  // regionHi.x < 0: no voxel of the label in R
 };
@@ -229,16 +219,16 @@ LabelSums sumLabels(const LabelSet& set, const RemovalField& field, const Remova
     for (int id : set.protectedIds) maxId = std::max(maxId, id);
     LabelSums sums;
     const std::size_t ids = sums.ids = static_cast<std::size_t>(maxId) + 1;
-    sums.voxels.assign(ids, 0), sums.touched.assign(ids, 0), sums.removedSamples.assign(ids, 0);
+    sums.voxels.assign(ids, 0), sums.touched.assign(ids, 0), sums.partial.assign(ids, 0), sums.removedSamples.assign(ids, 0);
     sums.closest2.assign(ids, kInfinity);
     sums.regionLo.assign(ids, glm::ivec3(std::numeric_limits<int>::max())), sums.regionHi.assign(ids, glm::ivec3(-1));
-    if (removal.distanceToRemoved2.empty()) {
+    if (removal.gaps.empty()) {
         for (std::uint16_t id : labels.ids) ++sums.voxels[id];
     } else {
         for (std::size_t v = 0; v < labels.ids.size(); ++v) {
             const std::uint16_t id = labels.ids[v];
             ++sums.voxels[id];
-            sums.closest2[id] = std::min(sums.closest2[id], removal.distanceToRemoved2[v]);
+            sums.closest2[id] = std::min(sums.closest2[id], removal.gaps.cellGap2[v]);
         }
     }
     const VoxelBox& box = removal.box;
@@ -251,6 +241,7 @@ LabelSums sumLabels(const LabelSet& set, const RemovalField& field, const Remova
                 const std::uint16_t id = labels.ids[index];
                 sums.removedSamples[id] += field.insideSamples[at];
                 ++sums.touched[id];
+                sums.partial[id] += field.insideSamples[at] < field.samplesPerVoxel ? 1 : 0;
                 if (removal.removedRegion[index]) {
                     sums.regionLo[id] = glm::min(sums.regionLo[id], glm::ivec3(i, j, k));
                     sums.regionHi[id] = glm::max(sums.regionHi[id], glm::ivec3(i, j, k));
@@ -274,6 +265,9 @@ std::vector<StructureRow> structureRows(const LabelSet& set, const LabelSums& su
         row.isProtected = isProtected[id];
         row.voxels = sums.voxels[id];
         row.touchedVoxels = sums.touched[id];
+        row.partialVoxels = sums.partial[id];
+        row.removedUncertaintyMl = removedUncertaintyMl(report, row.partialVoxels);
+        row.intrusionUncertaintyMm = glm::length(report.spacingMm);
         row.volumeMl = double(sums.voxels[id]) * report.voxelVolumeMl;
         row.removedMl = double(sums.removedSamples[id]) / double(report.samplesPerVoxel) * report.voxelVolumeMl;
         row.share = row.volumeMl > 0 ? row.removedMl / row.volumeMl : 0.0;
@@ -282,6 +276,24 @@ std::vector<StructureRow> structureRows(const LabelSet& set, const LabelSums& su
         rows.push_back(std::move(row));
     }
     return rows;
+}
+
+// The margins of untouched labels, boundary to boundary: refined through the clip test where the nearest
+// touched cells are covered in part (plan/margin.h), else the cell gap and its uncertainty.
+void refineMargins(std::vector<StructureRow>& rows, const LabelMap& labels, const Removal& removal, const Report& report,
+                   const PointsInside& inside) {
+    for (StructureRow& row : rows) {
+        if (row.touched) continue;
+        if (std::isinf(row.marginMm)) continue;
+        std::vector<std::uint8_t> inLabel(labels.ids.size());
+        for (std::size_t v = 0; v < labels.ids.size(); ++v) inLabel[v] = labels.ids[v] == row.id ? 1 : 0;
+        const Margin m = refinedMargin(report.dims, labels.indexToWorld, removal.touch, inLabel,
+                                       clip::antiAliasingOffsets(report.samplesPerVoxel - 9), inside);
+        row.marginMm = m.mm;
+        row.marginUncertaintyMm = m.uncertaintyMm;
+        // The carve reaches into the structure between the field's samples: contact, though no sample counted it.
+        row.touched = m.contact;
+    }
 }
 
 // The intrusion depth of every label with voxels in R, then the rows by removed mL (largest first), then id.
@@ -299,7 +311,7 @@ void addIntrusionDepths(std::vector<StructureRow>& rows, const LabelMap& labels,
 }
 
 // One bundle: cut flags, lengths (trapezoid rule on the inside flags, plan/tract_probe.h) and its margin.
-BundleRow bundleRow(const BundleInput& in, const Removal& removal, const DistanceSampler& distance) {
+BundleRow bundleRow(const BundleInput& in, const Removal& removal, const Report& report, const PointsInside& inside) {
     if (!in.tracts) throw InputError("<bundle " + in.name + ">", "tracts", "a tractogram");
     const Tractogram& tracts = *in.tracts;
     const TractProbe& probe = in.probe;
@@ -315,6 +327,7 @@ BundleRow bundleRow(const BundleInput& in, const Removal& removal, const Distanc
     row.isProtected = in.isProtected;
     row.streamlines = tracts.streamlineCount();
     row.marginMm = kInfinity;
+    row.marginUncertaintyMm = marginUncertaintyMm(removal.gaps.spacingMm);
     std::vector<std::uint8_t> cut(tracts.streamlineCount(), 0);
     for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
         const std::uint32_t first = probe.streamlineOffsets[s], end = probe.streamlineOffsets[s + 1];
@@ -329,16 +342,24 @@ BundleRow bundleRow(const BundleInput& in, const Removal& removal, const Distanc
         if (cut[s]) {
             ++row.cut;
             row.marginMm = 0;
-        } else if (!removal.distanceToRemoved2.empty() && row.marginMm > 0) {
+        } else if (!removal.gaps.empty() && row.marginMm > 0) {
             double skip = 0;
             for (std::uint32_t p = first; p < end; ++p) {
                 if (p > first) skip -= glm::length(probe.points[p] - probe.points[p - 1]);
                 if (skip > 0) continue;
-                const double d = distance(probe.points[p]);
+                const double d = removal.gaps.distanceMm(probe.points[p]);
                 row.marginMm = std::min(row.marginMm, d);
                 skip = (d - row.marginMm) / lipschitz;
             }
         }
+    }
+    // Refined through the clip test when it is at hand (plan/margin.h): the gap to the nearest probe point, within
+    // half a probe step of the gap to the streamlines.
+    if (inside && row.cut == 0 && std::isfinite(row.marginMm)) {
+        const Margin m = refinedMarginToPoints(report.dims, removal.indexToWorld, removal.touch, probe.points,
+                                               clip::antiAliasingOffsets(report.samplesPerVoxel - 9), inside);
+        row.marginMm = m.mm;
+        row.marginUncertaintyMm = m.uncertaintyMm + 0.5 * probe.stepMm;
     }
     row.share = row.streamlines ? double(row.cut) / double(row.streamlines) : 0.0;
     row.cutTracts = subsetStreamlines(tracts, cut);
@@ -351,7 +372,7 @@ BundleRow bundleRow(const BundleInput& in, const Removal& removal, const Distanc
 
 Report computeReport(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
                      const RemovalField& field, const std::vector<LabelSet>& labelSets,
-                     const std::vector<BundleInput>& bundles) {
+                     const std::vector<BundleInput>& bundles, const PointsInside& inside) {
     const Clock::time_point start = Clock::now();
     checkInputs(volume, field, labelSets);
     Report report = reportOf(volume, settings, field);
@@ -360,16 +381,17 @@ Report computeReport(const VolumeData& volume, const TransferFunction& tf, const
     Removal removal = measureTissue(report, volume, tf, settings, field, labelSets);
     report.timings.tissueMs = msSince(phase);
 
-    // One distance transform of R over the whole grid serves every margin.
+    // One distance transform to the touched cells serves every margin.
     phase = Clock::now();
-    if (report.removedRegionVoxels > 0 && (!labelSets.empty() || !bundles.empty()))
-        removal.distanceToRemoved2 = squaredDistanceTransformMm(volume.dims, report.spacingMm, removal.removedRegion);
+    if (report.touchedVoxels > 0 && (!labelSets.empty() || !bundles.empty()))
+        removal.gaps = cellGapsTo(volume.dims, volume.indexToWorld, removal.touch);
     report.timings.distanceMs = msSince(phase);
 
     for (const LabelSet& set : labelSets) {
         phase = Clock::now();
         const LabelSums sums = sumLabels(set, field, removal);
         std::vector<StructureRow> rows = structureRows(set, sums, report);
+        refineMargins(rows, *set.labels, removal, report, inside);
         report.timings.structuresMs += msSince(phase);
 
         phase = Clock::now();
@@ -379,8 +401,7 @@ Report computeReport(const VolumeData& volume, const TransferFunction& tf, const
     }
 
     phase = Clock::now();
-    const DistanceSampler distance{&removal.distanceToRemoved2, volume.dims, glm::inverse(volume.indexToWorld)};
-    for (const BundleInput& in : bundles) report.bundles.push_back(bundleRow(in, removal, distance));
+    for (const BundleInput& in : bundles) report.bundles.push_back(bundleRow(in, removal, report, inside));
     report.timings.bundlesMs = msSince(phase);
     report.timings.totalMs = msSince(start);
     return report;

@@ -9,27 +9,31 @@
 //                    total is good to a fraction of one voxel per voxel of surface crossed, and the errors
 //                    of neighbouring voxels largely cancel (tests/plan: well under 1 % for r >= 8 voxels).
 //   touched          t(v) r(v) > 0.
+//   uncertainty      of a removed volume: over its partly covered voxels (0 < r < 1), voxel volume times
+//                    1 / (9 + N) (the quadrature's step) plus h / s (a face the clip test places up to h =
+//                    facePlacementMm from the mesh's moves r by up to h over the smallest spacing s): a bound
+//                    for errors of one sign, which the analytic tests stay well inside.
 //   removed region   R = { v : t(v) = 1 and r(v) >= 0.5 }: the voxels the carve takes (margins start there).
 //   per label L      volume mL (its voxels * voxel volume), removed mL (the sum above over L's voxels),
 //                    share = removed / volume, touched (any voxel of L touched),
 //                    intrusion depth mm: max over v in R and L of the distance from v's centre to the
 //                    nearest centre of a voxel not of L (outside the grid counts as not of L): how deep
 //                    the carve reaches into L; 0 when R misses L.
-//                    margin mm: min over v in L of the distance from v's centre to the nearest centre in R;
-//                    0 when touched, +infinity when R is empty.
+//                    margin mm: the gap from the touched cells to L's cells, boundary to boundary
+//                    (plan/margin.h); 0 when touched or abutting, +infinity when nothing is touched.
 //   per bundle       streamlines, cut (a streamline is cut when any of its probe points is inside), share =
 //                    cut / streamlines, total length, removed length (plan/tract_probe.h), margin mm (min over
-//                    its probe points of the distance to R, trilinear in the distance transform; 0 if cut).
-// Accuracy: distances are between voxel centres (exact EDT, plan/distance_transform.h). The surfaces of R
-// and of a label lie about half a voxel beyond their outermost centres, so the gap between the carve's wall
-// and a structure's surface is smaller than margin mm by up to one voxel along the line joining them, and
-// the intrusion depth exceeds the continuous one by up to one voxel: read margins within one voxel
-// diagonal as contact. Bundle margins (points to centres of R) are good to half a voxel diagonal.
+//                    its probe points of the distance to the touched cells, plan/margin.h; 0 if cut).
+// Accuracy: margins are never larger than the gap to what is removed and smaller by at most one cell
+// diagonal (a partly covered cell counts whole; exact where the carve's faces lie on cell faces). The
+// intrusion depth is between voxel centres (exact EDT, plan/distance_transform.h) and exceeds the
+// continuous one by up to one voxel.
 
 #include "base/label_map.h"
 #include "base/tractogram.h"
 #include "base/transfer_function.h"
 #include "base/volume.h"
+#include "plan/margin.h"
 #include "plan/removal_field.h"
 #include "plan/tissue_mask.h"
 #include "plan/tract_probe.h"
@@ -64,11 +68,14 @@ struct StructureRow {
     std::string name;
     bool isProtected = false;
     std::uint64_t voxels = 0;          // of this label in the grid
-    std::uint64_t touchedVoxels = 0;
+    std::uint64_t touchedVoxels = 0, partialVoxels = 0;
     double volumeMl = 0, removedMl = 0, share = 0;
+    double removedUncertaintyMl = 0;
     bool touched = false;
     double intrusionDepthMm = 0;
+    double intrusionUncertaintyMm = 0; // a cell diagonal (between voxel centres)
     double marginMm = 0;               // +infinity when nothing is removed
+    double marginUncertaintyMm = 0;    // plan/margin.h
 };
 
 struct BundleRow {
@@ -78,6 +85,7 @@ struct BundleRow {
     double share = 0;
     double totalLengthMm = 0, removedLengthMm = 0;
     double marginMm = 0;               // +infinity when nothing is removed
+    double marginUncertaintyMm = 0;    // a cell diagonal: the gap can be larger by up to this (plan/margin.h)
     Tractogram cutTracts, sparedTracts;  // the input's streamlines partitioned, scalars and properties kept
 };
 
@@ -94,8 +102,9 @@ struct Report {
     double voxelVolumeMl = 0;
     int samplesPerVoxel = 0;           // 9 + N
     VoxelBox fieldBox;
-    double removedMl = 0;
-    std::uint64_t touchedVoxels = 0;
+    double removedMl = 0, removedUncertaintyMl = 0;
+    double facePlacementMm = 0;             // the field's
+    std::uint64_t touchedVoxels = 0, partialVoxels = 0;
     std::uint64_t removedRegionVoxels = 0;  // |R|
     std::vector<StructureRow> structures;   // per label set, by removed mL (largest first), then id
     std::vector<BundleRow> bundles;         // in input order
@@ -110,10 +119,11 @@ struct Report {
 // The report's margins and the exported labelmap both start from it.
 std::vector<std::uint8_t> removedRegionOnGrid(const RemovalField& field, const std::vector<std::uint8_t>& tissueInFieldBox);
 
-// Throws InputError when a label map or the field is not on the volume's grid, or a probe does not match its
-// tractogram.
+// `inside` (the clip test at world points, plan/margin.h) refines the margins of untouched labels; without it
+// they are cell gaps. Throws InputError when a label map or the field is not on the volume's grid, or a probe
+// does not match its tractogram.
 Report computeReport(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
                      const RemovalField& field, const std::vector<LabelSet>& labelSets,
-                     const std::vector<BundleInput>& bundles);
+                     const std::vector<BundleInput>& bundles, const PointsInside& inside = {});
 
 }  // namespace curette::plan

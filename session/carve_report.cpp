@@ -46,7 +46,7 @@ std::string fileName(const std::string& name) {
 }  // namespace
 
 CarveReporter::CarveReporter(const LoadedScene& loaded, const VolumeGeometry& geometry)
-    : loaded_(loaded), settings_(resolveSettings(loaded)), probe_(geometry, loaded.scene.lao.antiAliasingSamples) {
+    : loaded_(loaded), settings_(resolveSettings(loaded)), probe_(geometry, plan::kReportAntiAliasingSamples) {
     for (const LoadedLabelSet& set : loaded.labels) labelSets_.push_back({set.name, &set.onScanGrid, &set.table, set.protectedIds});
     for (std::size_t i = 0; i < loaded.scene.tubes.size(); ++i) {
         plan::BundleInput b;
@@ -67,7 +67,9 @@ plan::Report CarveReporter::compute(clip::ClipMeshSet& clip) {
     for (plan::BundleInput& b : bundles_) b.probe.insideFlags = probe_.insideFlags(clip, b.probe.points);
     fieldMs_ = std::chrono::duration<double, std::milli>(fieldDone - start).count();
     flagsMs_ = std::chrono::duration<double, std::milli>(Clock::now() - fieldDone).count();
-    return plan::computeReport(loaded_.volume, loaded_.scene.transferFunction, settings_, field_, labelSets_, bundles_);
+    // Margins are refined with the renderer's own clip test, as the field was made.
+    plan::PointsInside inside = [this, &clip](const std::vector<glm::dvec3>& points) { return probe_.insideFlags(clip, points); };
+    return plan::computeReport(loaded_.volume, loaded_.scene.transferFunction, settings_, field_, labelSets_, bundles_, inside);
 }
 
 std::vector<std::uint8_t> CarveReporter::tissueInField() const {

@@ -2,6 +2,7 @@
 
 #include "mesh/coverage.h"
 #include "gl/bindings.h"
+#include "render/model/brick_set.h"
 
 #include <algorithm>
 
@@ -23,6 +24,7 @@ plan::RemovalField RemovalProbe::removalField(clip::ClipMeshSet& clip) {
     field.indexToWorld = geometry_.indexToWorld;
     field.samplesPerVoxel = 9 + antiAliasingSamples_;
     clip.update();
+    for (int i = 0; i < clip.count(); ++i) field.facePlacementMm = std::max(field.facePlacementMm, 0.5 * clip.camera(i).depthPixelMm());
     plan::VoxelBox box = voxelBoxAroundMeshes(geometry_, clip);
     field.origin = box.origin;
     field.size = box.size;
@@ -35,8 +37,7 @@ plan::RemovalField RemovalProbe::removalField(clip::ClipMeshSet& clip) {
     countProgram_.set("antiAliasingSamples", antiAliasingSamples_);
     countProgram_.set("regionOrigin", box.origin);
     countProgram_.set("regionSize", box.size);
-    // Clip samples lie within one voxel step along every axis: at most a cell diagonal from the centre.
-    countProgram_.set("sampleReachMm", static_cast<float>(geometry_.cellDiagonalMm() * 1.001));
+    countProgram_.set("sampleReachMm", static_cast<float>(clipSampleReachMm(geometry_)));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboAntiAliasing, antiAliasing_.name());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboRemovalCounts, counts.name());
     countProgram_.dispatchCovering(glm::uvec3(box.size));

@@ -148,7 +148,7 @@ TEST(RemovalReport, AProtectedLabelIsTissueWhateverTheTransferFunction) {
 // sphere at t = c.z + 8 and s the z spacing (R's top centre lies in (t - s, t]):
 //   zc < t (intrusion): depth = (top centre of R in the slab) - (zc - s), within s/2 of t - zc + s/2,
 //                       the depth past the slab's face halfway between centres;
-//   zc > t (margin):    margin = zc - (top centre of R), in [zc - t, zc - t + s).
+//   zc > t (margin):    the gap from the sphere to the slab's cells, zc - s/2 - t (checked below).
 void checkSlab(glm::dvec3 spacing, double zFirst, bool intrudes) {
     const glm::dvec3 c(0.23, -0.41, 0.17);
     const double radius = 8.0, top = c.z + radius;
@@ -172,8 +172,11 @@ void checkSlab(glm::dvec3 spacing, double zFirst, bool intrudes) {
     } else {
         EXPECT_FALSE(slab->touched);
         EXPECT_EQ(slab->intrusionDepthMm, 0.0);
-        EXPECT_GE(slab->marginMm, zc - top - eps) << "spacing z " << sz;
-        EXPECT_LT(slab->marginMm, zc - top + sz + eps) << "spacing z " << sz;
+        // The slab's cells begin half a voxel below its first centre; the margin is the gap to them, never
+        // larger, and smaller by at most the cell diagonal (the sphere's top cells are covered in part).
+        const double gap = zc - sz / 2 - top;
+        EXPECT_LE(slab->marginMm, gap + eps) << "spacing z " << sz;
+        EXPECT_GE(slab->marginMm, gap - glm::length(spacing) - eps) << "spacing z " << sz;
         EXPECT_TRUE(r.warnings().empty());
     }
 }
@@ -261,6 +264,12 @@ TEST(RemovalReport, BundlesThroughAndPastASphere) {
         EXPECT_EQ(o.cut, rhos[l] < radius ? 1u : 0u) << "rho " << rhos[l];
         if (rhos[l] > radius) {
             EXPECT_NEAR(o.marginMm, rhos[l] - radius, std::sqrt(3.0)) << "rho " << rhos[l];
+            EXPECT_LE(o.marginMm, rhos[l] - radius + 1e-9) << "rho " << rhos[l] << ": the cells' margin is never larger";
+            // Refined through the clip test: within a quarter millimetre and the stated uncertainty.
+            PointsInside probe = [&](const std::vector<glm::dvec3>& points) { return insideFlagsCpu(points, inside); };
+            const BundleRow& refined = computeReport(s.volume, stepTf(), ReportSettings{}, s.field, {}, {single}, probe).bundles[0];
+            EXPECT_NEAR(refined.marginMm, rhos[l] - radius, 0.25) << "rho " << rhos[l];
+            EXPECT_NEAR(refined.marginMm, rhos[l] - radius, refined.marginUncertaintyMm) << "rho " << rhos[l];
         }
     }
     // Cut and spared partition the input, with their scalars and properties.

@@ -21,6 +21,7 @@ Report sample() {
     r.voxelVolumeMl = 0.001;
     r.samplesPerVoxel = 41;
     r.removedMl = 12.5;
+    r.removedUncertaintyMl = 0.04;
     r.touchedVoxels = 14000;
     StructureRow a;
     a.labelSet = "aal";
@@ -32,6 +33,8 @@ Report sample() {
     a.volumeMl = 25;
     a.share = 0.05;
     a.intrusionDepthMm = 4.5;
+    a.removedUncertaintyMl = 0.01;
+    a.intrusionUncertaintyMm = 1.7;
     StructureRow b;
     b.labelSet = "aal";
     b.id = 9;
@@ -46,6 +49,7 @@ Report sample() {
     t.cut = 7;
     t.share = 0.07;
     t.removedLengthMm = 30;
+    t.marginUncertaintyMm = 0.2;
     r.bundles = {t};
     return r;
 }
@@ -57,6 +61,10 @@ TEST(ReportOutput, JsonHasTheSchemaUnitsAndNullForInfiniteMargins) {
     EXPECT_EQ(j["volume"]["voxel_volume_ml"], 0.001);
     EXPECT_EQ(j["structures"][0]["name"], "Frontal, \"Sup\" L");
     EXPECT_EQ(j["structures"][0]["intrusion_depth_mm"], 4.5);
+    EXPECT_EQ(j["removed_ml_uncertainty"], 0.04);
+    EXPECT_EQ(j["structures"][0]["removed_ml_uncertainty"], 0.01);
+    EXPECT_EQ(j["structures"][0]["intrusion_depth_uncertainty_mm"], 1.7);
+    EXPECT_EQ(j["bundles"][0]["margin_uncertainty_mm"], 0.2);
     EXPECT_TRUE(j["structures"][1]["margin_mm"].is_null());
     EXPECT_EQ(j["bundles"][0]["cut_streamlines"], 7);
     EXPECT_EQ(j["warnings"].size(), 2u);
@@ -70,16 +78,18 @@ TEST(ReportOutput, CsvQuotesNamesPerRfc4180) {
     EXPECT_EQ(csvField("two\nlines"), "\"two\nlines\"");
     const std::string csv = structuresCsv(sample());
     EXPECT_EQ(csv.substr(0, csv.find("\r\n")),
-              "label_set,id,name,protected,touched,voxels,touched_voxels,volume_ml,removed_ml,share_fraction,intrusion_depth_mm,margin_mm");
-    EXPECT_NE(csv.find("aal,3,\"Frontal, \"\"Sup\"\" L\",true,true,0,0,25,1.25,0.05,4.5,0\r\n"), std::string::npos) << csv;
-    EXPECT_NE(csv.find("aal,9,Far,true,false,0,0,0,0,0,0,\r\n"), std::string::npos) << "an infinite margin is empty: " << csv;
+              "label_set,id,name,protected,touched,voxels,touched_voxels,volume_ml,removed_ml,removed_ml_uncertainty,share_fraction,"
+              "intrusion_depth_mm,intrusion_depth_uncertainty_mm,margin_mm,margin_uncertainty_mm");
+    EXPECT_NE(csv.find("aal,3,\"Frontal, \"\"Sup\"\" L\",true,true,0,0,25,1.25,0.01,0.05,4.5,1.7,0,0\r\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("aal,9,Far,true,false,0,0,0,0,0,0,0,0,,0\r\n"), std::string::npos) << "an infinite margin is empty: " << csv;
     const std::string bundles = bundlesCsv(sample());
-    EXPECT_NE(bundles.find("CST left,true,100,7,0.07,0,30,0\r\n"), std::string::npos) << bundles;
+    EXPECT_NE(bundles.find("CST left,true,100,7,0.07,0,30,0,0.2\r\n"), std::string::npos) << bundles;
 }
 
 TEST(ReportOutput, SummaryWarnsAboutProtectedTouchesAndFilesAreWritten) {
     const std::string summary = reportSummary(sample());
-    EXPECT_NE(summary.find("removed 12.50 mL"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("removed 12.50 +-0.04 mL"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("1.250 +-0.010"), std::string::npos) << "each figure with its uncertainty: " << summary;
     EXPECT_NE(summary.find("WARNING: protected structure aal/Frontal, \"Sup\" L (id 3) touched"), std::string::npos) << summary;
     EXPECT_NE(summary.find("WARNING: protected bundle CST left cut: 7 of 100"), std::string::npos) << summary;
     EXPECT_EQ(summary.find("Far (id 9) touched"), std::string::npos);

@@ -266,19 +266,21 @@ void ViewWindow::drawOverlay() {
     for (const std::string& m : messages) ImGui::TextWrapped("%s", m.c_str());
     if (const std::optional<plan::Report>& r = report.report()) {
         ImGui::Separator();
-        ImGui::Text("removed %.2f mL%s (%.0f ms; F5 writes the plan)", r->removedMl, report.current(renderer.clipMeshes()) ? "" : " (updating)",
-                    report.ms());
+        ImGui::Text("removed %.2f +-%.2f mL%s (%.0f ms; F5 writes the plan)", r->removedMl, r->removedUncertaintyMl,
+                    report.current(renderer.clipMeshes()) ? "" : " (updating)", report.ms());
         for (const plan::StructureRow& row : r->structures) {
             if (!row.touched && !row.isProtected) continue;
             ImVec4 colour = row.isProtected && row.touched ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
-            ImGui::TextColored(colour, "  %-24s %7.2f mL %5.1f %%  %s %5.1f mm", row.name.c_str(), row.removedMl, 100 * row.share,
-                               row.touched ? "depth" : "margin", row.touched ? row.intrusionDepthMm : row.marginMm);
+            ImGui::TextColored(colour, "  %-24s %7.3f +-%.3f mL %5.1f %%  %s %5.1f +-%.2f mm", row.name.c_str(), row.removedMl,
+                               row.removedUncertaintyMl, 100 * row.share, row.touched ? "depth" : "margin",
+                               row.touched ? row.intrusionDepthMm : row.marginMm,
+                               row.touched ? row.intrusionUncertaintyMm : row.marginUncertaintyMm);
         }
         for (const plan::BundleRow& b : r->bundles) {
             ImVec4 colour = b.isProtected && b.cut ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
-            ImGui::TextColored(colour, "  %-24s %5llu of %llu cut  %6.1f mm removed  margin %5.1f mm", b.name.c_str(),
+            ImGui::TextColored(colour, "  %-24s %5llu of %llu cut  %6.1f mm removed  margin %5.1f +-%.1f mm", b.name.c_str(),
                                static_cast<unsigned long long>(b.cut), static_cast<unsigned long long>(b.streamlines), b.removedLengthMm,
-                               b.marginMm);
+                               b.marginMm, b.marginUncertaintyMm);
         }
         for (const std::string& warning : r->warnings()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", warning.c_str());
     }
