@@ -311,7 +311,8 @@ glm::dmat4 niftiQformAffine(double b, double c, double d, double qfac, glm::dvec
     r[0] = glm::dvec3(a * a + b * b - c * c - d * d, 2 * (b * c + a * d), 2 * (b * d - a * c));
     r[1] = glm::dvec3(2 * (b * c - a * d), a * a + c * c - b * b - d * d, 2 * (c * d + a * b));
     r[2] = glm::dvec3(2 * (b * d + a * c), 2 * (c * d - a * b), a * a + d * d - c * c - b * b);
-    if (qfac != -1.0) qfac = 1.0;  // pixdim[0] should be +1 or -1; anything else means +1
+    // pixdim[0] should be +1 or -1; nifti1_io reads any negative value as -1 and anything else (zero too) as +1.
+    qfac = qfac < 0.0 ? -1.0 : 1.0;
     glm::dmat4 m(1.0);
     m[0] = glm::dvec4(r[0] * pixdim.x, 0.0);
     m[1] = glm::dvec4(r[1] * pixdim.y, 0.0);

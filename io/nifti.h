@@ -18,8 +18,8 @@ VolumeData readNifti(const std::filesystem::path& path, int volumeIndex = 0);
 // A whole single-file NIfTI (already decompressed) from memory: the fuzzing entry point.
 VolumeData readNiftiBytes(std::span<const std::uint8_t> bytes, const std::string& source, int volumeIndex = 0);
 
-// The index-to-world affine of a NIfTI qform (quaternion b, c, d; qfac = pixdim[0]; offsets), nifti1.h
-// "METHOD 2"; exposed for tests.
+// The index-to-world affine of a NIfTI qform (quaternion b, c, d; qfac = pixdim[0], any negative value
+// mirroring; offsets), nifti1.h "METHOD 2"; exposed for tests.
 glm::dmat4 niftiQformAffine(double b, double c, double d, double qfac, glm::dvec3 pixdim, glm::dvec3 offset);
 
 }  // namespace curette::io

@@ -18,10 +18,19 @@ namespace curette::plan {
 
 constexpr double kDefaultProbeStepMm = 0.25;
 
+// At most this many probe points per bundle: each is a dvec3 here, a flag and a GPU copy, so more would be
+// gigabytes for a step far finer than the data; it also keeps the 32-bit streamline offsets from wrapping.
+constexpr std::size_t kMaxTractProbePoints = std::size_t(1) << 28;
+
+// Streamline coordinates lie within this many millimetres of the origin: no scan is 100 m across, so a point
+// beyond it is corrupt or in the wrong units, and one segment to it would need millions of probe points.
+constexpr double kMaxTractCoordinateMm = 1e5;
+
 // The probe points of every streamline, in order; streamline s spans
 // [streamlineOffsets[s], streamlineOffsets[s + 1]) (streamlineCount + 1 offsets). Each original point is
 // kept; a segment of length L gets ceil(L / stepMm) - 1 evenly spaced points between its ends. Throws
-// InputError unless stepMm is positive and finite.
+// InputError naming "points[i]" for a point that is not finite or lies beyond kMaxTractCoordinateMm, and
+// "probe_step_mm" unless stepMm is positive, finite and gives at most kMaxTractProbePoints points.
 std::vector<glm::dvec3> tractProbePoints(const Tractogram& tracts, double stepMm, std::vector<std::uint32_t>& streamlineOffsets);
 
 // 1 where `inside` says the point is in the clip region, else 0.

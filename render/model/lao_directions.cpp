@@ -78,7 +78,7 @@ std::vector<LaoDirection> LaoDirectionSet::build() const {
 std::string LaoDirectionSet::describe() const {
     const char* name = pattern == LaoPattern::Fibonacci ? "Fibonacci" : pattern == LaoPattern::Rubik54 ? "Rubik" : "neighbourhood";
     char text[96];
-    std::snprintf(text, sizeof text, "%d (%s, jitter %g%s)", count, name, jitter, skyWeighting ? ", sky weights" : "");
+    std::snprintf(text, sizeof text, "%zu (%s, jitter %g%s)", build().size(), name, jitter, skyWeighting ? ", sky weights" : "");
     return text;
 }
 

@@ -21,13 +21,13 @@ enum class LaoPattern { Neighbourhood6, Neighbourhood14, Neighbourhood26, Rubik5
 
 struct LaoDirectionSet {
     LaoPattern pattern = LaoPattern::Neighbourhood26;
-    int count = 26;              // K; fixed for the neighbourhood patterns, any >= 1 for Fibonacci
+    int count = 26;              // K of the Fibonacci lattice (>= 1); the other patterns have their own K and ignore it
     double jitter = 0.025;       // per-component uniform jitter in [-jitter, jitter], then renormalised
     std::uint32_t seed = 1;
     bool skyWeighting = false;   // w_k = 0.5 + 0.5 * d_k.z (light from superior), normalised; else uniform
 
-    std::vector<LaoDirection> build() const;
-    std::string describe() const;  // e.g. "26 (neighbourhood, jitter 0.025)"
+    std::vector<LaoDirection> build() const;   // K directions: K is the list's length, whatever `count` says
+    std::string describe() const;  // e.g. "26 (neighbourhood, jitter 0.025)", with the built list's K
 };
 
 // Parses "6", "14", "26", "54", or "fibonacci:K" (also "fib512"). Returns false when not one of these.

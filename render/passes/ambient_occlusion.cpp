@@ -58,6 +58,7 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     // Directions as one LAO step in texture coordinates, with w = w_k / (K * M) folding eq. 3's 1/K and
     // eq. 2's 1/M into one factor.
     std::vector<LaoDirection> list = settings.directions.build();
+    directionCount_ = static_cast<int>(list.size());   // K: what the kernel loops over is what it is given
     glm::dmat3 worldToTexture(volume.geometry().worldToTexture());
     std::vector<glm::vec4> packed;
     for (const LaoDirection& d : list)
@@ -105,7 +106,7 @@ gl::Defines AmbientOcclusion::laoDefines(float opacityExponent) const {
     // compared as the float the shader would raise to, so the identity stands in for pow(x, 1.0) only.
     gl::Defines defines;
     if (seenBricks_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
-    defines.emplace_back("LAO_DIRECTIONS", std::to_string(settings_.directions.count));
+    defines.emplace_back("LAO_DIRECTIONS", std::to_string(directionCount_));
     defines.emplace_back("LAO_SAMPLES", std::to_string(settings_.samples));
     if (opacityExponent == 1.0f) defines.emplace_back("LAO_UNIT_STEP", "1");
     return defines;
@@ -453,7 +454,7 @@ std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
                                     // with the visited-brick list (4 bytes per brick)
                                     {Resource::RecomputeList, (settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * n + 8 : 8) +
                                                                   4 * BrickSet::none(d).brickCount(), {}},
-                                    {Resource::LaoDirections, 16u * std::size_t(settings_.directions.count), {}}};
+                                    {Resource::LaoDirections, 16u * std::size_t(directionCount_), {}}};
     return list;
 }
 

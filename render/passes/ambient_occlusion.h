@@ -152,6 +152,7 @@ private:
     const gl::Texture* seenBricks_;   // null, or when settings_.onlyWhereSeen is off: LAO everywhere
     gl::Texture opacity_, mask_, precomputed_, ambient_;
     gl::Buffer directions_, antiAliasing_, list_, dispatch_, visitBricks_;
+    int directionCount_ = 0;   // K, the length of the uploaded direction list (LAO_DIRECTIONS)
     gl::ComputeVariants clipPrograms_{"voxel_clip.comp"};
     gl::ComputeVariants laoPrograms_{"lao.comp"};   // by laoDefines
     gl::Program compactProgram_;

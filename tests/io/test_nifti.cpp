@@ -145,6 +145,37 @@ TEST(Nifti, AffinePrecedenceSformThenQformThenPixdim) {
         for (int col = 0; col < 4; ++col) EXPECT_NEAR(sf.indexToWorld[col][row], srow[4 * row + col], 1e-6);
 }
 
+// nifti1_io reads qfac as (pixdim[0] < 0) ? -1 : 1: any negative pixdim[0] mirrors the third axis, zero and
+// other positive values do not. Writers that store, say, -0.5 or -2 there mean the mirrored frame.
+TEST(Nifti, AnyNegativePixdim0IsQfacMinusOne) {
+    auto affineFor = [](float pixdim0) {
+        NiftiSpec s;
+        s.qformCode = 1;
+        s.pixdim[0] = pixdim0, s.pixdim[1] = 0.5f, s.pixdim[2] = 2.0f, s.pixdim[3] = 3.0f;
+        s.quatern[0] = 0.1f, s.quatern[1] = 0.2f, s.quatern[2] = 0.3f;
+        s.qoffset[0] = 1, s.qoffset[1] = -2, s.qoffset[2] = 3;
+        auto path = test::scratchDirectory() / ("pixdim0 " + std::to_string(pixdim0) + ".nii");
+        test::writeBytes(path, makeNifti(s));
+        return io::readVolume(path).indexToWorld;
+    };
+    auto thirdColumn = [](const glm::dmat4& m) {
+        return "(" + std::to_string(m[2][0]) + ", " + std::to_string(m[2][1]) + ", " + std::to_string(m[2][2]) + ")";
+    };
+    const glm::dmat4 mirrored = affineFor(-1.0f), unmirrored = affineFor(1.0f);
+    ASSERT_NE(mirrored, unmirrored);
+    EXPECT_LT(glm::determinant(glm::dmat3(mirrored)), 0.0);
+    for (float pixdim0 : {-0.5f, -2.0f, -1e-6f}) {
+        const glm::dmat4 m = affineFor(pixdim0);
+        EXPECT_TRUE(m == mirrored) << "pixdim[0] = " << pixdim0 << ": third column " << thirdColumn(m) << ", qfac -1 gives "
+                                   << thirdColumn(mirrored);
+    }
+    for (float pixdim0 : {0.0f, 0.5f, 2.0f}) {
+        const glm::dmat4 m = affineFor(pixdim0);
+        EXPECT_TRUE(m == unmirrored) << "pixdim[0] = " << pixdim0 << ": third column " << thirdColumn(m) << ", qfac +1 gives "
+                                     << thirdColumn(unmirrored);
+    }
+}
+
 TEST(Nifti, VoxOffsetBelow352IsTakenAs352) {
     NiftiSpec s;
     std::vector<std::uint8_t> bytes = makeNifti(s);

@@ -144,6 +144,10 @@ TEST(Nifti2, AffinePrecedenceInDoublePrecision) {
     VolumeData q = io::readNiftiBytes(makeNifti2(s), "qform.nii");
     glm::dmat4 expected = io::niftiQformAffine(0.1, 0.2, std::sqrt(0.5), -1, {0.5, 2, 3}, {1.25, -2.5, 3.125});
     EXPECT_EQ(q.indexToWorld, expected);
+    s.pixdim[0] = -0.5;  // any negative pixdim[0] is qfac -1, as in NIfTI-1 (nifti1_io)
+    glm::dmat4 half = io::readNiftiBytes(makeNifti2(s), "qfac-half.nii").indexToWorld;
+    EXPECT_TRUE(half == expected) << "pixdim[0] -0.5: third column z " << half[2][2] << ", qfac -1 gives " << expected[2][2];
+    s.pixdim[0] = -1.0;
 
     // The sform wins, kept to the last bit of its doubles.
     s.sformCode = 1;

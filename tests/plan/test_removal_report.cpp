@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 
 namespace curette::plan {
@@ -332,6 +333,67 @@ TEST(TractProbe, NoGapExceedsTheStepAndOriginalPointsAreKept) {
     EXPECT_EQ(points[offsets[1]], glm::dvec3(t.points[3]));
     EXPECT_EQ(offsets[1], 4u + 1u + 1u) << "1 mm: 3 between; 0.1 mm: none";
     EXPECT_THROW(tractProbePoints(t, 0.0, offsets), InputError);
+}
+
+// Runs tractProbePoints and expects an InputError naming `field`.
+void expectProbeInputError(const Tractogram& t, double stepMm, const std::string& field) {
+    std::vector<std::uint32_t> offsets;
+    try {
+        tractProbePoints(t, stepMm, offsets);
+        ADD_FAILURE() << "expected an InputError naming " << field;
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), field) << e.what();
+        EXPECT_EQ(e.file(), t.source);
+    }
+}
+
+Tractogram oneSegment(glm::vec3 a, glm::vec3 b) {
+    Tractogram t;
+    t.points = {a, b};
+    t.offsets = {0, 2};
+    t.source = "bundle.tck";
+    return t;
+}
+
+TEST(TractProbe, ATinyStepIsAnInputErrorNamingTheStep) {
+    const Tractogram t = oneSegment({0, 0, 0}, {1, 0, 0});
+    expectProbeInputError(t, 1e-9, "probe_step_mm");   // 1e9 points on one millimetre
+    expectProbeInputError(t, 1e-12, "probe_step_mm");  // more points than an int counts
+    expectProbeInputError(t, 1e-300, "probe_step_mm");
+}
+
+TEST(TractProbe, TheTotalOverAllStreamlinesIsCapped) {
+    // 60 streamlines of 5e6 probe points each: each alone is within the cap of 2^28, all together are not.
+    Tractogram t;
+    t.source = "bundle.tck";
+    for (int s = 0; s < 60; ++s) {
+        t.points.emplace_back(0.0f, float(s), 0.0f);
+        t.points.emplace_back(5e4f, float(s), 0.0f);
+        t.offsets.push_back(static_cast<std::uint32_t>(t.points.size()));
+    }
+    expectProbeInputError(t, 0.01, "probe_step_mm");
+}
+
+TEST(TractProbe, AFarPointIsAnInputErrorNamingThePoint) {
+    Tractogram t;
+    t.source = "bundle.tck";
+    t.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {1e30f, 0, 0}, {4, 0, 0}};
+    t.offsets = {0, 3, 6};
+    expectProbeInputError(t, 0.25, "points[4]");  // streamline 1, its second point
+    t.points[4] = {4, -1e30f, 0};
+    expectProbeInputError(t, 0.25, "points[4]");
+    t.points = {{1e30f, 1e30f, 1e30f}};  // a lone point has no segment, but is no tract point either
+    t.offsets = {0, 1};
+    expectProbeInputError(t, 0.25, "points[0]");
+}
+
+TEST(TractProbe, ANonFinitePointIsAnInputErrorNamingThePoint) {
+    for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+        Tractogram t = oneSegment({0, 0, 0}, {1, 0, 0});
+        t.points.insert(t.points.begin() + 1, glm::vec3(0.5f, bad, 0));
+        t.offsets = {0, 3};
+        expectProbeInputError(t, 0.25, "points[1]");
+    }
 }
 
 }  // namespace

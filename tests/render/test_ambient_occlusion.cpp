@@ -72,7 +72,7 @@ struct AoFixture {
 // storage quantum; rms 4.5e-6), far under the 8-bit display step (3.9e-3). Two steps: the TF's unit length
 // (lao_ray.glsl's LAO_UNIT_STEP variant, no pow) and 0.7 mm (the corrected opacity (1 - a)^0.7; the unit
 // step's variant there is off by 9.8e-2).
-void expectLaoMatchesTwinOnAnisotropicObliqueVolume(double stepMm) {
+void expectLaoMatchesTwinOnAnisotropicObliqueVolume(double stepMm, const LaoDirectionSet& directions = {}) {
     glm::dmat3 rz(std::cos(0.4), std::sin(0.4), 0, -std::sin(0.4), std::cos(0.4), 0, 0, 0, 1);
     glm::dmat3 linear = rz * glm::dmat3(glm::dvec3(0.9, 0, 0), glm::dvec3(0, 1.1, 0), glm::dvec3(0, 0, 1.3));
     glm::ivec3 dims(30, 28, 24);
@@ -82,6 +82,7 @@ void expectLaoMatchesTwinOnAnisotropicObliqueVolume(double stepMm) {
     LaoSettings settings;
     settings.samples = 12;
     settings.stepMm = stepMm;
+    settings.directions = directions;
     AmbientOcclusion ao(*f.gpu, settings);
     ao.precompute(*f.tfTexture);
     std::vector<std::uint16_t> gpuOpacity = ao.readOpacity();
@@ -104,8 +105,8 @@ void expectLaoMatchesTwinOnAnisotropicObliqueVolume(double stepMm) {
         sumSquares += (got - expected) * (got - expected);
         minAmbient = std::min(minAmbient, expected);
     }
-    std::printf("[ lao twin ] step %.2f mm: max %.2e rms %.2e over %d voxels (darkest %.3f)\n", stepMm, maxError,
-                std::sqrt(sumSquares / n), n, minAmbient);
+    std::printf("[ lao twin ] step %.2f mm, K = %zu: max %.2e rms %.2e over %d voxels (darkest %.3f)\n", stepMm,
+                p.directions.size(), maxError, std::sqrt(sumSquares / n), n, minAmbient);
     EXPECT_LT(maxError, 2e-5);
     EXPECT_LT(minAmbient, 0.8) << "the volume must occlude something";
 }
@@ -116,6 +117,32 @@ TEST(Lao, GpuMatchesCpuTwinOnAnisotropicObliqueVolume) {
 }
 
 TEST(Lao, GpuMatchesCpuTwinWithAStepUnlikeTheUnitLength) { expectLaoMatchesTwinOnAnisotropicObliqueVolume(0.7); }
+
+// K is what the built list holds: a pattern whose length is not the set's `count` (here left at its default
+// of 26) still casts every one of its directions, no more, with weights over its own length.
+TEST(Lao, TheCompiledInDirectionCountIsTheListsLength) {
+    for (LaoPattern pattern : {LaoPattern::Rubik54, LaoPattern::Neighbourhood6, LaoPattern::Neighbourhood14}) {
+        LaoDirectionSet directions;
+        directions.pattern = pattern;
+        ASSERT_EQ(directions.count, 26);
+        const std::size_t length = directions.build().size();
+        ASSERT_NE(length, 26u);
+        EXPECT_EQ(directions.describe().substr(0, directions.describe().find(' ')), std::to_string(length));
+        SCOPED_TRACE(directions.describe());
+        expectLaoMatchesTwinOnAnisotropicObliqueVolume(1.0, directions);
+        // A K past the list's end reads beyond the direction buffer, which llvmpipe returns as zeros, so the
+        // image alone cannot tell; the direction buffer's reported size is K entries of 16 bytes.
+        glm::ivec3 dims(8, 8, 8);
+        AoFixture f(dims, test::centredAffine(dims));
+        LaoSettings settings;
+        settings.directions = directions;
+        AmbientOcclusion ao(*f.gpu, settings);
+        std::size_t bytes = 0;
+        for (const GpuAllocation& a : ao.allocations())
+            if (a.resource == Resource::LaoDirections) bytes = a.bytes;
+        EXPECT_EQ(bytes, 16u * length);
+    }
+}
 
 // Without clip meshes, step IV stores each voxel's TF opacity: the GPU reads the 4096-texel baked table
 // (error <= slope * range / 4095 / 2 = 0.35/150 * 255/8190 = 7e-5) and stores R16 (7.6e-6).
