@@ -102,13 +102,27 @@ void VolumeData::updateRange() {
     minValue = std::min(a, b), maxValue = std::max(a, b);
 }
 
+namespace {
+// B of noDataTexelBelow: more than the data's span and magnitude.
+double noDataMagnitude(double min, double max) { return std::abs(min) + std::abs(max) + (max - min) + 1.0; }
+}  // namespace
+
 float noDataTexelBelow(double lo, double hi, double valueScale, double valueOffset) {
     double a = valueScale * lo + valueOffset, b = valueScale * hi + valueOffset;
     double min = std::min(a, b), max = std::max(a, b);
-    double magnitude = std::abs(min) + std::abs(max) + (max - min) + 1.0;
+    double magnitude = noDataMagnitude(min, max);
     double factor = std::clamp(1e18 / magnitude, 1024.0, 1073741824.0);  // 2^10 .. 2^30
     double texel = (min - factor * magnitude - valueOffset) / (valueScale != 0.0 ? valueScale : 1.0);
     return static_cast<float>(std::clamp(texel, -1e30, 1e30));
+}
+
+NoDataSamples::NoDataSamples(const VolumeData& volume) {
+    if (volume.noDataVoxels == 0 || volume.format != StorageFormat::Float32) return;
+    any = true;
+    double scale = volume.valueScale != 0.0 ? volume.valueScale : 1.0;  // as noDataTexelBelow divides
+    side = scale < 0.0 ? -1.0f : 1.0f;
+    double texel = (volume.minValue - noDataMagnitude(volume.minValue, volume.maxValue) - volume.valueOffset) / scale;
+    bound = static_cast<float>(side * texel);
 }
 
 namespace {

@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,21 @@ struct VolumeData {
 // quantise weights to 8 bits never produce one, full-float filtering (llvmpipe) can, in that sliver, where the
 // sample is classified somewhere between its finite value and transparent.
 float noDataTexelBelow(double lo, double hi, double valueScale, double valueOffset);
+
+// Which samples of a volume (stored values, filtered or not) are "no data": those whose physical value lies
+// more than B below the data's minimum (B as above). A sample of finite voxels never does; a trilinear sample
+// with weight w on no-data voxels is moved down by at least w F B, so it does for every w above 2 / F, a
+// wider net than the transparency above (w >= 2^-24). One comparison, so the GPU makes it too
+// (shaders/no_data.glsl): the stored value times `side` (the sign of valueScale, so the comparison runs in
+// the physical order) below `bound`. Nothing is no data in a volume without no-data voxels.
+struct NoDataSamples {
+    NoDataSamples() = default;
+    explicit NoDataSamples(const VolumeData& volume);
+    bool any = false;
+    float side = 1.0f;
+    float bound = -std::numeric_limits<float>::infinity();
+    bool operator()(double texel) const { return texel * side < bound; }
+};
 
 // Builds VolumeData from raw samples of any ScalarType: picks the storage format (uint8 -> UNorm8, int16 and
 // uint16 -> UNorm16 with an offset for int16, int32/float32/float64 -> Float32), swaps bytes when the data's

@@ -74,7 +74,7 @@ std::vector<glm::vec2> coarserBrickRanges(const std::vector<glm::vec2>& fine, gl
 }  // namespace
 
 GpuVolume::GpuVolume(const gl::ContextInfo& info, const VolumeData& data)
-    : format_(data.format), valueScale_(data.valueScale), valueOffset_(data.valueOffset), hasNoData_(data.noDataVoxels > 0) {
+    : format_(data.format), valueScale_(data.valueScale), valueOffset_(data.valueOffset), noData_(data) {
     for (int axis = 0; axis < 3; ++axis)
         if (data.dims[axis] < 1 || data.dims[axis] > info.max3DTextureSize)
             throw InputError(data.source, "dim[" + std::to_string(axis + 1) + "]",

@@ -27,7 +27,9 @@ public:
     double valueOffset() const { return valueOffset_; }
     std::size_t gpuBytes() const { return gpuBytes_; }
     // Whether some voxels hold no data (NaN/Inf in the file, stored below the minimum: base/volume.h).
-    bool hasNoData() const { return hasNoData_; }
+    bool hasNoData() const { return noData_.any; }
+    // Which stored values are no data (the shaders' test, no_data.glsl).
+    const NoDataSamples& noData() const { return noData_; }
 
     // Bricks of B^3 voxels; for each, the lowest and highest stored texel value that trilinear sampling
     // anywhere inside the brick can see (the brick plus a one-voxel apron). B = brickSize for the ray caster's
@@ -51,7 +53,7 @@ private:
     StorageFormat format_;
     double valueScale_, valueOffset_;
     std::size_t gpuBytes_ = 0;
-    bool hasNoData_ = false;
+    NoDataSamples noData_;
     glm::ivec3 brickGrid_{0}, seenBrickGrid_{0};
     std::vector<glm::vec2> brickRanges_, seenBrickRanges_;
 };

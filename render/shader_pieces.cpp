@@ -91,6 +91,15 @@ void VolumePiece::apply(gl::Program& p) const {
     glBindTextureUnit(binding::volume, volume.texture());
 }
 
+void NoDataPiece::addDefines(gl::Defines& defines) const {
+    if (volume.hasNoData()) defines.emplace_back("NO_DATA", "1");
+}
+
+void NoDataPiece::apply(gl::Program& p) const {
+    p.set("noDataSide", volume.noData().side);
+    p.set("noDataBound", volume.noData().bound);
+}
+
 void SampleShadingPiece::addDefines(gl::Defines& defines, ShadingMode mode) {
     // ismos colours samples as its base does (the ray caster passes the base itself; the slab pass, which
     // runs ismos frames with tubes, gets phong, the default base).

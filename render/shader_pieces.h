@@ -7,6 +7,7 @@
 //   GLSL piece                   binder
 //   pixel_ray.glsl               CameraRayPiece (below)
 //   volume.glsl                  VolumePiece (below)
+//   no_data.glsl                 NoDataPiece (below)
 //   transfer_function.glsl       TransferFunctionTexture::addDefines / apply (render/transfer_function_texture.h)
 //   classify_sample.glsl         (no uniforms: volume.glsl + transfer_function.glsl)
 //   shade_sample.glsl            SampleShadingPiece (below)
@@ -61,6 +62,14 @@ struct TileOrderPiece {
 // volume.glsl: the data volume, its world-to-texture map and the gradient's map to world units.
 struct VolumePiece {
     const GpuVolume& volume;
+    void apply(gl::Program& program) const;
+};
+
+// no_data.glsl: one-sided gradients next to no-data voxels, compiled in (NO_DATA) only for a volume that has
+// them. Every pass that takes gradients of the volume adds its defines and applies it.
+struct NoDataPiece {
+    const GpuVolume& volume;
+    void addDefines(gl::Defines& defines) const;
     void apply(gl::Program& program) const;
 };
 

@@ -1,9 +1,11 @@
 // Classification of one volume sample: TF colour and opacity per unit length, the gradient when a mode or the
 // TF needs it, and the gradient-opacity factor. One definition for the ray caster and the slab pass; the
 // segment's opacity is then correctOpacity(alphaUnit, length) (transfer_function.glsl).
-// Binders: VolumePiece (volume.glsl) and TransferFunctionTexture (transfer_function.glsl, and labels.glsl
-// through its LabelOverlay); no uniforms of its own.
+// Binders: VolumePiece (volume.glsl), NoDataPiece (no_data.glsl, the gradients next to no data) and
+// TransferFunctionTexture (transfer_function.glsl, and labels.glsl through its LabelOverlay); no uniforms of
+// its own.
 #include "shading_modes.glsl"
+#include "no_data.glsl"
 #include "volume.glsl"
 #include "transfer_function.glsl"
 

@@ -3,6 +3,7 @@
 // place that derives it). Texture (0,0,0)..(1,1,1) spans voxel cells, so voxel (i,j,k)'s
 // centre is at ((i,j,k) + 0.5) / dims.
 #include "bindings.glsl"
+#include "no_data.glsl"
 
 layout(binding = BINDING_VOLUME) uniform sampler3D volumeData;
 uniform mat4 worldToTexture;
@@ -15,10 +16,12 @@ vec3 toTexture(vec3 world) { return (worldToTexture * vec4(world, 1.0)).xyz; }
 float sampleTexel(vec3 tex) { return texture(volumeData, tex).r; }
 
 // Gradient of the physical value in world units (value per mm), by central differences one voxel apart
-// along each index axis.
+// along each index axis (one-sided next to no data: no_data.glsl).
 vec3 gradientWorld(vec3 tex) {
-    vec3 d = vec3(sampleTexel(tex + vec3(texelSize.x, 0, 0)) - sampleTexel(tex - vec3(texelSize.x, 0, 0)),
-                  sampleTexel(tex + vec3(0, texelSize.y, 0)) - sampleTexel(tex - vec3(0, texelSize.y, 0)),
-                  sampleTexel(tex + vec3(0, 0, texelSize.z)) - sampleTexel(tex - vec3(0, 0, texelSize.z)));
+    vec3 minus = vec3(sampleTexel(tex - vec3(texelSize.x, 0, 0)), sampleTexel(tex - vec3(0, texelSize.y, 0)),
+                      sampleTexel(tex - vec3(0, 0, texelSize.z)));
+    vec3 plus = vec3(sampleTexel(tex + vec3(texelSize.x, 0, 0)), sampleTexel(tex + vec3(0, texelSize.y, 0)),
+                     sampleTexel(tex + vec3(0, 0, texelSize.z)));
+    vec3 d = differencesAcross(minus, vec3(sampleTexel(tex)), plus);  // the centre: read only with NO_DATA
     return gradientToWorld * (0.5 * d);
 }

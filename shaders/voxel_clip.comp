@@ -6,6 +6,7 @@
 // voxel centre lies in a dilated shape, else c (unaffected). The LAO baseline (and step I) sets
 // testDilation = false: every visible voxel is b.
 #include "bindings.glsl"
+#include "no_data.glsl"
 #include "transfer_function.glsl"
 #include "clip_coverage.glsl"
 #include "visit_bricks.glsl"
@@ -20,7 +21,7 @@ uniform mat3 gradientToWorld;      // index gradient -> world gradient (value pe
 uniform float sampleReachMm;       // the farthest any of a voxel's clip samples lies from its centre
 
 // TF_o of Algorithm 2: the opacity per unit length of the voxel's own value (no interpolation), with the
-// gradient-opacity factor from central differences when the TF has one.
+// gradient-opacity factor from central differences when the TF has one (one-sided next to no data).
 float voxelOpacity(ivec3 v) {
     float alpha = classify(texelFetch(volumeData, v, 0).r).a;
 #ifdef LABELS
@@ -28,9 +29,11 @@ float voxelOpacity(ivec3 v) {
 #endif
     if (useGradientOpacity) {
         ivec3 hi = volumeSize - 1;
-        vec3 d = vec3(texelFetch(volumeData, min(v + ivec3(1, 0, 0), hi), 0).r - texelFetch(volumeData, max(v - ivec3(1, 0, 0), 0), 0).r,
-                      texelFetch(volumeData, min(v + ivec3(0, 1, 0), hi), 0).r - texelFetch(volumeData, max(v - ivec3(0, 1, 0), 0), 0).r,
-                      texelFetch(volumeData, min(v + ivec3(0, 0, 1), hi), 0).r - texelFetch(volumeData, max(v - ivec3(0, 0, 1), 0), 0).r);
+        vec3 minus = vec3(texelFetch(volumeData, max(v - ivec3(1, 0, 0), 0), 0).r, texelFetch(volumeData, max(v - ivec3(0, 1, 0), 0), 0).r,
+                          texelFetch(volumeData, max(v - ivec3(0, 0, 1), 0), 0).r);
+        vec3 plus = vec3(texelFetch(volumeData, min(v + ivec3(1, 0, 0), hi), 0).r, texelFetch(volumeData, min(v + ivec3(0, 1, 0), hi), 0).r,
+                         texelFetch(volumeData, min(v + ivec3(0, 0, 1), hi), 0).r);
+        vec3 d = differencesAcross(minus, vec3(texelFetch(volumeData, v, 0).r), plus);
         alpha *= gradientOpacityFactor(length(gradientToWorld * (0.5 * d)));
     }
     return alpha;

@@ -7,6 +7,7 @@
 #include "gl/bindings.h"
 #include "render/model/setting_limits.h"
 #include "render/model/worker_deal.h"
+#include "render/shader_pieces.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -186,9 +187,11 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
                                         std::uint32_t firstSlot, std::uint32_t slots) {
     gl::Defines defines;
     tf.addDefines(defines);
+    NoDataPiece{volume_}.addDefines(defines);
     gl::Program& p = clipPrograms_.get(defines);
     const VolumeGeometry& g = volume_.geometry();
     tf.apply(p);
+    NoDataPiece{volume_}.apply(p);
     p.set("indexToWorld", glm::mat4(g.indexToWorld));
     p.set("volumeSize", g.dims);
     p.set("antiAliasingSamples", settings_.antiAliasingSamples);

@@ -65,6 +65,7 @@ void SlabPass::run(const SlabInputs& in) {
     gl::Defines clipDefines;
     SampleShadingPiece::addCutFaceDefines(clipDefines, frame.raycast.cutFace, in.clip.count());
     in.clip.addDefines(clipDefines);
+    NoDataPiece{volume}.addDefines(clipDefines);
     gl::Program& p = program(frame.shading, tubes != nullptr, in.tf, std::move(clipDefines));
     if (tubes) {
         // Surfaces in front of the first slice keep full visibility.
@@ -78,6 +79,7 @@ void SlabPass::run(const SlabInputs& in) {
     setLightingUniforms(p, frame, in.tf.material());
     CameraRayPiece{frame}.apply(p);
     VolumePiece{volume}.apply(p);
+    NoDataPiece{volume}.apply(p);
     in.tf.apply(p);
     in.clip.apply(p);
     in.shading.apply(p);

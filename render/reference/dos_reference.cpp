@@ -36,13 +36,15 @@ glm::dvec4 dosPixel(const VolumeData& volume, const TransferFunction& tf, const 
     const auto [eye, direction] = cameraRay(frame, pixel);
     double cosine = glm::dot(direction, forward);
 
-    auto texel = [&](int i, int j, int k) { return volume.normalized(volume.linearIndex(i, j, k)); };
+    VolumeSampler sampler(volume);
     auto insideBox = [&](glm::dvec3 tex) { return glm::all(glm::greaterThanEqual(tex, glm::dvec3(0))) && glm::all(glm::lessThanEqual(tex, glm::dvec3(1))); };
     // Opacity per unit length at a world point (0 outside the volume or inside a clip mesh), and colour.
     auto classify = [&](glm::dvec3 world, glm::dvec3* color) {
         glm::dvec3 tex = glm::dvec3(worldToTexture * glm::dvec4(world, 1.0));
         if (!insideBox(tex) || (inside && inside(world))) return 0.0;
-        double value = volume.valueScale * sampleTrilinear(texel, volume.dims, tex, Wrap::ClampToEdge) + volume.valueOffset;
+        double texel = sampler.texel(tex);
+        if (sampler.noData(texel)) return 0.0;
+        double value = sampler.value(texel);
         if (color) *color = tf.evaluateColor(value);
         return tf.evaluateOpacity(value);
     };

@@ -130,10 +130,7 @@ IsmosLayersPixel ismosLayersPixel(const VolumeData& volume, const TransferFuncti
     const auto [eye, direction] = cameraRay(frame, pixel);
     glm::dvec3 originTex = glm::dvec3(worldToTexture * glm::dvec4(eye, 1.0));
     glm::dvec3 directionTex = glm::dmat3(worldToTexture) * direction;
-    auto texel = [&](int i, int j, int k) { return volume.normalized(volume.linearIndex(i, j, k)); };
-    auto sample = [&](glm::dvec3 tex) { return sampleTrilinear(texel, volume.dims, tex, Wrap::ClampToEdge); };
-    glm::dvec3 texelSize = 1.0 / glm::dvec3(volume.dims);
-    glm::dmat3 gradientToWorld = g.gradientIndexToWorld() * volume.valueScale;
+    VolumeSampler sampler(volume);
     int maxLayers = std::clamp(frame.ismos.layers, 1, 4);
     double range = space.farMm - space.nearMm, cosine = glm::dot(direction, space.forward);
 
@@ -186,15 +183,10 @@ IsmosLayersPixel ismosLayersPixel(const VolumeData& volume, const TransferFuncti
         for (; k <= kLast; ++k) {
             double t = (static_cast<double>(k) + jitter) * stepMm;
             glm::dvec3 tex = originTex + t * directionTex;
-            double value = volume.valueScale * sample(tex) + volume.valueOffset;
-            double alphaUnit = tf.evaluateOpacity(value);
-            if (tf.hasGradientOpacity()) {
-                glm::dvec3 d(sample(tex + glm::dvec3(texelSize.x, 0, 0)) - sample(tex - glm::dvec3(texelSize.x, 0, 0)),
-                             sample(tex + glm::dvec3(0, texelSize.y, 0)) - sample(tex - glm::dvec3(0, texelSize.y, 0)),
-                             sample(tex + glm::dvec3(0, 0, texelSize.z)) - sample(tex - glm::dvec3(0, 0, texelSize.z)));
-                alphaUnit *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
-            }
-            double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), stepMm / tf.unitLengthMm);
+            double texel = sampler.texel(tex);
+            double alphaUnit = tf.evaluateOpacity(sampler.value(texel));
+            if (tf.hasGradientOpacity()) alphaUnit *= tf.evaluateGradientOpacity(glm::length(sampler.gradientWorld(tex)));
+            double alpha = sampler.noData(texel) ? 0.0 : 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), stepMm / tf.unitLengthMm);
             if (alpha <= 0) {
                 open = false;
                 continue;
@@ -321,9 +313,7 @@ double physicalOcclusion(const VolumeData& volume, const TransferFunction& tf, c
                          const PhysicalSettings& ps) {
     VolumeGeometry g{volume.dims, volume.indexToWorld};
     glm::dmat4 worldToTexture = g.worldToTexture();
-    auto texel = [&](int i, int j, int k) { return volume.normalized(volume.linearIndex(i, j, k)); };
-    glm::dvec3 texelSize = 1.0 / glm::dvec3(volume.dims);
-    glm::dmat3 gradientToWorld = g.gradientIndexToWorld() * volume.valueScale;
+    VolumeSampler sampler(volume);
     bool gradientOpacity = tf.hasGradientOpacity();
     glm::dvec3 p = space.toWorld(pTex);
     // Transmittance along the world segment from p towards q, over the volume's extent.
@@ -337,15 +327,10 @@ double physicalOcclusion(const VolumeData& volume, const TransferFunction& tf, c
             glm::dvec3 tex(worldToTexture * glm::dvec4(w, 1.0));
             if (tex.x < 0 || tex.y < 0 || tex.z < 0 || tex.x > 1 || tex.y > 1 || tex.z > 1) continue;
             if (ps.insideClip && ps.insideClip(w)) continue;
-            double value = volume.valueScale * sampleTrilinear(texel, volume.dims, tex, Wrap::ClampToEdge) + volume.valueOffset;
-            double alphaUnit = tf.evaluateOpacity(value);
-            if (gradientOpacity) {
-                auto sample = [&](glm::dvec3 x) { return sampleTrilinear(texel, volume.dims, x, Wrap::ClampToEdge); };
-                glm::dvec3 d(sample(tex + glm::dvec3(texelSize.x, 0, 0)) - sample(tex - glm::dvec3(texelSize.x, 0, 0)),
-                             sample(tex + glm::dvec3(0, texelSize.y, 0)) - sample(tex - glm::dvec3(0, texelSize.y, 0)),
-                             sample(tex + glm::dvec3(0, 0, texelSize.z)) - sample(tex - glm::dvec3(0, 0, texelSize.z)));
-                alphaUnit *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
-            }
+            double texel = sampler.texel(tex);
+            if (sampler.noData(texel)) continue;
+            double alphaUnit = tf.evaluateOpacity(sampler.value(texel));
+            if (gradientOpacity) alphaUnit *= tf.evaluateGradientOpacity(glm::length(sampler.gradientWorld(tex)));
             double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), ps.stepMm / tf.unitLengthMm);
             T *= 1.0 - alpha;
         }

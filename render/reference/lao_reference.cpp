@@ -1,7 +1,6 @@
 #include "render/reference/lao_reference.h"
 
 #include "mesh/coverage.h"
-#include "render/model/volume_geometry.h"
 
 #include <cmath>
 
@@ -13,25 +12,16 @@ VoxelClipping clipVoxels(const VolumeData& volume, const TransferFunction& tf, c
     result.opacity.dims = volume.dims;
     result.opacity.values.assign(volume.voxelCount(), 0.0);
     result.category.assign(volume.voxelCount(), 0);
-    VolumeGeometry g{volume.dims, volume.indexToWorld};
-    glm::dmat3 gradientToWorld = g.gradientIndexToWorld() * volume.valueScale;
+    VolumeSampler sampler(volume);
     auto world = [&](glm::dvec3 index) { return glm::dvec3(volume.indexToWorld * glm::dvec4(index, 1.0)); };
-    auto texel = [&](glm::ivec3 v) {
-        v = glm::clamp(v, glm::ivec3(0), volume.dims - 1);
-        return volume.normalized(volume.linearIndex(v.x, v.y, v.z));
-    };
     for (int k = 0; k < volume.dims.z; ++k)
         for (int j = 0; j < volume.dims.y; ++j)
             for (int i = 0; i < volume.dims.x; ++i) {
                 glm::ivec3 v(i, j, k);
                 glm::dvec3 c(v);
-                double alpha = tf.evaluateOpacity(volume.valueScale * texel(v) + volume.valueOffset);
-                if (tf.hasGradientOpacity()) {
-                    glm::dvec3 d(texel(v + glm::ivec3(1, 0, 0)) - texel(v - glm::ivec3(1, 0, 0)),
-                                 texel(v + glm::ivec3(0, 1, 0)) - texel(v - glm::ivec3(0, 1, 0)),
-                                 texel(v + glm::ivec3(0, 0, 1)) - texel(v - glm::ivec3(0, 0, 1)));
-                    alpha *= tf.evaluateGradientOpacity(glm::length(gradientToWorld * (0.5 * d)));
-                }
+                double texel = sampler.voxelTexel(v);
+                double alpha = sampler.noData(texel) ? 0.0 : tf.evaluateOpacity(sampler.value(texel));
+                if (tf.hasGradientOpacity()) alpha *= tf.evaluateGradientOpacity(glm::length(sampler.voxelGradientWorld(v)));
                 // Algorithm 2 lines 3-10 through the one CPU definition of the sample count (mesh/coverage.h).
                 const int samples = static_cast<int>(offsets.size()) + 9;
                 int visible = samples - clip::insideSampleCount(inside, volume.indexToWorld, c, offsets);

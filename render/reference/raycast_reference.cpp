@@ -60,10 +60,7 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
         if (lights.size() == 4) break;
         lights.emplace_back(worldLightDirection(l, frame.camera), l.color);
     }
-    auto texel = [&](int i, int j, int k) { return volume.normalized(volume.linearIndex(i, j, k)); };
-    auto sample = [&](glm::dvec3 tex) { return sampleTrilinear(texel, volume.dims, tex, Wrap::ClampToEdge); };
-    glm::dvec3 texelSize = 1.0 / glm::dvec3(volume.dims);
-    glm::dmat3 gradientToWorld = g.gradientIndexToWorld() * volume.valueScale;
+    VolumeSampler sampler(volume);
     bool useGradient = frame.shading == ShadingMode::Phong || tf.hasGradientOpacity();
 
     RaycastResult result;
@@ -103,16 +100,11 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
         }
         afterClipped = false;
         glm::dvec3 tex = originTex + t * directionTex;
-        double value = volume.valueScale * sample(tex) + volume.valueOffset;
-        glm::dvec3 gradient(0);
-        if (useGradient) {
-            glm::dvec3 d(sample(tex + glm::dvec3(texelSize.x, 0, 0)) - sample(tex - glm::dvec3(texelSize.x, 0, 0)),
-                         sample(tex + glm::dvec3(0, texelSize.y, 0)) - sample(tex - glm::dvec3(0, texelSize.y, 0)),
-                         sample(tex + glm::dvec3(0, 0, texelSize.z)) - sample(tex - glm::dvec3(0, 0, texelSize.z)));
-            gradient = gradientToWorld * (0.5 * d);
-        }
+        double texel = sampler.texel(tex);
+        double value = sampler.value(texel);
+        glm::dvec3 gradient = useGradient ? sampler.gradientWorld(tex) : glm::dvec3(0);
         double alphaUnit = tf.evaluateOpacity(value) * tf.evaluateGradientOpacity(glm::length(gradient));
-        double alpha = 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), segment / tf.unitLengthMm);
+        double alpha = sampler.noData(texel) ? 0.0 : 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), segment / tf.unitLengthMm);
         if (alpha <= 0) {
             faceT = -1.0;
             continue;

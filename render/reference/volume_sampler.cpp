@@ -1,5 +1,7 @@
 #include "render/reference/volume_sampler.h"
 
+#include "render/model/volume_geometry.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -28,6 +30,44 @@ double sampleTrilinear(const std::function<double(int, int, int)>& texel, glm::i
 
 double Grid::sample(glm::dvec3 tex, Wrap wrap) const {
     return sampleTrilinear([this](int i, int j, int k) { return at(i, j, k); }, dims, tex, wrap);
+}
+
+glm::dvec3 differencesAcross(const NoDataSamples& noData, glm::dvec3 minus, glm::dvec3 centre, glm::dvec3 plus) {
+    glm::dvec3 d;
+    for (int a = 0; a < 3; ++a) {
+        bool below = noData(minus[a]), above = noData(plus[a]);
+        d[a] = below ? (above ? 0.0 : 2.0 * (plus[a] - centre[a])) : (above ? 2.0 * (centre[a] - minus[a]) : plus[a] - minus[a]);
+    }
+    return d;
+}
+
+VolumeSampler::VolumeSampler(const VolumeData& volume)
+    : volume_(volume), noData_(volume), texelSize_(1.0 / glm::dvec3(volume.dims)),
+      gradientToWorld_(VolumeGeometry{volume.dims, volume.indexToWorld}.gradientIndexToWorld() * volume.valueScale) {}
+
+double VolumeSampler::texel(glm::dvec3 tex) const {
+    auto at = [this](int i, int j, int k) { return volume_.normalized(volume_.linearIndex(i, j, k)); };
+    return sampleTrilinear(at, volume_.dims, tex, Wrap::ClampToEdge);
+}
+
+double VolumeSampler::voxelTexel(glm::ivec3 v) const {
+    v = glm::clamp(v, glm::ivec3(0), volume_.dims - 1);
+    return volume_.normalized(volume_.linearIndex(v.x, v.y, v.z));
+}
+
+glm::dvec3 VolumeSampler::gradientWorld(glm::dvec3 tex) const {
+    glm::dvec3 minus(texel(tex - glm::dvec3(texelSize_.x, 0, 0)), texel(tex - glm::dvec3(0, texelSize_.y, 0)),
+                     texel(tex - glm::dvec3(0, 0, texelSize_.z)));
+    glm::dvec3 plus(texel(tex + glm::dvec3(texelSize_.x, 0, 0)), texel(tex + glm::dvec3(0, texelSize_.y, 0)),
+                    texel(tex + glm::dvec3(0, 0, texelSize_.z)));
+    glm::dvec3 centre(noData_.any ? texel(tex) : 0.0);  // only the one-sided differences read it
+    return gradientToWorld_ * (0.5 * differencesAcross(noData_, minus, centre, plus));
+}
+
+glm::dvec3 VolumeSampler::voxelGradientWorld(glm::ivec3 v) const {
+    glm::dvec3 minus(voxelTexel(v - glm::ivec3(1, 0, 0)), voxelTexel(v - glm::ivec3(0, 1, 0)), voxelTexel(v - glm::ivec3(0, 0, 1)));
+    glm::dvec3 plus(voxelTexel(v + glm::ivec3(1, 0, 0)), voxelTexel(v + glm::ivec3(0, 1, 0)), voxelTexel(v + glm::ivec3(0, 0, 1)));
+    return gradientToWorld_ * (0.5 * differencesAcross(noData_, minus, glm::dvec3(voxelTexel(v)), plus));
 }
 
 }  // namespace curette::reference

@@ -3,6 +3,9 @@
 // (render/transfer_function_texture.h). A NaN background must render exactly like the same volume with the
 // background at its lowest value under a TF that is transparent there, and must stay transparent under a TF
 // that is opaque at every value.
+#include "render/passes/ambient_occlusion.h"
+#include "render/reference/lao_reference.h"
+#include "render/reference/raycast_reference.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
 
@@ -109,6 +112,96 @@ TEST(NoData, StaysTransparentUnderATfOpaqueAtEveryValue) {
         // Rays through the background only: fog with zeros, nothing at all with NaN.
         EXPECT_GT(fogOnly, 300u) << shadingModeName(mode);
     }
+}
+
+// Gradient opacity next to no data: a central difference that reaches a no-data voxel sees the stored value
+// far below the data, a gradient as large as the table goes, and so the border of the no-data region became
+// an opaque shell. Both neighbours are data here, or the difference is one-sided, so a uniform volume with a
+// hole stays uniform up to the hole. The hole is a box of NaN, long along y.
+VolumeData uniformVolume(bool withHole) {
+    glm::ivec3 dims(40);
+    return test::makeVolume(dims, test::centredAffine(dims), ScalarType::Float32, [&](glm::dvec3 p) {
+        bool inHole = std::abs(p.x) < 6 && std::abs(p.z) < 6 && std::abs(p.y) < 14;
+        return withHole && inHole ? std::numeric_limits<double>::quiet_NaN() : 100.0;
+    });
+}
+constexpr std::uint64_t kHoleVoxels = 12 * 12 * 28;
+
+// Opacity at every value (so the twins must leave no-data samples out as the GPU does), and a gradient
+// factor of a tenth where the volume is flat, all of it at an edge.
+TransferFunction gradientOpacityTf() {
+    TransferFunction tf;
+    tf.color = {{0, {0.8, 0.6, 0.5}}, {255, {1, 1, 1}}};
+    tf.opacity = {{0, 0.1}, {255, 0.1}};
+    tf.gradientOpacity = {{0, 0.1}, {20, 1.0}};
+    tf.material = {0.25, 0.7, 0.4, 24.0};
+    return tf;
+}
+
+// Rays along the hole's faces (the view looks along its long axis) must gather no more opacity than through
+// the same volume without the hole, and the GPU must match its CPU twin.
+TEST(NoData, GradientOpacitySeesNoWallAtTheBorderOfNoData) {
+    glContext();
+    VolumeData withHole = uniformVolume(true), uniform = uniformVolume(false);
+    ASSERT_EQ(withHole.noDataVoxels, kHoleVoxels);
+    TransferFunction tf = gradientOpacityTf();
+    ASSERT_TRUE(tf.hasGradientOpacity());
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong})
+        for (double azimuth : {0.0, 25.0}) {
+            FrameDescription f = frame(mode, azimuth);
+            f.camera.elevationDeg = 0;
+            f.size = {64, 64};
+            Renderer renderer(glContext(), withHole, tf);
+            renderer.render(f);
+            Image a = renderer.readImage();
+            Image b = render(uniform, tf, f);
+            double step = renderer.resolveStepMm(f.raycast);
+            float excess = 0, holeDimmed = 0;
+            double twinError = 0;
+            for (int y = 0; y < f.size.y; ++y)
+                for (int x = 0; x < f.size.x; ++x) {
+                    glm::vec4 got = a.at(x, y);
+                    excess = std::max(excess, got.a - b.at(x, y).a);
+                    holeDimmed = std::max(holeDimmed, b.at(x, y).a - got.a);
+                    glm::dvec4 expected = reference::raycastPixel(withHole, tf, f, step, {x, y}).rgba;
+                    for (int c = 0; c < 4; ++c) twinError = std::max(twinError, std::abs(double(got[c]) - expected[c]));
+                }
+            std::printf("[ no data ] gradient opacity, %s azimuth %.0f: excess opacity %.3e, twin max error %.2e\n",
+                        shadingModeName(mode), azimuth, excess, twinError);
+            EXPECT_GT(holeDimmed, 0.1f) << "the view must see the hole";
+            // Not bit for bit: only the volume with no data gets the table's transparent lead (the first test).
+            EXPECT_LT(excess, 1e-4f) << shadingModeName(mode) << " azimuth " << azimuth;
+            EXPECT_LT(twinError, 5e-4) << shadingModeName(mode) << " azimuth " << azimuth;
+        }
+}
+
+// Step IV's V_o takes the gradient of each voxel (voxel_clip.comp): next to the hole no voxel may be more
+// opaque than the flat volume's, the hole's own voxels are transparent, and the GPU matches its twin (V_o is
+// stored in R16).
+TEST(NoData, StepIvOpacitySeesNoWallAtTheBorderOfNoData) {
+    glContext();
+    VolumeData volume = uniformVolume(true);
+    TransferFunction tf = gradientOpacityTf();
+    GpuVolume gpu(glContext().info(), volume);
+    TransferFunctionTexture table(tf, volume.valueScale, volume.valueOffset, gpu.hasNoData());
+    AmbientOcclusion ao(gpu, LaoSettings{});
+    ao.precompute(table);
+    std::vector<std::uint16_t> opacity = ao.readOpacity();
+    auto nowhere = [](glm::dvec3) { return false; };
+    reference::VoxelClipping twin = reference::clipVoxels(volume, tf, nowhere, nowhere, {});
+    const double flat = tf.evaluateOpacity(100.0) * tf.evaluateGradientOpacity(0.0);
+    double excess = 0, twinError = 0;
+    std::size_t holeVoxels = 0;
+    for (std::size_t i = 0; i < opacity.size(); ++i) {
+        double got = opacity[i] / 65535.0;
+        excess = std::max(excess, got - flat);
+        twinError = std::max(twinError, std::abs(got - twin.opacity.values[i]));
+        if (volume.isNoData(i)) holeVoxels += got == 0.0;
+    }
+    std::printf("[ no data ] step IV gradient opacity: excess opacity %.3e, twin max error %.2e\n", excess, twinError);
+    EXPECT_LT(excess, 1e-4);
+    EXPECT_LT(twinError, 1e-4);
+    EXPECT_EQ(holeVoxels, kHoleVoxels);
 }
 
 TEST(NoData, TheTableIsTransparentFarBelowItsFirstPointAndClampsAsTheTfBetween) {
