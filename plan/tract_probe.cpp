@@ -40,14 +40,14 @@ void checkPoints(const Tractogram& tracts) {
 
 std::vector<glm::dvec3> tractProbePoints(const Tractogram& tracts, double stepMm, std::vector<std::uint32_t>& streamlineOffsets) {
     if (!(stepMm > 0.0) || !std::isfinite(stepMm))
-        throw InputError(tracts.source, "probe_step_mm", "a positive length", number(stepMm));
+        throw InputError(tracts.source, "report.tract_step_mm", "a positive length", number(stepMm));
     checkPoints(tracts);
     double total = 0;
     for (std::size_t s = 0; s < tracts.streamlineCount(); ++s)
         for (std::uint32_t p = tracts.offsets[s]; p < tracts.offsets[s + 1]; ++p)
             total += 1.0 + (p > tracts.offsets[s] ? pointsBetween(glm::dvec3(tracts.points[p - 1]), glm::dvec3(tracts.points[p]), stepMm) : 0.0);
     if (total > double(kMaxTractProbePoints))
-        throw InputError(tracts.source, "probe_step_mm",
+        throw InputError(tracts.source, "report.tract_step_mm",
                          "a step giving at most " + std::to_string(kMaxTractProbePoints) +
                              " probe points (segment length / step, summed over the streamlines)",
                          number(stepMm) + " mm, which gives " + number(total) + " points");

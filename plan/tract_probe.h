@@ -30,7 +30,7 @@ constexpr double kMaxTractCoordinateMm = 1e5;
 // [streamlineOffsets[s], streamlineOffsets[s + 1]) (streamlineCount + 1 offsets). Each original point is
 // kept; a segment of length L gets ceil(L / stepMm) - 1 evenly spaced points between its ends. Throws
 // InputError naming "points[i]" for a point that is not finite or lies beyond kMaxTractCoordinateMm, and
-// "probe_step_mm" unless stepMm is positive, finite and gives at most kMaxTractProbePoints points.
+// "report.tract_step_mm" unless stepMm is positive, finite and gives at most kMaxTractProbePoints points.
 std::vector<glm::dvec3> tractProbePoints(const Tractogram& tracts, double stepMm, std::vector<std::uint32_t>& streamlineOffsets);
 
 // 1 where `inside` says the point is in the clip region, else 0.

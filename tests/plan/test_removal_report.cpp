@@ -357,9 +357,9 @@ Tractogram oneSegment(glm::vec3 a, glm::vec3 b) {
 
 TEST(TractProbe, ATinyStepIsAnInputErrorNamingTheStep) {
     const Tractogram t = oneSegment({0, 0, 0}, {1, 0, 0});
-    expectProbeInputError(t, 1e-9, "probe_step_mm");   // 1e9 points on one millimetre
-    expectProbeInputError(t, 1e-12, "probe_step_mm");  // more points than an int counts
-    expectProbeInputError(t, 1e-300, "probe_step_mm");
+    expectProbeInputError(t, 1e-9, "report.tract_step_mm");   // 1e9 points on one millimetre
+    expectProbeInputError(t, 1e-12, "report.tract_step_mm");  // more points than an int counts
+    expectProbeInputError(t, 1e-300, "report.tract_step_mm");
 }
 
 TEST(TractProbe, TheTotalOverAllStreamlinesIsCapped) {
@@ -371,7 +371,7 @@ TEST(TractProbe, TheTotalOverAllStreamlinesIsCapped) {
         t.points.emplace_back(5e4f, float(s), 0.0f);
         t.offsets.push_back(static_cast<std::uint32_t>(t.points.size()));
     }
-    expectProbeInputError(t, 0.01, "probe_step_mm");
+    expectProbeInputError(t, 0.01, "report.tract_step_mm");
 }
 
 TEST(TractProbe, AFarPointIsAnInputErrorNamingThePoint) {
