@@ -1,7 +1,9 @@
 #include "plan/distance_transform.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 namespace curette::plan {
 
@@ -51,37 +53,65 @@ void lowerEnvelopeOfParabolas(double* f, int n, double spacing, std::vector<int>
     for (int q = 0; q < n; ++q) f[q] = at(out, q);
 }
 
+namespace {
+
+// Runs body(first, end, scratch) over [0, lines) split among the machine's threads: the lines of one pass
+// are independent, so the result does not depend on the split.
+struct LineScratch {
+    std::vector<int> v;
+    std::vector<double> z, out, line;
+};
+
+template <typename Body>
+void overLines(std::size_t lines, const Body& body) {
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 8);
+    const std::size_t per = (lines + threads - 1) / threads;
+    std::vector<std::thread> workers;
+    for (std::size_t t = 1; t < threads && t * per < lines; ++t)
+        workers.emplace_back([&, t] {
+            LineScratch scratch;
+            body(t * per, std::min(lines, (t + 1) * per), scratch);
+        });
+    LineScratch scratch;
+    body(0, std::min(lines, per), scratch);
+    for (std::thread& w : workers) w.join();
+}
+
+}  // namespace
+
 std::vector<double> squaredDistanceTransformMm(glm::ivec3 dims, glm::dvec3 spacingMm, const std::vector<std::uint8_t>& isFeature) {
     const std::size_t nx = static_cast<std::size_t>(dims.x), ny = static_cast<std::size_t>(dims.y),
                       nz = static_cast<std::size_t>(dims.z);
     std::vector<double> d(nx * ny * nz, kInfinity);
     for (std::size_t i = 0; i < d.size(); ++i)
         if (isFeature[i]) d[i] = 0.0;
-    std::vector<int> v;
-    std::vector<double> z, out, line;
 
     // Pass along x: rows are contiguous. A row without features stays infinite.
-    for (std::size_t row = 0; row < ny * nz; ++row) {
-        double* r = d.data() + row * nx;
-        bool any = false;
-        for (std::size_t i = 0; i < nx && !any; ++i) any = r[i] == 0.0;
-        if (any) lowerEnvelopeOfParabolas(r, dims.x, spacingMm.x, v, z, out);
-    }
+    overLines(ny * nz, [&](std::size_t first, std::size_t end, LineScratch& s) {
+        for (std::size_t row = first; row < end; ++row) {
+            double* r = d.data() + row * nx;
+            bool any = false;
+            for (std::size_t i = 0; i < nx && !any; ++i) any = r[i] == 0.0;
+            if (any) lowerEnvelopeOfParabolas(r, dims.x, spacingMm.x, s.v, s.z, s.out);
+        }
+    });
     // Passes along y and z on strided lines, copied into a buffer. A line that is infinite throughout (no
     // feature in its plane so far) is skipped: most of the grid for a small feature set.
     auto strided = [&](std::size_t count, std::size_t stride, double spacing, auto lineStart, std::size_t lines) {
-        line.resize(count);
-        for (std::size_t l = 0; l < lines; ++l) {
-            const std::size_t start = lineStart(l);
-            bool any = false;
-            for (std::size_t q = 0; q < count; ++q) {
-                line[q] = d[start + q * stride];
-                any = any || line[q] != kInfinity;
+        overLines(lines, [&](std::size_t first, std::size_t end, LineScratch& s) {
+            s.line.resize(count);
+            for (std::size_t l = first; l < end; ++l) {
+                const std::size_t start = lineStart(l);
+                bool any = false;
+                for (std::size_t q = 0; q < count; ++q) {
+                    s.line[q] = d[start + q * stride];
+                    any = any || s.line[q] != kInfinity;
+                }
+                if (!any) continue;
+                lowerEnvelopeOfParabolas(s.line.data(), static_cast<int>(count), spacing, s.v, s.z, s.out);
+                for (std::size_t q = 0; q < count; ++q) d[start + q * stride] = s.line[q];
             }
-            if (!any) continue;
-            lowerEnvelopeOfParabolas(line.data(), static_cast<int>(count), spacing, v, z, out);
-            for (std::size_t q = 0; q < count; ++q) d[start + q * stride] = line[q];
-        }
+        });
     };
     strided(ny, nx, spacingMm.y, [&](std::size_t l) { return (l / nx) * nx * ny + l % nx; }, nx * nz);
     strided(nz, nx * ny, spacingMm.z, [&](std::size_t l) { return l; }, nx * ny);

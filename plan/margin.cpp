@@ -295,13 +295,25 @@ Margin refinedMargin(glm::ivec3 dims, const glm::dmat4& indexToWorld, const std:
 }
 
 Margin refinedMarginToPoints(glm::ivec3 dims, const glm::dmat4& indexToWorld, const std::vector<Touch>& touch,
-                             const std::vector<glm::dvec3>& points, const std::vector<glm::dvec3>& sampleOffsets,
+                             const std::vector<glm::dvec3>& points, double reachMm, const std::vector<glm::dvec3>& sampleOffsets,
                              const PointsInside& inside) {
     glm::ivec3 lo, hi;
     touchedBox(dims, touch, lo, hi);
     Margin none;
     none.mm = std::numeric_limits<double>::infinity();
     if (hi.x < 0 || points.empty()) return none;
+    {
+        // Only cells within reach of the points can hold the nearest approach.
+        const glm::dmat4 toIndex = glm::inverse(indexToWorld);
+        glm::dvec3 a(std::numeric_limits<double>::infinity()), b(-std::numeric_limits<double>::infinity());
+        for (const glm::dvec3& p : points) {
+            const glm::dvec3 q(toIndex * glm::dvec4(p, 1.0));
+            a = glm::min(a, q), b = glm::max(b, q);
+        }
+        const glm::dvec3 grow = reachMm / gridSpacingMm(indexToWorld) + 1.0;
+        lo = glm::max(lo, glm::ivec3(glm::floor(a - grow))), hi = glm::min(hi, glm::ivec3(glm::ceil(b + grow)));
+        if (glm::any(glm::lessThan(hi, lo))) return none;
+    }
     // The points hashed into buckets of about 4 mm in index space; a query searches shells of buckets
     // outwards until no unsearched bucket can hold a nearer point.
     const glm::dvec3 spacing = gridSpacingMm(indexToWorld);

@@ -72,11 +72,16 @@ Margin refinedMargin(glm::ivec3 dims, const glm::dmat4& indexToWorld, const std:
                      const std::vector<std::uint8_t>& inStructure, const std::vector<glm::dvec3>& sampleOffsets,
                      const PointsInside& inside);
 
-// The same to a set of world points (a bundle's probe points): the distance from what the carve removes to
-// the nearest point. Exact to the points; to the streamlines through them, larger by at most half the probe
-// step where the nearest approach falls between points.
+// The same to a set of world points (a bundle's probe points near the carve): the distance from what the
+// carve removes to the nearest point, over the touched cells within `reachMm` of the points. Exact to the
+// points; to the streamlines through them, larger by at most half the probe step where the nearest approach
+// falls between points.
 Margin refinedMarginToPoints(glm::ivec3 dims, const glm::dmat4& indexToWorld, const std::vector<Touch>& touch,
-                             const std::vector<glm::dvec3>& points, const std::vector<glm::dvec3>& sampleOffsets,
+                             const std::vector<glm::dvec3>& points, double reachMm, const std::vector<glm::dvec3>& sampleOffsets,
                              const PointsInside& inside);
+
+// Bundles farther than this from the touched cells keep their cell gap (and its uncertainty, a cell diagonal):
+// refining costs a search per cell that grows with the distance, and a millimetre matters less there.
+inline constexpr double kRefineBundlesWithinMm = 10.0;
 
 }  // namespace curette::plan

@@ -353,10 +353,17 @@ BundleRow bundleRow(const BundleInput& in, const Removal& removal, const Report&
             }
         }
     }
-    // Refined through the clip test when it is at hand (plan/margin.h): the gap to the nearest probe point, within
-    // half a probe step of the gap to the streamlines.
-    if (inside && row.cut == 0 && std::isfinite(row.marginMm)) {
-        const Margin m = refinedMarginToPoints(report.dims, removal.indexToWorld, removal.touch, probe.points,
+    // Refined through the clip test when it is at hand and the bundle is near (plan/margin.h): the gap to the
+    // nearest probe point, within half a probe step of the gap to the streamlines. The cell gap is never larger
+    // than the true one and smaller by at most a cell diagonal, so the nearest approach lies at the points
+    // whose cell gap is within a diagonal of the smallest, and within that reach of them (half a diagonal more
+    // for the trilinear interpolation of the gaps between cell corners).
+    if (inside && row.cut == 0 && row.marginMm <= kRefineBundlesWithinMm) {
+        const double reach = row.marginMm + 1.5 * row.marginUncertaintyMm;
+        std::vector<glm::dvec3> near;
+        for (const glm::dvec3& p : probe.points)
+            if (removal.gaps.distanceMm(p) <= reach) near.push_back(p);
+        const Margin m = refinedMarginToPoints(report.dims, removal.indexToWorld, removal.touch, near, reach,
                                                clip::antiAliasingOffsets(report.samplesPerVoxel - 9), inside);
         row.marginMm = m.mm;
         row.marginUncertaintyMm = m.uncertaintyMm + 0.5 * probe.stepMm;
