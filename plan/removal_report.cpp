@@ -119,6 +119,19 @@ std::vector<std::string> Report::warnings() const {
     return out;
 }
 
+std::vector<std::uint8_t> reportTissue(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
+                                       const std::vector<LabelSet>& labelSets, const VoxelBox& box) {
+    std::vector<std::uint8_t> tissue = tissueInBox(volume, tf, settings, labelSets.empty() ? nullptr : labelSets.front().labels, box);
+    if (settings.tissue == TissueRule::Opacity) {
+        std::vector<ShownLabels> shown;
+        for (const LabelSet& set : labelSets)
+            if (!set.shownOpacity.empty()) shown.push_back({set.labels, &set.shownOpacity});
+        addShownLabels(tissue, box, shown, settings.opacityThreshold);
+    }
+    for (const LabelSet& set : labelSets) addProtectedLabels(tissue, box, *set.labels, set.protectedIds);
+    return tissue;
+}
+
 std::vector<std::uint8_t> removedRegionOnGrid(const RemovalField& field, const std::vector<std::uint8_t>& tissueInFieldBox) {
     const glm::ivec3 dims = field.gridDims;
     std::vector<std::uint8_t> region(std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z), 0);
@@ -182,8 +195,7 @@ Removal measureTissue(Report& report, const VolumeData& volume, const TransferFu
     removal.indexToWorld = volume.indexToWorld;
     removal.box = field.box();
     const VoxelBox& box = removal.box;
-    removal.tissue = tissueInBox(volume, tf, settings, labelSets.empty() ? nullptr : labelSets.front().labels, box);
-    for (const LabelSet& set : labelSets) addProtectedLabels(removal.tissue, box, *set.labels, set.protectedIds);
+    removal.tissue = reportTissue(volume, tf, settings, labelSets, box);
     removal.removedRegion = removedRegionOnGrid(field, removal.tissue);
     removal.touch.assign(volume.voxelCount(), Touch::None);
     std::uint64_t removedSamples = 0;  // sum of t(v) * count(v): the total in units of voxel / (9 + N)

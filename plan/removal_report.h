@@ -51,7 +51,14 @@ struct LabelSet {
     const LabelMap* labels = nullptr;
     const LabelTable* table = nullptr;
     std::vector<int> protectedIds;   // always reported; a touch is a warning
+    std::vector<double> shownOpacity;  // by id: the opacity per unit length it is drawn with, 0 when not shown
 };
+
+// The tissue over `box` (x fastest) as the report counts it: the tissue rule (plan/tissue_mask.h), shown
+// labels with the opacity they are drawn with under the opacity rule, and protected labels always. The
+// exports (removed region, cavity) take it too.
+std::vector<std::uint8_t> reportTissue(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
+                                       const std::vector<LabelSet>& labelSets, const VoxelBox& box);
 
 // A bundle and its probe (tractProbePoints with inside flags from the GPU or insideFlagsCpu); `tracts` must
 // outlive the call.
@@ -115,7 +122,7 @@ struct Report {
 };
 
 // The removed region R on the field's whole grid (1 where tissue and count / (9 + N) >= 0.5; the definition
-// above), from the tissue over the field's box (plan/tissue_mask.h tissueInBox; empty: every voxel is tissue).
+// above), from the tissue over the field's box (reportTissue; empty: every voxel is tissue).
 // The report's margins and the exported labelmap both start from it.
 std::vector<std::uint8_t> removedRegionOnGrid(const RemovalField& field, const std::vector<std::uint8_t>& tissueInFieldBox);
 

@@ -48,6 +48,21 @@ std::vector<std::uint8_t> tissueInBox(const VolumeData& volume, const TransferFu
     return tissue;
 }
 
+void addShownLabels(std::vector<std::uint8_t>& tissue, const VoxelBox& box, const std::vector<ShownLabels>& shown, double threshold) {
+    if (shown.empty()) return;
+    std::size_t at = 0;
+    for (int k = box.origin.z; k < box.origin.z + box.size.z; ++k)
+        for (int j = box.origin.y; j < box.origin.y + box.size.y; ++j)
+            for (int i = box.origin.x; i < box.origin.x + box.size.x; ++i, ++at)
+                for (const ShownLabels& set : shown) {
+                    const std::uint16_t id = set.labels->ids[set.labels->linearIndex(i, j, k)];
+                    const double opacity = id < set.opacityById->size() ? (*set.opacityById)[id] : 0.0;
+                    if (opacity <= 0.0) continue;   // not shown here: the next set may show one
+                    if (opacity > threshold) tissue[at] = 1;
+                    break;
+                }
+}
+
 void addProtectedLabels(std::vector<std::uint8_t>& tissue, const VoxelBox& box, const LabelMap& labels, const std::vector<int>& protectedIds) {
     if (protectedIds.empty()) return;
     std::vector<bool> isProtected(65536, false);

@@ -31,6 +31,16 @@ struct ReportSettings {
 std::vector<std::uint8_t> tissueInBox(const VolumeData& volume, const TransferFunction& tf, const ReportSettings& settings,
                                       const LabelMap* labels, const VoxelBox& box);
 
+// Under the opacity rule a shown label counts with the opacity it is drawn with: the renderer classifies a
+// sample max(TF opacity, label opacity) with the label of the first set showing one there (shaders/labels.glsl,
+// scene/scene_labels.h labelRendering). `shown` lists the sets in scene order, each with its opacity per id
+// (0: not shown); a voxel becomes tissue where the first set showing its label gives more than the threshold.
+struct ShownLabels {
+    const LabelMap* labels = nullptr;
+    const std::vector<double>* opacityById = nullptr;
+};
+void addShownLabels(std::vector<std::uint8_t>& tissue, const VoxelBox& box, const std::vector<ShownLabels>& shown, double threshold);
+
 // A protected label is tissue whatever the rule and the TF: a carve into a structure the TF hides (a glass TF,
 // a gyrus drawn by its label's style) still removes it and warns. Marks `labels`' voxels with one of
 // `protectedIds` in `tissue` (over `box`, as tissueInBox made it).

@@ -47,7 +47,15 @@ std::string fileName(const std::string& name) {
 
 CarveReporter::CarveReporter(const LoadedScene& loaded, const VolumeGeometry& geometry)
     : loaded_(loaded), settings_(resolveSettings(loaded)), probe_(geometry, plan::kReportAntiAliasingSamples) {
-    for (const LoadedLabelSet& set : loaded.labels) labelSets_.push_back({set.name, &set.onScanGrid, &set.table, set.protectedIds});
+    for (const LoadedLabelSet& set : loaded.labels) {
+        plan::LabelSet s{set.name, &set.onScanGrid, &set.table, set.protectedIds};
+        // The opacity the renderer draws each id with (scene/scene_labels.h labelRendering: the set's opacity
+        // where the id is shown).
+        s.shownOpacity.assign(set.shown.size(), 0.0);
+        for (std::size_t id = 1; id < set.shown.size(); ++id)
+            if (set.shown[id]) s.shownOpacity[id] = set.opacity;
+        labelSets_.push_back(std::move(s));
+    }
     for (std::size_t i = 0; i < loaded.scene.tubes.size(); ++i) {
         plan::BundleInput b;
         b.name = loaded.scene.tubes[i].name;
@@ -74,8 +82,7 @@ plan::Report CarveReporter::compute(clip::ClipMeshSet& clip) {
 
 std::vector<std::uint8_t> CarveReporter::tissueInField() const {
     if (field_.insideSamples.empty()) return {};
-    const LabelMap* firstLabels = loaded_.labels.empty() ? nullptr : &loaded_.labels.front().onScanGrid;
-    return plan::tissueInBox(loaded_.volume, loaded_.scene.transferFunction, settings_, firstLabels, field_.box());
+    return plan::reportTissue(loaded_.volume, loaded_.scene.transferFunction, settings_, labelSets_, field_.box());
 }
 
 void CarveReporter::write(const fs::path& dir, const plan::Report& report, const InteractionState& state,

@@ -145,6 +145,45 @@ TEST(RemovalReport, AProtectedLabelIsTissueWhateverTheTransferFunction) {
     EXPECT_EQ(r.warnings().size(), 1u);
 }
 
+// A shown label is drawn with its own opacity over a TF that hides the tissue (the renderer classifies
+// max(TF, label)), so the report counts it as tissue too; a label not shown stays air. And the exports take
+// their tissue from the same rule (reportTissue), protected labels included.
+TEST(RemovalReport, AShownLabelIsTissueAsTheRendererDrawsIt) {
+    const glm::dvec3 c(0.31, 0.12, -0.27);
+    const double radius = 7.0;
+    Scene s = carve({1.0, 1.0, 1.0}, 14.0, sphere(c, radius));
+    LabelMap labels = labelsFrom(s, [&](glm::dvec3 p) { return p.x < c.x ? 4 : p.y < c.y ? 5 : 6; });
+    LabelTable table;
+    table.entries = {{4, "protected gyrus", glm::dvec4(1.0)}, {5, "shown", glm::dvec4(1.0)}, {6, "hidden", glm::dvec4(1.0)}};
+    LabelSet set{"atlas", &labels, &table, {4}};
+    set.shownOpacity.assign(7, 0.0);
+    set.shownOpacity[5] = 0.6;   // drawn at 0.6 per unit length; 4 and 6 not shown
+    VolumeData air = uniformVolume(s.dims, s.affine, 0);   // transparent under stepTf()
+    Report glass = computeReport(air, stepTf(), ReportSettings{}, s.field, {set}, {});
+    Report opaque = computeReport(s.volume, stepTf(), ReportSettings{}, s.field, {set}, {});
+    const StructureRow* shown = row(glass, 5);
+    ASSERT_NE(shown, nullptr) << "the shown label is tissue, so the carve touches it";
+    EXPECT_EQ(shown->removedMl, row(opaque, 5)->removedMl);
+    EXPECT_EQ(row(glass, 6), nullptr) << "a label not shown, in transparent voxels, is not tissue";
+    EXPECT_NEAR(glass.removedMl, row(opaque, 4)->removedMl + row(opaque, 5)->removedMl, 1e-12);
+    // Above the label's opacity it is air again.
+    ReportSettings strict;
+    strict.opacityThreshold = 0.7;
+    EXPECT_EQ(row(computeReport(air, stepTf(), strict, s.field, {set}, {}), 5), nullptr);
+    // The exports' tissue is the report's: protected and shown labels in, the hidden one out.
+    const std::vector<std::uint8_t> tissue = reportTissue(air, stepTf(), ReportSettings{}, {set}, s.field.box());
+    std::size_t at = 0, protectedIn = 0, shownIn = 0, hiddenIn = 0;
+    for (int k = 0; k < s.field.size.z; ++k)
+        for (int j = 0; j < s.field.size.y; ++j)
+            for (int i = 0; i < s.field.size.x; ++i, ++at) {
+                const int id = labels.id(s.field.origin.x + i, s.field.origin.y + j, s.field.origin.z + k);
+                (id == 4 ? protectedIn : id == 5 ? shownIn : hiddenIn) += tissue[at];
+            }
+    EXPECT_GT(protectedIn, 0u);
+    EXPECT_GT(shownIn, 0u);
+    EXPECT_EQ(hiddenIn, 0u);
+}
+
 // A sphere of radius 8 at c carves; a slab label occupies the voxel centres with z >= zc. With the top of the
 // sphere at t = c.z + 8 and s the z spacing (R's top centre lies in (t - s, t]):
 //   zc < t (intrusion): depth = (top centre of R in the slab) - (zc - s), within s/2 of t - zc + s/2,

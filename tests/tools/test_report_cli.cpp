@@ -188,6 +188,27 @@ TEST(ReportCli, TissueCanBeALabelSet) {
     }
 }
 
+TEST(ReportCli, AShownLabelIsTissueAtTheOpacityItIsDrawnWith) {
+    // Above the TF's opacity (0.5) nothing but the protected "right" is tissue; with every label shown at 0.9,
+    // as the image draws them, the whole sphere is. The exported region follows the report.
+    const double sphereMl = clip::makeSphere(kRadius, 4).signedVolume() / 1000.0;
+    const double leftMl = capVolume(kRadius, kRadius - (kCentre.x - 19.5)) / 1000.0;
+    for (bool shown : {false, true}) {
+        fs::path dir = scratch(shown ? "shown-labels" : "hidden-labels");
+        fs::path scene = writePlanScene(dir, ",\n  \"report\": {\"opacity_threshold\": 0.7}");
+        std::string text = fileText(scene);
+        const std::string from = R"("protected": ["right"]})";
+        if (shown) text.replace(text.find(from), from.size(), R"("protected": ["right"], "show": "all", "opacity": 0.9})");
+        std::ofstream(scene) << text;
+        Invocation r = runCurette("report --scene " + scene.string() + " --out " + (dir / "out").string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        nlohmann::json report = readJson(dir / "out" / "report.json");
+        const double expected = shown ? sphereMl : sphereMl - leftMl;
+        EXPECT_NEAR(report.at("removed_ml").get<double>(), expected, 0.03 * expected) << (shown ? "shown" : "hidden");
+        EXPECT_EQ(rowsByName(report.at("structures")).count("left"), shown ? 1u : 0u);
+    }
+}
+
 TEST(ReportCli, BadArgumentsAndBadLabelNamesAreOneErrorLine) {
     fs::path dir = scratch("bad");
     fs::path scene = writePlanScene(dir);
