@@ -49,17 +49,28 @@ CarveReporter::CarveReporter(const LoadedScene& loaded, const VolumeGeometry& ge
     : loaded_(loaded), settings_(resolveSettings(loaded)), probe_(geometry, plan::kReportAntiAliasingSamples) {
     for (const LoadedLabelSet& set : loaded.labels) labelSets_.push_back({set.name, &set.onScanGrid, &set.table, set.protectedIds});
     for (std::size_t i = 0; i < loaded.scene.tubes.size(); ++i) {
-        plan::BundleInput b;
-        b.name = loaded.scene.tubes[i].name;
+        plan::BundleInput b;   // named and protected by the state compute() reports
         b.tracts = &loaded.tracts[i];
-        b.isProtected = loaded.scene.tubes[i].protectedBundle;
         b.probe.stepMm = loaded.scene.report.tractStepMm;
         b.probe.points = plan::tractProbePoints(loaded.tracts[i], b.probe.stepMm, b.probe.streamlineOffsets);
         bundles_.push_back(std::move(b));
     }
 }
 
-plan::Report CarveReporter::compute(clip::ClipMeshSet& clip) {
+ReportInputs reportInputs(const clip::ClipMeshSet& clip, const InteractionState& state) {
+    return {clip.version(), state.transferFunctionVersion, state.tubesVersion};
+}
+
+plan::Report CarveReporter::compute(clip::ClipMeshSet& clip, const InteractionState& state) {
+    if (state.tubes.size() != bundles_.size())
+        throw std::logic_error("CarveReporter::compute: a state with " + std::to_string(state.tubes.size()) + " bundles for a scene with " +
+                               std::to_string(bundles_.size()));
+    transferFunction_ = state.transferFunction;
+    for (std::size_t i = 0; i < bundles_.size(); ++i) {
+        bundles_[i].name = state.tubes[i].name;
+        bundles_[i].isProtected = state.tubes[i].protectedBundle;
+    }
+    inputs_ = reportInputs(clip, state);
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
     field_ = probe_.removalField(clip);
@@ -69,17 +80,19 @@ plan::Report CarveReporter::compute(clip::ClipMeshSet& clip) {
     flagsMs_ = std::chrono::duration<double, std::milli>(Clock::now() - fieldDone).count();
     // Margins are refined with the renderer's own clip test, as the field was made.
     plan::PointsInside inside = [this, &clip](const std::vector<glm::dvec3>& points) { return probe_.insideFlags(clip, points); };
-    return plan::computeReport(loaded_.volume, loaded_.scene.transferFunction, settings_, field_, labelSets_, bundles_, inside);
+    return plan::computeReport(loaded_.volume, transferFunction_, settings_, field_, labelSets_, bundles_, inside);
 }
 
 std::vector<std::uint8_t> CarveReporter::tissueInField() const {
     if (field_.insideSamples.empty()) return {};
     const LabelMap* firstLabels = loaded_.labels.empty() ? nullptr : &loaded_.labels.front().onScanGrid;
-    return plan::tissueInBox(loaded_.volume, loaded_.scene.transferFunction, settings_, firstLabels, field_.box());
+    return plan::tissueInBox(loaded_.volume, transferFunction_, settings_, firstLabels, field_.box());
 }
 
 void CarveReporter::write(const fs::path& dir, const plan::Report& report, const InteractionState& state,
                           const PlanExportOptions& options) const {
+    if (state.transferFunctionVersion != inputs_.transferFunction || state.tubesVersion != inputs_.tubes)
+        throw std::logic_error("CarveReporter::write: the state is not the one the report was computed under");
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw SystemError(dir.string() + ": cannot create the output directory (" + ec.message() + ")");

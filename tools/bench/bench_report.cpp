@@ -59,7 +59,7 @@ int benchReport(const CommandLine& cl) {
         for (MeshState& m : state.meshes) m.pose.position += glm::dvec3(0.5, 0.0, 0.0);
         syncClipMeshes(state, renderer.clipMeshes());
         auto start = std::chrono::steady_clock::now();
-        report = reporter.compute(renderer.clipMeshes());
+        report = reporter.compute(renderer.clipMeshes(), state);
         double total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (r < 0) continue;  // warm-up: shader compilation, first map drawing
         const plan::ReportTimings& t = report.timings;
