@@ -1,17 +1,35 @@
 // One state, one answer: after a transfer-function edit made as the panel makes it (a SettingEdit applied by
 // the session step), the viewer's plan table, F5's report.json, `curette report` on the plan-scene.json F5
-// wrote and a fresh report of a scene with that TF all give the same removed volume.
+// wrote and a fresh report of a scene with that TF all give the same removed volume; and a session recorded
+// after the edit (F9: the edit is in its header) replays to the live images and the viewer's report.
 #include "session/carve_report.h"
+#include "session/live_input.h"
 #include "session/loaded_scene.h"
+#include "session/session.h"
 #include "session/session_step.h"
 #include "viewer/viewer_driver.h"
 #include "base/atomic_file.h"
+#include "input/hid/fake_backend.h"
 #include "render/renderer.h"
 
 #include "tests/tools/run_curette.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wold-style-cast"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wnull-dereference"
+#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include <stb/stb_image.h>
+#pragma GCC diagnostic pop
 
 #include <filesystem>
 #include <random>
@@ -73,6 +91,15 @@ double reportOfScene(const fs::path& scene, const fs::path& out) {
     Invocation r = runCurette("report --no-exports --scene " + scene.string() + " --out " + out.string());
     EXPECT_EQ(r.exitCode, 0) << r.output;
     return removedMl(out / "report.json");
+}
+
+std::string pngHash(const fs::path& path) {
+    int w = 0, h = 0, channels = 0;
+    stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
+    if (!data) return "(no image " + path.string() + ")";
+    std::vector<std::uint8_t> rgba(data, data + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
+    stbi_image_free(data);
+    return imageHash(rgba);
 }
 
 // The viewer's loop without a window: the step applying the frame's input and panel edits, the renderer in
@@ -147,6 +174,53 @@ TEST(ReportState, ATransferFunctionEditChangesEveryReportOfTheState) {
     EXPECT_EQ(table, fresh) << "the plan table";
     EXPECT_EQ(f5, fresh) << "F5's report.json";
     EXPECT_EQ(planScene, fresh) << "curette report on F5's plan-scene.json";
+}
+
+// (b) F9 after the edit: the recording's header carries it; the replay shows the live frames and reports what
+// the viewer reported, and so does `curette report --session`.
+TEST(ReportState, ASessionRecordedAfterAnEditReplaysTheEditedState) {
+    fs::path dir = scratch("record-after-edit");
+    fs::path scene = writeBallScene(dir);
+    fs::path session = dir / "after-edit.jsonl";
+    Viewer v(scene);
+    LiveInput input(std::make_unique<input::FakeHidBackend>(std::make_shared<input::FakeHidBackend::Ports>()), input::defaultMapping(), 40.0, 60.0);
+    v.frame(0.0, {}, {hideTheShell(v.step.state(), v.loaded.scene)});
+    std::vector<std::string> live;
+    {
+        LiveRecording recording(session, "scene.json", v.step.state(), input, 0.0);   // F9 on frame 0
+        for (int f = 1; f <= 4; ++f) {
+            double now = f / 10.0;
+            input::KeyboardMouseState keys;
+            if (f == 2 || f == 3) keys.keys |= 1u << static_cast<int>(input::Key::W);   // the keyboard moves mesh 0
+            InputFrame in = input.step(now, keys, 0.1, static_cast<int>(v.step.state().meshes.size()));
+            v.step.apply(in.actions, v.step.frame().size.y);
+            recording.addFrame(now, 0.1, v.step.frame().size, v.step.frame().camera, v.step.state(), keys, in);
+            live.push_back(v.render(now));
+        }
+        recording.finish();
+    }
+    v.render(2.0);
+    ASSERT_TRUE(v.table.report());
+    const double viewer = v.table.report()->removedMl;
+    ASSERT_FALSE(readSession(session, false).header.edits.empty()) << "the edit is in the header";
+
+    for (const char* mode : {"", " --from-reports"}) {
+        fs::path out = dir / (std::string("replay") + (*mode ? "-reports" : ""));
+        Invocation r = runCurette("replay " + session.string() + " --report --out " + out.string() + mode);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        std::vector<std::string> replayed;
+        for (std::size_t f = 0; f < live.size(); ++f) {
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%06zu.png", f);
+            replayed.push_back(pngHash(out / name));
+        }
+        EXPECT_EQ(replayed, live) << "replay" << mode << " renders the edited TF from its first frame";
+        EXPECT_EQ(removedMl(out / "report" / "report.json"), viewer) << "replay" << mode << " --report of the last frame";
+    }
+
+    Invocation direct = runCurette("report --no-exports --session " + session.string() + " --out " + (dir / "direct").string());
+    ASSERT_EQ(direct.exitCode, 0) << direct.output;
+    EXPECT_EQ(removedMl(dir / "direct" / "report.json"), viewer) << "report --session at its last frame";
 }
 
 }  // namespace
