@@ -5,6 +5,7 @@
 #include "session/carve_report.h"
 #include "session/live_input.h"
 #include "session/loaded_scene.h"
+#include "session/plan_scene.h"
 #include "session/session.h"
 #include "session/session_step.h"
 #include "viewer/viewer_driver.h"
@@ -221,6 +222,29 @@ TEST(ReportState, ASessionRecordedAfterAnEditReplaysTheEditedState) {
     Invocation direct = runCurette("report --no-exports --session " + session.string() + " --out " + (dir / "direct").string());
     ASSERT_EQ(direct.exitCode, 0) << direct.output;
     EXPECT_EQ(removedMl(dir / "direct" / "report.json"), viewer) << "report --session at its last frame";
+}
+
+// The shading combo, then a shading key: the state shows the key's mode, and so do the scene it is saved as
+// and the state a recording started now starts from.
+TEST(ReportState, ThePlanSceneAndASessionHeaderCarryTheShadingOnScreen) {
+    fs::path dir = scratch("shading");
+    fs::path scene = writeBallScene(dir);
+    LoadedScene loaded = loadSceneWithVolume(scene);
+    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, {loaded.volume.dims, loaded.volume.indexToWorld}));
+    step.apply({}, 48, {{Setting::Shading, -1, "phong"}});
+    step.apply({input::SetShading{"cao"}}, 48);
+    ASSERT_EQ(step.state().shading, ShadingMode::Cao);
+
+    writeFileAtomically(dir / "saved.json", planSceneJson(loaded.scene, curette::testing::readTextFile(scene), step.state()));
+    EXPECT_EQ(loadScene(dir / "saved.json").shading, ShadingMode::Cao) << "the plan scene";
+
+    LiveInput input(std::make_unique<input::FakeHidBackend>(std::make_shared<input::FakeHidBackend::Ports>()), input::defaultMapping(), 40.0, 60.0);
+    {
+        LiveRecording recording(dir / "late.jsonl", "scene.json", step.state(), input, 0.0);
+        recording.finish();
+    }
+    Session s = readSession(dir / "late.jsonl", false);
+    EXPECT_EQ(InteractionState::fromSessionStart(s.header, loaded.scene, dir, "late.jsonl").shading, ShadingMode::Cao) << "the session header";
 }
 
 }  // namespace
