@@ -14,6 +14,7 @@
 #include "session/loaded_scene.h"
 #include "io/mesh_writers.h"
 #include "plan/removal_report.h"
+#include "plan/report_output.h"
 #include "render/passes/removal_probe.h"
 #include "render/renderer.h"
 
@@ -39,9 +40,11 @@ struct PlanExportOptions {
 
 class CarveReporter {
 public:
-    // Resolves the scene's report settings against its labels and prepares each bundle's probe points
-    // (they do not move; only their inside flags change with the meshes).
-    CarveReporter(const LoadedScene& loaded, const VolumeGeometry& geometry);
+    // Resolves the scene's report settings against its labels, prepares each bundle's probe points (they do
+    // not move; only their inside flags change with the meshes) and takes the SHA-256 of the volume, label and
+    // tract files now, just after the scene was loaded from them. `programVersion` is what report.json names as its
+    // maker (`curette --version`'s line, handed in by the command).
+    CarveReporter(const LoadedScene& loaded, const VolumeGeometry& geometry, std::string programVersion);
 
     // The report of `state` (its transfer function and bundles) under the clip meshes' current poses (the
     // renderer's ClipMeshSet, which the session step keeps in sync with `state`). Keeps the field and the
@@ -57,19 +60,24 @@ public:
     const plan::ReportSettings& settings() const { return settings_; }
     const std::vector<plan::LabelSet>& labelSets() const { return labelSets_; }
 
-    // Writes the report and (with options.exports) the plan's files into `directory` (created if needed);
-    // call after compute(), whose field and TF the exports are made from. `state` is the interaction state
-    // the report was computed under (plan-scene.json is written from it); another is a logic_error.
+    // Writes the report (its provenance: now, the program, the input files' digests, the TF and the meshes'
+    // poses) and (with options.exports) the plan's files into `directory` (created if needed); call after
+    // compute(), whose field and TF the exports are made from. `state` is the interaction state the report
+    // was computed under (plan-scene.json is written from it); another is a logic_error.
     void write(const std::filesystem::path& directory, const plan::Report& report, const InteractionState& state,
                const PlanExportOptions& options) const;
 
 private:
     // The tissue over the last field's box (plan/tissue_mask.h), as the report counted it.
     std::vector<std::uint8_t> tissueInField() const;
+    plan::ReportProvenance provenance(const InteractionState& state) const;
 
     const LoadedScene& loaded_;
+    std::string programVersion_;
+    std::vector<plan::InputFileDigest> inputFiles_;   // tracts' names are the state's, at write()
     TransferFunction transferFunction_;   // the last compute()'s state's
     ReportInputs inputs_;                 // and its inputs
+    std::vector<SessionMesh> poses_;      // and its meshes' poses
     plan::ReportSettings settings_;
     std::vector<plan::LabelSet> labelSets_;
     std::vector<plan::BundleInput> bundles_;

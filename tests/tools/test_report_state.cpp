@@ -8,6 +8,7 @@
 #include "session/plan_scene.h"
 #include "session/session.h"
 #include "session/session_step.h"
+#include "tools/commands/commands.h"
 #include "viewer/viewer_driver.h"
 #include "base/atomic_file.h"
 #include "input/hid/fake_backend.h"
@@ -111,7 +112,7 @@ struct Viewer {
           context(gl::createHeadlessContext()),
           renderer(*context, loaded.volume, loaded.scene.transferFunction),
           step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry())),
-          reporter(loaded, renderer.geometry()) {
+          reporter(loaded, renderer.geometry(), commands::programVersion()) {
         configureRenderer(loaded, renderer);
     }
 

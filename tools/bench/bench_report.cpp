@@ -20,6 +20,7 @@
 
 #include "tools/bench/report.h"
 #include "tools/bench/report_analytic.h"
+#include "tools/commands/commands.h"
 #include "session/carve_report.h"
 #include "session/loaded_scene.h"
 #include "session/session_step.h"
@@ -43,7 +44,7 @@ int benchReport(const CommandLine& cl) {
     auto context = gl::createHeadlessContext(gpuChoice(cl));
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
-    CarveReporter reporter(loaded, renderer.geometry());
+    CarveReporter reporter(loaded, renderer.geometry(), commands::programVersion());
     std::size_t probePoints = 0, streamlines = 0;
     for (const plan::BundleInput& b : reporter.bundles()) probePoints += b.probe.points.size(), streamlines += b.tracts->streamlineCount();
     const VolumeData& v = loaded.volume;

@@ -101,7 +101,7 @@ int replay(const CommandLine& cl) {
                      initialFrame(loaded.scene, geometry));
     const InteractionState& state = step.state();
     std::optional<CarveReporter> reporter;
-    if (reporting) reporter.emplace(loaded, geometry);
+    if (reporting) reporter.emplace(loaded, geometry, programVersion());
     std::string removalCsv = "frame,time_s,removed_ml,touched_voxels,cut_streamlines,protected_touched\n";
     std::optional<plan::Report> lastReport;
     InteractionState lastReportState;

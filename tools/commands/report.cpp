@@ -49,7 +49,7 @@ int report(const CommandLine& cl) {
     }
     InteractionState state = step ? step->state() : InteractionState::fromScene(loaded.scene);
 
-    CarveReporter reporter(loaded, geometry);
+    CarveReporter reporter(loaded, geometry, programVersion());
     plan::Report report = reporter.compute(renderer.clipMeshes(), state);
     PlanExportOptions options;
     options.meshSpace = cl.flag("lps") ? io::MeshSpace::Lps : io::MeshSpace::Ras;

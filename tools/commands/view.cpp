@@ -375,7 +375,7 @@ int view(const CommandLine& cl) {
     LiveInput live(openHid(!cl.flag("no-devices") && !play), mapping, 40.0, 60.0);
     ViewWindow viewWindow{*window, loaded, scenePath, renderer, step, panels, live, play, cl.valueOr("screenshot", "curette-play.png"),
                           ViewerState(loopSettings), loopSettings.quality == ViewQuality::Exact, Presenter(),
-                          CarveReporter(loaded, renderer.geometry())};
+                          CarveReporter(loaded, renderer.geometry(), programVersion())};
     if (auto path = cl.value("record")) viewWindow.startRecording(*path, glfwGetTime());
 
     IMGUI_CHECKVERSION();
