@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
@@ -31,6 +32,9 @@ struct VolumeData {
     ScalarType sourceType = ScalarType::UInt8;
     double minValue = 0.0, maxValue = 0.0;  // physical value range over all voxels that have data
     std::string source;                     // file it came from, for messages
+    // Every file the voxels and geometry were read from (one; a header and its data file; a DICOM series'
+    // files in slice order): what a report's checksums cover. Set by io::readVolume.
+    std::vector<std::filesystem::path> files;
     int volumeCount = 1;                    // 3-D volumes in the file (4-D/5-D NIfTI); this is volumeIndex
     int volumeIndex = 0;
     std::uint64_t noDataVoxels = 0;         // voxels that were NaN or Inf in the file ("no data": transparent)

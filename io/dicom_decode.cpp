@@ -290,6 +290,7 @@ VolumeData readDicomSeries(const DicomSeries& series, const std::string& source,
                          (series.uid.empty() ? std::string() : ", SeriesInstanceUID " + series.uid) + "; opened as " + choice.reason;
     if (showIdentifiers)
         volume.description += "; patient \"" + series.patientName + "\", PatientID \"" + series.patientId + "\"";
+    volume.files = fileOrder;
     return volume;
 }
 

@@ -374,6 +374,7 @@ VolumeData read(std::span<const std::uint8_t> bytes, const std::string& source, 
     const std::uint64_t allBytes = static_cast<std::uint64_t>(l.volumeCount) * volumeBytes;
 
     std::vector<std::uint8_t> external;
+    std::vector<std::filesystem::path> files;   // a detached data file: the header and it
     std::span<const std::uint8_t> file = bytes;
     std::string dataSource = source;
     std::uint64_t start = h.dataStart;
@@ -386,6 +387,7 @@ VolumeData read(std::span<const std::uint8_t> bytes, const std::string& source, 
             throw InputError(source, "ElementDataFile", "a data file beside the header", "no such file: " + dataSource);
         external = readFileBytes(path);
         file = external;
+        files = {std::filesystem::path(source), path};
         start = 0;
     }
     const bool compressed = boolean(h.find("CompressedData"), false);
@@ -447,6 +449,7 @@ VolumeData read(std::span<const std::uint8_t> bytes, const std::string& source, 
     }
     volume.volumeCount = l.volumeCount;
     volume.volumeIndex = volumeIndex;
+    volume.files = std::move(files);
     return volume;
 }
 

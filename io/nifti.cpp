@@ -365,7 +365,9 @@ VolumeData readNifti(const std::filesystem::path& path, int volumeIndex) {
     if (isGzip(data)) data = gunzip(data, image.string(), p.bytesThrough(volumeIndex) + (1u << 16), p.bytesThrough(volumeIndex));
     if (p.dataOffset > data.size())
         throw InputError(image.string(), "vox_offset", "an offset inside the image file", std::to_string(p.dataOffset));
-    return build(p, std::span(data).subspan(p.dataOffset), volumeIndex, source, image.string());
+    VolumeData volume = build(p, std::span(data).subspan(p.dataOffset), volumeIndex, source, image.string());
+    volume.files = {path, image};
+    return volume;
 }
 
 }  // namespace curette::io

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <optional>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -216,6 +217,7 @@ VolumeData readWithHeader(const Header& h, std::span<const std::uint8_t> fileByt
     std::vector<std::uint8_t> detached;
     std::span<const std::uint8_t> data = fileBytes.subspan(std::min(h.dataStart, fileBytes.size()));
     std::string dataSource = source;
+    std::optional<std::filesystem::path> detachedPath;
     const std::string* dataFile = field("data file");
     if (!dataFile) dataFile = field("datafile");
     if (dataFile) {
@@ -229,6 +231,7 @@ VolumeData readWithHeader(const Header& h, std::span<const std::uint8_t> fileByt
         if (!std::filesystem::exists(p)) throw InputError(source, "data file", "an existing data file", "\"" + p.string() + "\" (missing)");
         detached = readFileBytes(p);
         data = detached;
+        detachedPath = p;
     }
     // line skip, then (after decompression) byte skip.
     if (const std::string* ls = field("line skip")) {
@@ -302,7 +305,9 @@ VolumeData readWithHeader(const Header& h, std::span<const std::uint8_t> fileByt
         for (int r = 0; r < 3; ++r) affine[c][r] *= flip[r];
     if (std::abs(glm::determinant(glm::dmat3(affine))) < 1e-12)
         throw InputError(source, "space directions", "linearly independent axes", "a singular set");
-    return buildVolume(source, dims, type, data.data(), bigEndian, 1.0, 0.0, affine);
+    VolumeData volume = buildVolume(source, dims, type, data.data(), bigEndian, 1.0, 0.0, affine);
+    if (detachedPath) volume.files = {std::filesystem::path(source), *detachedPath};
+    return volume;
 }
 
 }  // namespace

@@ -40,6 +40,27 @@ VolumeFormat sniff(const std::filesystem::path& path) {
 
 }  // namespace
 
+namespace {
+
+VolumeData readAs(VolumeFormat format, const std::filesystem::path& path, const VolumeReadOptions& options) {
+    switch (format) {
+        case VolumeFormat::Nifti: return readNifti(path, options.volumeIndex);
+        case VolumeFormat::Nrrd: return readNrrd(path);
+        case VolumeFormat::Raw:
+            if (!options.raw)
+                throw InputError(path.string(), "format", "a raw layout (--raw-dims and --raw-type, or the scene's volume.raw)", "none");
+            return readRaw(path, *options.raw);
+        case VolumeFormat::Dicom: return readDicomSeries(path, options);
+        case VolumeFormat::MetaImage: return readMetaImage(path, options.volumeIndex);
+        case VolumeFormat::Auto: break;
+    }
+    throw InputError(path.string(), "format",
+                     "NIfTI-1/-2 (.nii, .nii.gz, .hdr/.img), NRRD (.nrrd, .nhdr), MetaImage (.mha, .mhd), DICOM (a folder, .dcm) or raw with --raw-dims/--raw-type",
+                     "a file curette does not recognise");
+}
+
+}  // namespace
+
 VolumeData readVolume(const std::filesystem::path& path, const VolumeReadOptions& options) {
     std::string name = path.string();
     std::error_code ec;
@@ -59,20 +80,9 @@ VolumeData readVolume(const std::filesystem::path& path, const VolumeReadOptions
         else
             format = sniff(path);
     }
-    switch (format) {
-        case VolumeFormat::Nifti: return readNifti(path, options.volumeIndex);
-        case VolumeFormat::Nrrd: return readNrrd(path);
-        case VolumeFormat::Raw:
-            if (!options.raw)
-                throw InputError(name, "format", "a raw layout (--raw-dims and --raw-type, or the scene's volume.raw)", "none");
-            return readRaw(path, *options.raw);
-        case VolumeFormat::Dicom: return readDicomSeries(path, options);
-        case VolumeFormat::MetaImage: return readMetaImage(path, options.volumeIndex);
-        case VolumeFormat::Auto: break;
-    }
-    throw InputError(name, "format",
-                     "NIfTI-1/-2 (.nii, .nii.gz, .hdr/.img), NRRD (.nrrd, .nhdr), MetaImage (.mha, .mhd), DICOM (a folder, .dcm) or raw with --raw-dims/--raw-type",
-                     "a file curette does not recognise");
+    VolumeData volume = readAs(format, path, options);
+    if (volume.files.empty()) volume.files = {path};   // a reader of one file leaves it to here
+    return volume;
 }
 
 }  // namespace curette::io

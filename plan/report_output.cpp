@@ -41,6 +41,32 @@ std::string withUncertainty(double value, double uncertainty, int decimals) {
     return buffer;
 }
 
+nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json provenanceJson(const ReportProvenance& p) {
+    nlohmann::json files = nlohmann::json::array();
+    for (const InputFileDigest& f : p.files) {
+        nlohmann::json entry = {{"role", f.role}};
+        if (!f.name.empty()) entry["name"] = f.name;
+        entry["path"] = f.path;
+        entry["files"] = f.files;
+        entry["sha256"] = f.sha256;
+        files.push_back(entry);
+    }
+    nlohmann::json meshes = nlohmann::json::array();
+    for (const MeshPoseRecord& m : p.meshes)
+        meshes.push_back({{"name", m.name},
+                          {"position_mm", vec3(m.positionMm)},
+                          {"orientation_wxyz", {m.orientation.w, m.orientation.x, m.orientation.y, m.orientation.z}},
+                          {"rotation_deg", vec3(m.rotationDeg)},
+                          {"scale", vec3(m.scale)}});
+    return {{"created_utc", p.createdUtc},
+            {"curette_version", p.curetteVersion},
+            {"files", files},
+            {"transfer_function", nlohmann::json::parse(p.transferFunctionJson)},
+            {"clip_meshes", meshes}};
+}
+
 }  // namespace
 
 std::string csvField(const std::string& text) {
@@ -53,7 +79,7 @@ std::string csvField(const std::string& text) {
     return quoted + "\"";
 }
 
-std::string reportJson(const Report& r) {
+std::string reportJson(const Report& r, const ReportProvenance& provenance) {
     nlohmann::json j;
     j["schema"] = "curette.report/1";
     j["volume"] = {{"source", r.volumeSource},
@@ -88,6 +114,7 @@ std::string reportJson(const Report& r) {
     j["timings_ms"] = {{"tissue_ms", r.timings.tissueMs},         {"distance_ms", r.timings.distanceMs},
                        {"structures_ms", r.timings.structuresMs}, {"intrusion_ms", r.timings.intrusionMs},
                        {"bundles_ms", r.timings.bundlesMs},       {"total_ms", r.timings.totalMs}};
+    j["provenance"] = provenanceJson(provenance);
     return j.dump(2) + "\n";
 }
 
@@ -113,11 +140,11 @@ std::string bundlesCsv(const Report& r) {
     return out;
 }
 
-void writeReportFiles(const Report& report, const std::filesystem::path& directory) {
+void writeReportFiles(const Report& report, const ReportProvenance& provenance, const std::filesystem::path& directory) {
     std::error_code error;
     std::filesystem::create_directories(directory, error);
     if (error) throw SystemError("cannot create " + directory.string() + ": " + error.message());
-    writeFileAtomically(directory / "report.json", reportJson(report));
+    writeFileAtomically(directory / "report.json", reportJson(report, provenance));
     writeFileAtomically(directory / "structures.csv", structuresCsv(report));
     writeFileAtomically(directory / "bundles.csv", bundlesCsv(report));
 }

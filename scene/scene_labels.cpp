@@ -56,8 +56,12 @@ std::vector<LoadedLabelSet> loadSceneLabels(const Scene& scene, const VolumeData
         set.name = spec.name;
         set.source = spec.path.string();
         set.opacity = spec.opacity;
-        LabelMap own = labelMapFromVolume(io::readVolume(spec.path));
+        VolumeData volume = io::readVolume(spec.path);
+        set.volumeFiles = volume.files;
+        LabelMap own = labelMapFromVolume(volume);
         std::optional<fs::path> tablePath = spec.table ? spec.table : siblingTable(spec.path);
+        set.tableFile = tablePath;
+        set.colorsFile = spec.colors;
         if (tablePath) set.table = io::readLabelTable(*tablePath);
         else set.table.source = spec.path.string() + " (no table: names generated)";
         if (spec.colors) {

@@ -17,6 +17,10 @@ namespace curette {
 struct LoadedLabelSet {
     std::string name;
     std::string source;                 // the label volume's file
+    // The files read, for a report's checksums: the label volume's (VolumeData::files), the table (given, or
+    // found beside the volume) and the colours.
+    std::vector<std::filesystem::path> volumeFiles;
+    std::optional<std::filesystem::path> tableFile, colorsFile;
     LabelTable table;                   // every id of the volume has an entry (generated where the file has none)
     LabelMap onScanGrid;                // resampled onto the scan's grid
     std::vector<int> protectedIds;

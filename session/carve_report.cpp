@@ -3,13 +3,17 @@
 #include "io/nifti_writer.h"
 #include "io/seg_nrrd_writer.h"
 #include "io/tck_writer.h"
+#include "io/transfer_function_file.h"
+#include "session/live_input.h"
 #include "session/plan_scene.h"
+#include "session/session_step.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/sha256.h"
 #include "plan/cavity_surface.h"
-#include "plan/report_output.h"
 #include "plan/tissue_mask.h"
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 
@@ -36,6 +40,34 @@ plan::ReportSettings resolveSettings(const LoadedScene& loaded) {
     return s;
 }
 
+// The digest of a file as a scene names it, read from `files` (plan/report_output.h: one file's SHA-256, or
+// that of several files' digests in the order of their paths; their names are not kept).
+plan::InputFileDigest digestOf(std::string role, std::string name, const fs::path& named, std::vector<fs::path> files) {
+    plan::InputFileDigest d{std::move(role), std::move(name), fs::absolute(named).lexically_normal().string(), files.size(), {}};
+    if (files.size() == 1) {
+        d.sha256 = sha256OfFile(files.front());
+    } else {
+        std::sort(files.begin(), files.end());
+        Sha256 digests;
+        for (const fs::path& f : files) digests.update(sha256OfFile(f) + "\n");
+        d.sha256 = digests.hexDigest();
+    }
+    return d;
+}
+
+std::vector<plan::InputFileDigest> inputFileDigests(const LoadedScene& loaded) {
+    std::vector<plan::InputFileDigest> out;
+    out.push_back(digestOf("volume", "", loaded.scene.volumePath, loaded.volume.files));
+    for (std::size_t i = 0; i < loaded.labels.size(); ++i) {
+        const LoadedLabelSet& set = loaded.labels[i];
+        out.push_back(digestOf("labels", set.name, loaded.scene.labels[i].path, set.volumeFiles));
+        if (set.tableFile) out.push_back(digestOf("label_table", set.name, *set.tableFile, {*set.tableFile}));
+        if (set.colorsFile) out.push_back(digestOf("label_colors", set.name, *set.colorsFile, {*set.colorsFile}));
+    }
+    for (const SceneTubes& t : loaded.scene.tubes) out.push_back(digestOf("tracts", t.name, t.path, {t.path}));
+    return out;
+}
+
 // A file-system-friendly form of a bundle name ("AF_L" stays, "left arcuate" -> "left_arcuate").
 std::string fileName(const std::string& name) {
     std::string out;
@@ -45,8 +77,12 @@ std::string fileName(const std::string& name) {
 
 }  // namespace
 
-CarveReporter::CarveReporter(const LoadedScene& loaded, const VolumeGeometry& geometry)
-    : loaded_(loaded), settings_(resolveSettings(loaded)), probe_(geometry, plan::kReportAntiAliasingSamples) {
+CarveReporter::CarveReporter(const LoadedScene& loaded, const VolumeGeometry& geometry, std::string programVersion)
+    : loaded_(loaded),
+      programVersion_(std::move(programVersion)),
+      inputFiles_(inputFileDigests(loaded)),
+      settings_(resolveSettings(loaded)),
+      probe_(geometry, plan::kReportAntiAliasingSamples) {
     for (const LoadedLabelSet& set : loaded.labels) {
         plan::LabelSet s{set.name, &set.onScanGrid, &set.table, set.protectedIds};
         // The opacity the renderer draws each id with (scene/scene_labels.h labelRendering: the set's opacity
@@ -57,17 +93,29 @@ CarveReporter::CarveReporter(const LoadedScene& loaded, const VolumeGeometry& ge
         labelSets_.push_back(std::move(s));
     }
     for (std::size_t i = 0; i < loaded.scene.tubes.size(); ++i) {
-        plan::BundleInput b;
-        b.name = loaded.scene.tubes[i].name;
+        plan::BundleInput b;   // named and protected by the state compute() reports
         b.tracts = &loaded.tracts[i];
-        b.isProtected = loaded.scene.tubes[i].protectedBundle;
         b.probe.stepMm = loaded.scene.report.tractStepMm;
         b.probe.points = plan::tractProbePoints(loaded.tracts[i], b.probe.stepMm, b.probe.streamlineOffsets);
         bundles_.push_back(std::move(b));
     }
 }
 
-plan::Report CarveReporter::compute(clip::ClipMeshSet& clip) {
+ReportInputs reportInputs(const clip::ClipMeshSet& clip, const InteractionState& state) {
+    return {clip.version(), state.transferFunctionVersion, state.tubesVersion};
+}
+
+plan::Report CarveReporter::compute(clip::ClipMeshSet& clip, const InteractionState& state) {
+    if (state.tubes.size() != bundles_.size())
+        throw std::logic_error("CarveReporter::compute: a state with " + std::to_string(state.tubes.size()) + " bundles for a scene with " +
+                               std::to_string(bundles_.size()));
+    transferFunction_ = state.transferFunction;
+    for (std::size_t i = 0; i < bundles_.size(); ++i) {
+        bundles_[i].name = state.tubes[i].name;
+        bundles_[i].isProtected = state.tubes[i].protectedBundle;
+    }
+    inputs_ = reportInputs(clip, state);
+    poses_ = state.sessionPoses();
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
     field_ = probe_.removalField(clip);
@@ -77,20 +125,35 @@ plan::Report CarveReporter::compute(clip::ClipMeshSet& clip) {
     flagsMs_ = std::chrono::duration<double, std::milli>(Clock::now() - fieldDone).count();
     // Margins are refined with the renderer's own clip test, as the field was made.
     plan::PointsInside inside = [this, &clip](const std::vector<glm::dvec3>& points) { return probe_.insideFlags(clip, points); };
-    return plan::computeReport(loaded_.volume, loaded_.scene.transferFunction, settings_, field_, labelSets_, bundles_, inside);
+    return plan::computeReport(loaded_.volume, transferFunction_, settings_, field_, labelSets_, bundles_, inside);
 }
 
 std::vector<std::uint8_t> CarveReporter::tissueInField() const {
     if (field_.insideSamples.empty()) return {};
-    return plan::reportTissue(loaded_.volume, loaded_.scene.transferFunction, settings_, labelSets_, field_.box());
+    return plan::reportTissue(loaded_.volume, transferFunction_, settings_, labelSets_, field_.box());
+}
+
+plan::ReportProvenance CarveReporter::provenance(const InteractionState& state) const {
+    plan::ReportProvenance p;
+    p.createdUtc = currentTimeIso8601();
+    p.curetteVersion = programVersion_;
+    p.files = inputFiles_;
+    std::size_t bundle = 0;
+    for (plan::InputFileDigest& f : p.files)
+        if (f.role == "tracts") f.name = state.tubes[bundle++].name;
+    p.transferFunctionJson = io::writeTransferFunctionJson(transferFunction_);
+    for (const MeshState& m : state.meshes) p.meshes.push_back({m.name, m.pose.position, m.pose.orientation, rotationDegrees(m.pose.orientation), m.scale});
+    return p;
 }
 
 void CarveReporter::write(const fs::path& dir, const plan::Report& report, const InteractionState& state,
                           const PlanExportOptions& options) const {
+    if (state.transferFunctionVersion != inputs_.transferFunction || state.tubesVersion != inputs_.tubes || !samePoses(state.sessionPoses(), poses_))
+        throw std::logic_error("CarveReporter::write: the state is not the one the report was computed under");
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw SystemError(dir.string() + ": cannot create the output directory (" + ec.message() + ")");
-    plan::writeReportFiles(report, dir);
+    plan::writeReportFiles(report, provenance(state), dir);
     if (!options.exports) return;
     std::vector<std::uint8_t> tissue = tissueInField();
     // The removed region R on the scan grid, 1 where removed (plan/removal_report.h).

@@ -68,10 +68,11 @@ nlohmann::json lightJson(const Light& light) {
             {"space", light.cameraSpace ? "camera" : "world"}};
 }
 
-// The scene-file name of the key an edit sets ("lights[1]"); empty for mesh settings and for adding and
-// removing lights (which set the lights' keys themselves, InteractionState::editedKeys).
+// The scene-file name of the key an edit sets ("lights[1]"); empty for mesh settings, for adding and
+// removing lights (which set the lights' keys themselves, InteractionState::editedKeys) and for the shading,
+// which keys and buttons change too: the state's `shading` is its value.
 std::string editedKeyName(const SettingEdit& edit) {
-    if (edit.setting == Setting::LightAdd || edit.setting == Setting::LightRemove) return {};
+    if (edit.setting == Setting::LightAdd || edit.setting == Setting::LightRemove || edit.setting == Setting::Shading) return {};
     const SettingInfo& info = settingInfo(edit.setting);
     switch (info.target) {
         case SettingTarget::None: return info.key;
@@ -108,14 +109,15 @@ InteractionState InteractionState::fromScene(const Scene& scene) {
 InteractionState InteractionState::fromSessionStart(const SessionHeader& header, const Scene& scene,
                                                     const std::filesystem::path& sceneDirectory, const std::string& source) {
     InteractionState s;
-    s.shading = header.shading;
     // The scene's lights (their colours), turned as they were when recording started (version 2; a version 1
     // session has none: the scene's, as they were then).
     s.lights = scene.lights;
     adoptSceneSettings(scene, s);
-    // The settings edited before recording started (version 3), before the lights' directions.
+    // The settings edited before recording started (version 3), before the lights' directions; then the
+    // shading at the start (a header may carry a shading edit that a key overrode later).
     s.applyEdits(header.edits, source + " line 1: edits");
     s.appliedEdits.clear();
+    s.shading = header.shading;
     if (header.lights) {
         if (header.lights->size() != s.lights.size())
             throw InputError(source, "line 1: lights",

@@ -55,9 +55,11 @@ struct InteractionState {
     IsmosSettings ismos;                 // lightShapes: one per light
     std::vector<SceneTubes> tubes;
     TubeRendering tubeRendering;
-    std::uint64_t transferFunctionVersion = 0, tubesVersion = 0, tubeShadingVersion = 0;   // counted per edit
+    // Counted per edit from 0, the scene's (RendererSync::sceneSettings).
+    std::uint64_t transferFunctionVersion = 0, tubesVersion = 0, tubeShadingVersion = 0;
     // The value of every key an edit has set, latest first wins, by the key's name in the scene file
-    // ("transfer_function", "lights[1]", "tubes[0]", ...; mesh settings live in the meshes): what the scene
+    // ("transfer_function", "lights[1]", "tubes[0]", ...; mesh settings live in the meshes, the shading in
+    // `shading`, which input changes too): what the scene
     // writer (session/plan_scene.h) writes, what the panels start from and what a session header carries.
     // Lights added and removed: an added light's key is set as an edit sets it; a removal first sets every
     // light's key (the scene's own JSON where no edit set one), so the lights after it move down a key.

@@ -30,9 +30,8 @@ void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
     LabelRendering labels = labelRendering(loaded.labels);
     if (!labels.ids.empty()) renderer.setLabels(std::make_unique<LabelOverlay>(loaded.volume.dims, labels.ids, labels.styles));
     // The scene's settings by the session step's path; the renderer was made with its transfer function.
-    InteractionState state = InteractionState::fromScene(loaded.scene);
-    RendererSync synced{.transferFunction = state.transferFunctionVersion};
-    syncRenderer(state, renderer, loaded.tracts, synced);
+    RendererSync synced{.transferFunction = RendererSync::sceneSettings().transferFunction};
+    syncRenderer(InteractionState::fromScene(loaded.scene), renderer, loaded.tracts, synced);
 }
 
 namespace {

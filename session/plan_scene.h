@@ -1,6 +1,6 @@
 #pragma once
 // A state as a scene file: the scene a session or a viewer started from, with the clip meshes where they
-// are now (pose, scale, shape, clips_tubes, meshes added and removed), the lights as they are turned, every
+// are now (pose, scale, shape, clips_tubes, meshes added and removed), the shading and the lights as they are, every
 // setting the panels edited (the value of its last edit, InteractionState::editedKeys: what was read is what
 // is written, so the file reads back to the same settings), and optionally the camera, so
 // `curette render --scene plan-scene.json` re-creates the carve and the viewer's "Save scene" the picture.

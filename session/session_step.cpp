@@ -37,7 +37,6 @@ SessionStep::SessionStep(InteractionState state, FrameDescription frame) : state
         state_.fromSceneSettings = true;
     }
     frameFromState(state_, frame_);
-    synced_ = {state_.transferFunctionVersion, state_.tubesVersion, state_.tubeShadingVersion};
 }
 
 SessionStep::Before SessionStep::begin() {

@@ -36,6 +36,9 @@ void syncClipMeshes(const InteractionState& state, clip::ClipMeshSet& set);
 // The versions of a state's settings a renderer was last handed (nullopt: never).
 struct RendererSync {
     std::optional<std::uint64_t> transferFunction{}, tubes{}, tubeShading{};
+    // A renderer configureRenderer set up holds the scene's settings: those of a state made from the scene,
+    // whose versions start at 0 (InteractionState counts them up per edit).
+    static RendererSync sceneSettings() { return {0, 0, 0}; }
 };
 // The one path by which a state's settings reach a renderer (configureRenderer for a scene's first frame,
 // SessionStep::syncTo after edits): the clip meshes and LAO settings (cheap when unchanged), and the transfer
@@ -87,8 +90,9 @@ private:
 
     InteractionState state_;
     FrameDescription frame_;
-    // The state's setting versions the renderer was last given (those of the scene: configureRenderer).
-    RendererSync synced_;
+    // The state's setting versions the renderer was last given: at first the scene's (configureRenderer), not
+    // the state's, so edits the state starts with (a session header's) reach the renderer at the first syncTo.
+    RendererSync synced_ = RendererSync::sceneSettings();
 };
 
 }  // namespace curette

@@ -64,20 +64,22 @@ ViewerIteration stepViewer(ViewerState& viewer, Renderer& renderer, SessionStep&
     return it;
 }
 
-void ViewerReport::refresh(CarveReporter& reporter, clip::ClipMeshSet& meshes, double now) {
-    std::uint64_t version = meshes.version();
-    if (version != seenVersion_) seenVersion_ = version, versionChangedAt_ = now;
-    if (version != reportedVersion_ && now - versionChangedAt_ >= kDelaySeconds) {
-        auto start = Clock::now();
-        report_ = reporter.compute(meshes);
-        ms_ = msSince(start);
-        reportedVersion_ = version;
-    }
+void ViewerReport::compute(CarveReporter& reporter, clip::ClipMeshSet& meshes, const InteractionState& state) {
+    auto start = Clock::now();
+    reported_ = reportInputs(meshes, state);
+    report_ = reporter.compute(meshes, state);
+    ms_ = msSince(start);
+}
+
+void ViewerReport::refresh(CarveReporter& reporter, clip::ClipMeshSet& meshes, const InteractionState& state, double now) {
+    ReportInputs inputs = reportInputs(meshes, state);
+    if (inputs != seen_) seen_ = inputs, changedAt_ = now;
+    if (inputs != reported_ && now - changedAt_ >= kDelaySeconds) compute(reporter, meshes, state);
 }
 
 std::string ViewerReport::exportPlan(CarveReporter& reporter, clip::ClipMeshSet& meshes, const InteractionState& state,
                                      const std::string& timestamp) {
-    if (!report_ || !current(meshes)) report_ = reporter.compute(meshes), reportedVersion_ = meshes.version();
+    if (!current(meshes, state)) compute(reporter, meshes, state);
     std::string name = "curette-plan-" + timestamp;
     if (exports_++ > 0) name += "-" + std::to_string(exports_);
     std::filesystem::path dir = name;

@@ -52,26 +52,29 @@ FrameDescription viewerFrame(const ViewerState& viewer, const SessionStep& step,
 ViewerIteration stepViewer(ViewerState& viewer, Renderer& renderer, SessionStep& step, const std::vector<Tractogram>& tracts,
                            glm::ivec2 framebuffer, double now, bool moved, glm::vec4 background);
 
-// The plan overlay's removal report: recomputed once the meshes have been still for kDelaySeconds (a report costs
-// a GPU pass and a CPU pass over the grid; while a mesh moves, the frames come first).
+// The plan overlay's removal report: recomputed once what it depends on (reportInputs: the meshes, the TF, the
+// bundles) has been still for kDelaySeconds (a report costs a GPU pass and a CPU pass over the grid; while a
+// mesh moves or a TF point is dragged, the frames come first).
 class ViewerReport {
 public:
     static constexpr double kDelaySeconds = 0.2;
 
-    // After an iteration: recompute when the meshes changed and have been still long enough.
-    void refresh(CarveReporter& reporter, clip::ClipMeshSet& meshes, double now);
-    // F5: the report of the current meshes and the plan's exports into a new folder named after `timestamp`.
+    // After an iteration: recompute when the report's inputs changed and have been still long enough.
+    void refresh(CarveReporter& reporter, clip::ClipMeshSet& meshes, const InteractionState& state, double now);
+    // F5: the report of the current state and the plan's exports into a new folder named after `timestamp`.
     // Returns the line the overlay shows (written, or why not).
     std::string exportPlan(CarveReporter& reporter, clip::ClipMeshSet& meshes, const InteractionState& state, const std::string& timestamp);
 
     const std::optional<plan::Report>& report() const { return report_; }
-    bool current(const clip::ClipMeshSet& meshes) const { return reportedVersion_ == meshes.version(); }
+    bool current(const clip::ClipMeshSet& meshes, const InteractionState& state) const { return reported_ == reportInputs(meshes, state); }
     double ms() const { return ms_; }
 
 private:
+    void compute(CarveReporter& reporter, clip::ClipMeshSet& meshes, const InteractionState& state);
+
     std::optional<plan::Report> report_;
-    std::uint64_t reportedVersion_ = 0, seenVersion_ = 0;
-    double versionChangedAt_ = -1e9, ms_ = 0;
+    std::optional<ReportInputs> reported_, seen_;
+    double changedAt_ = -1e9, ms_ = 0;
     int exports_ = 0;
 };
 

@@ -369,6 +369,10 @@ TEST(DicomSynthetic, TwoSeriesInOneFolderAreListedAndPickedByNumberOrUid) {
     EXPECT_EQ(byNumber.dims, glm::ivec3(4, 5, 4));
     expectValues(byNumber, [](int i, int j, int k) { return -storedValue(i, j, k); });
     EXPECT_NE(byNumber.description.find("series 7"), std::string::npos) << byNumber.description;
+    std::vector<fs::path> files = byNumber.files, expected = s7.files;
+    std::sort(files.begin(), files.end());
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(files, expected) << "the files of series 7, not those of series 3 beside them";
     const double affine[3][4] = {{-1, 0, 0, -10}, {0, -1, 0, 20}, {0, 0, 2, 30}};
     expectAffine(byNumber.indexToWorld, affine);
 

@@ -114,7 +114,10 @@ TEST(MetaImage, EveryElementTypeBothByteOrdersMhaAndMhd) {
             std::string text = header(t.name, bigEndian, "", raw);
             test::writeBytes(mhd, std::vector<std::uint8_t>(text.begin(), text.end()));
             test::writeBytes(dir / raw, samples(t, bigEndian));
-            expectPattern(io::readVolume(mhd), t, what + " .mhd");
+            VolumeData detached = io::readVolume(mhd);
+            expectPattern(detached, t, what + " .mhd");
+            EXPECT_EQ(detached.files, (std::vector<std::filesystem::path>{mhd, dir / raw})) << "the header and its data file";
+            EXPECT_EQ(io::readVolume(mha).files, (std::vector<std::filesystem::path>{mha}));
         }
 }
 

@@ -168,7 +168,9 @@ TEST(Nifti2, HeaderImagePairWithNi2Magic) {
     // The image gzipped beside the header.
     test::writeBytes(dir / "pair2gz.hdr", header2(s));
     test::writeBytes(dir / "pair2gz.img.gz", test::gzipBytes(voxels(s)));
-    expectVolume(io::readVolume(dir / "pair2gz.hdr"), s, 0, "pair, gzipped image");
+    VolumeData gzipped = io::readVolume(dir / "pair2gz.hdr");
+    expectVolume(gzipped, s, 0, "pair, gzipped image");
+    EXPECT_EQ(gzipped.files, (std::vector<std::filesystem::path>{dir / "pair2gz.hdr", dir / "pair2gz.img.gz"})) << "both files of the pair";
     // Without the image: one error naming it.
     test::writeBytes(dir / "lonely2.hdr", header2(s));
     try {

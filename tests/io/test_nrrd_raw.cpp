@@ -90,6 +90,7 @@ TEST(Nrrd, DetachedHeaderWithByteSkipAndALeadingComponentAxis) {
                           "space: RAS\nspace directions: none (1,0,0) (0,1,0) (0,0,1)\ndata file: detached.raw\n"));
     VolumeData v = io::readVolume(dir / "detached.nhdr");
     EXPECT_EQ(v.dims, glm::ivec3(3, 4, 5));
+    EXPECT_EQ(v.files, (std::vector<std::filesystem::path>{dir / "detached.nhdr", dir / "detached.raw"})) << "the header and its data file";
     EXPECT_EQ(v.value(2, 3, 4), -94.0);
 }
 

@@ -1,4 +1,4 @@
-// report.json (schema, units in keys, null for infinite margins), the CSVs (header, RFC 4180 quoting) and
+// report.json (schema, units in keys, null for infinite margins, provenance), the CSVs (header, RFC 4180 quoting) and
 // the terminal summary with its WARNING lines.
 #include "plan/report_output.h"
 
@@ -54,8 +54,19 @@ Report sample() {
     return r;
 }
 
+ReportProvenance provenance() {
+    ReportProvenance p;
+    p.createdUtc = "2031-02-03T04:05:06Z";
+    p.curetteVersion = "curette 9.9.9 (git abc)";
+    p.files = {{"volume", "", "/data/head.nii.gz", 1, std::string(64, 'a')}, {"tracts", "CST left", "/data/cst.tck", 1, std::string(64, 'b')},
+               {"volume", "", "/data/series", 120, std::string(64, 'c')}};
+    p.transferFunctionJson = R"({"color": [[0, 1, 1, 1], [255, 1, 1, 1]], "opacity": [[0, 0], [255, 0.5]]})";
+    p.meshes = {{"ball", {1, 2, 3}, glm::dquat(0.5, 0.5, -0.5, 0.5), {90, 0, 90}, {1, 1, 2}}};
+    return p;
+}
+
 TEST(ReportOutput, JsonHasTheSchemaUnitsAndNullForInfiniteMargins) {
-    nlohmann::json j = nlohmann::json::parse(reportJson(sample()));
+    nlohmann::json j = nlohmann::json::parse(reportJson(sample(), provenance()));
     EXPECT_EQ(j["schema"], "curette.report/1");
     EXPECT_EQ(j["removed_ml"], 12.5);
     EXPECT_EQ(j["volume"]["voxel_volume_ml"], 0.001);
@@ -69,6 +80,23 @@ TEST(ReportOutput, JsonHasTheSchemaUnitsAndNullForInfiniteMargins) {
     EXPECT_EQ(j["bundles"][0]["cut_streamlines"], 7);
     EXPECT_EQ(j["warnings"].size(), 2u);
     EXPECT_TRUE(j["timings_ms"].contains("total_ms"));
+}
+
+TEST(ReportOutput, JsonRecordsItsProvenance) {
+    nlohmann::json p = nlohmann::json::parse(reportJson(sample(), provenance()))["provenance"];
+    EXPECT_EQ(p["created_utc"], "2031-02-03T04:05:06Z");
+    EXPECT_EQ(p["curette_version"], "curette 9.9.9 (git abc)");
+    ASSERT_EQ(p["files"].size(), 3u);
+    nlohmann::json volume = {{"role", "volume"}, {"path", "/data/head.nii.gz"}, {"files", 1}, {"sha256", std::string(64, 'a')}};
+    EXPECT_EQ(p["files"][0], volume) << "the volume has no name";
+    EXPECT_EQ(p["files"][1]["name"], "CST left");
+    EXPECT_EQ(p["files"][2]["files"], 120);
+    EXPECT_EQ(p["transfer_function"]["opacity"], nlohmann::json::parse("[[0, 0], [255, 0.5]]"));
+    ASSERT_EQ(p["clip_meshes"].size(), 1u);
+    EXPECT_EQ(p["clip_meshes"][0]["orientation_wxyz"], nlohmann::json::parse("[0.5, 0.5, -0.5, 0.5]"));
+    EXPECT_EQ(p["clip_meshes"][0]["position_mm"], nlohmann::json::parse("[1.0, 2.0, 3.0]"));
+    EXPECT_EQ(p["clip_meshes"][0]["rotation_deg"], nlohmann::json::parse("[90.0, 0.0, 90.0]"));
+    EXPECT_EQ(p["clip_meshes"][0]["scale"], nlohmann::json::parse("[1.0, 1.0, 2.0]"));
 }
 
 TEST(ReportOutput, CsvQuotesNamesPerRfc4180) {
@@ -95,13 +123,13 @@ TEST(ReportOutput, SummaryWarnsAboutProtectedTouchesAndFilesAreWritten) {
     EXPECT_EQ(summary.find("Far (id 9) touched"), std::string::npos);
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "curette_plan_report_test";
     std::filesystem::remove_all(dir);
-    writeReportFiles(sample(), dir / "nested");
+    writeReportFiles(sample(), provenance(), dir / "nested");
     for (const char* name : {"report.json", "structures.csv", "bundles.csv"})
         EXPECT_TRUE(std::filesystem::exists(dir / "nested" / name)) << name;
     std::ifstream in(dir / "nested" / "report.json");
     std::stringstream text;
     text << in.rdbuf();
-    EXPECT_EQ(text.str(), reportJson(sample()));
+    EXPECT_EQ(text.str(), reportJson(sample(), provenance()));
     std::filesystem::remove_all(dir);
 }
 

@@ -5,6 +5,7 @@
 #include "tests/io/dicom_test_writer.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -138,6 +139,47 @@ TEST(DicomCli, RenderOpensTheDicomFolderOfAScene) {
     in.read(magic, 8);
     EXPECT_EQ(std::string(magic + 1, 3), "PNG");
     EXPECT_FALSE(mentionsThePatient(r.output)) << r.output;
+}
+
+// `sha256sum FILE`'s digest, computed outside curette.
+std::string sha256sum(const fs::path& file) {
+    FILE* pipe = popen(("sha256sum '" + file.string() + "'").c_str(), "r");
+    char digest[65] = {};
+    std::size_t n = pipe ? std::fread(digest, 1, 64, pipe) : 0;
+    if (pipe) pclose(pipe);
+    return n == 64 ? std::string(digest, 64) : "(sha256sum failed on " + file.string() + ")";
+}
+
+// The report of a carve into a DICOM series records the digest of the series' files (not of the other series
+// in the folder) and names no patient, in its output or in the text files it writes.
+TEST(DicomCli, AReportChecksumsTheSeriesFilesWithoutThePatient) {
+    fs::path dir = testDirectory();
+    fs::path series = dir / "series";
+    fs::create_directories(series);
+    std::string study = curette::test::newUid();
+    writeSeries(series, "2", "ball", {0, 2, 4, 6, 8, 10, 12, 14, 16}, study);
+    writeSeries(series, "3", "scout", {0, 2}, study);
+    fs::path scene = dir / "scene.json";
+    std::ofstream(scene) << R"({
+  "volume": {"path": ")" << series.string() << R"("},
+  "transfer_function": ")" << kSource << R"(/assets/tf/ct_bone.json",
+  "report": {"tissue": "all"},
+  "clip_meshes": [{"name": "ball", "mesh": {"shape": "sphere", "radius_mm": 5}, "position_mm": [0, 0, 8]}]
+})";
+    fs::path out = dir / "plan";
+    Invocation r = curette::testing::runCurette("report --scene " + scene.string() + " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_FALSE(mentionsThePatient(r.output)) << r.output;
+    for (const char* name : {"report.json", "structures.csv", "bundles.csv", "plan-scene.json"})
+        EXPECT_FALSE(mentionsThePatient(curette::testing::readTextFile(out / name))) << name;
+
+    nlohmann::json volume = nlohmann::json::parse(curette::testing::readTextFile(out / "report.json")).at("provenance").at("files").at(0);
+    EXPECT_EQ(volume.at("role"), "volume");
+    EXPECT_EQ(volume.at("files"), 9) << "series 2's slices";
+    std::ofstream digests(dir / "digests.txt");
+    for (int k = 0; k < 9; ++k) digests << sha256sum(series / ("2-" + std::to_string(k) + ".dcm")) << "\n";
+    digests.close();
+    EXPECT_EQ(volume.at("sha256").get<std::string>(), sha256sum(dir / "digests.txt"));
 }
 
 }  // namespace

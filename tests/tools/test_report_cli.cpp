@@ -23,6 +23,7 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <regex>
 
 namespace curette {
 namespace {
@@ -167,6 +168,68 @@ TEST(ReportCli, ASphereCarveIsMeasuredPerStructureAndBundleAndExported) {
 
     EXPECT_EQ(io::readTractogram(out / "tracts" / "pair-cut.tck").streamlineCount(), 1u);
     EXPECT_EQ(io::readTractogram(out / "tracts" / "pair-spared.tck").streamlineCount(), 1u);
+}
+
+// `sha256sum FILE`'s digest, computed outside curette.
+std::string sha256sum(const fs::path& file) {
+    std::string command = "sha256sum '" + file.string() + "'";
+    FILE* pipe = popen(command.c_str(), "r");
+    char digest[65] = {};
+    std::size_t n = pipe ? std::fread(digest, 1, 64, pipe) : 0;
+    if (pipe) pclose(pipe);
+    return n == 64 ? std::string(digest, 64) : "(sha256sum failed on " + file.string() + ")";
+}
+
+// report.json says what it was made from: when (UTC), by which curette, the checksums of the volume, label and
+// tract files, the TF and every mesh's pose.
+TEST(ReportCli, TheReportRecordsItsProvenance) {
+    fs::path dir = scratch("provenance");
+    fs::path scene = writePlanScene(dir);
+    Invocation r = runCurette("report --no-exports --scene " + scene.string() + " --out " + (dir / "out").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = readJson(dir / "out" / "report.json");
+    ASSERT_TRUE(report.contains("provenance")) << report.dump(2);
+    const nlohmann::json& p = report.at("provenance");
+
+    std::string created = p.at("created_utc").get<std::string>();
+    EXPECT_TRUE(std::regex_match(created, std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)"))) << created;
+    std::string version = runCurette("--version").output;
+    EXPECT_EQ(p.at("curette_version").get<std::string>() + "\n", version);
+
+    std::map<std::string, nlohmann::json> files;
+    for (const nlohmann::json& f : p.at("files")) files[f.at("role").get<std::string>()] = f;
+    ASSERT_TRUE(files.count("volume") && files.count("labels") && files.count("label_table") && files.count("tracts")) << p.dump(2);
+    EXPECT_EQ(files["volume"].at("sha256").get<std::string>(), sha256sum(dir / "uniform.raw"));
+    EXPECT_EQ(fs::path(files["volume"].at("path").get<std::string>()), fs::absolute(dir / "uniform.raw"));
+    EXPECT_EQ(files["labels"].at("sha256").get<std::string>(), sha256sum(dir / "halves.nii.gz"));
+    EXPECT_EQ(files["label_table"].at("sha256").get<std::string>(), sha256sum(dir / "halves.txt"));
+    EXPECT_EQ(files["tracts"].at("sha256").get<std::string>(), sha256sum(dir / "pair.tck"));
+
+    const nlohmann::json& tf = p.at("transfer_function");
+    EXPECT_EQ(tf.at("opacity"), nlohmann::json::parse("[[0, 0], [100, 0.5], [255, 0.5]]")) << tf.dump();
+    ASSERT_EQ(p.at("clip_meshes").size(), 1u);
+    const nlohmann::json& mesh = p.at("clip_meshes")[0];
+    EXPECT_EQ(mesh.at("name"), "ball");
+    EXPECT_EQ(mesh.at("position_mm"), nlohmann::json::parse("[22.0, 24.3, 23.6]"));
+    Scene original = loadScene(scene);
+    glm::dquat q = original.clipMeshes[0].pose.orientation;
+    EXPECT_EQ(mesh.at("orientation_wxyz"), nlohmann::json({q.w, q.x, q.y, q.z})) << "the pose as the report used it, exactly";
+    EXPECT_EQ(mesh.at("scale"), nlohmann::json::parse("[1.0, 1.0, 1.0]"));
+
+    // A volume of two files (a detached NRRD header and its data): one entry, the digest of their digests.
+    std::ofstream(dir / "uniform.nhdr") << "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 48 48 48\nencoding: raw\ndata file: uniform.raw\n";
+    std::string text = fileText(scene);
+    const std::string raw = R"("volume": {"path": "uniform.raw", "format": "raw", "raw": {"dims": [48, 48, 48], "type": "uint8"}})";
+    ASSERT_NE(text.find(raw), std::string::npos);
+    text.replace(text.find(raw), raw.size(), R"("volume": {"path": "uniform.nhdr"})");
+    std::ofstream(dir / "detached.json") << text;
+    Invocation detached = runCurette("report --no-exports --scene " + (dir / "detached.json").string() + " --out " + (dir / "detached").string());
+    ASSERT_EQ(detached.exitCode, 0) << detached.output;
+    const nlohmann::json volume = readJson(dir / "detached" / "report.json").at("provenance").at("files").at(0);
+    EXPECT_EQ(volume.at("files"), 2);
+    std::ofstream(dir / "digests.txt") << sha256sum(dir / "uniform.nhdr") << "\n" << sha256sum(dir / "uniform.raw") << "\n";
+    EXPECT_EQ(volume.at("sha256").get<std::string>(), sha256sum(dir / "digests.txt")) << "the files' digests in the order of their paths";
+    EXPECT_EQ(readJson(dir / "detached" / "report.json").at("removed_ml"), report.at("removed_ml")) << "the same voxels";
 }
 
 TEST(ReportCli, TissueCanBeALabelSet) {

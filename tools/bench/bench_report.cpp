@@ -20,6 +20,7 @@
 
 #include "tools/bench/report.h"
 #include "tools/bench/report_analytic.h"
+#include "tools/commands/commands.h"
 #include "session/carve_report.h"
 #include "session/loaded_scene.h"
 #include "session/session_step.h"
@@ -43,7 +44,7 @@ int benchReport(const CommandLine& cl) {
     auto context = gl::createHeadlessContext(gpuChoice(cl));
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
-    CarveReporter reporter(loaded, renderer.geometry());
+    CarveReporter reporter(loaded, renderer.geometry(), commands::programVersion());
     std::size_t probePoints = 0, streamlines = 0;
     for (const plan::BundleInput& b : reporter.bundles()) probePoints += b.probe.points.size(), streamlines += b.tracts->streamlineCount();
     const VolumeData& v = loaded.volume;
@@ -59,7 +60,7 @@ int benchReport(const CommandLine& cl) {
         for (MeshState& m : state.meshes) m.pose.position += glm::dvec3(0.5, 0.0, 0.0);
         syncClipMeshes(state, renderer.clipMeshes());
         auto start = std::chrono::steady_clock::now();
-        report = reporter.compute(renderer.clipMeshes());
+        report = reporter.compute(renderer.clipMeshes(), state);
         double total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (r < 0) continue;  // warm-up: shader compilation, first map drawing
         const plan::ReportTimings& t = report.timings;

@@ -102,10 +102,12 @@ std::string usage() {
     return text;
 }
 
-std::string versionText() {
+std::string programVersion() {
     std::string git = CURETTE_GIT_DESCRIPTION;
-    return std::string("curette ") + CURETTE_VERSION + (git.empty() ? "" : " (git " + git + ")") + "\n";
+    return std::string("curette ") + CURETTE_VERSION + (git.empty() ? "" : " (git " + git + ")");
 }
+
+std::string versionText() { return programVersion() + "\n"; }
 
 int run(const Arguments& args) {
     const std::string& name = args.at(0);

@@ -33,8 +33,10 @@ const std::vector<Command>& commandTable();
 
 // The top-level usage, generated from commandTable().
 std::string usage();
-// "curette VERSION" (the CMake project version; with the git description at configure time when there was one).
-std::string versionText();
+// "curette VERSION" (the CMake project version; with the git description at configure time when there was one):
+// `curette --version`'s line, and the maker a report names (session/carve_report.h takes it as data).
+std::string programVersion();
+std::string versionText();   // programVersion() and a line feed
 
 // Runs the command `args` names (args: everything after `curette`; a group such as bench takes the sub-command
 // from args[1]). `--help` prints the command's help and returns 0.

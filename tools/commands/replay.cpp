@@ -101,7 +101,7 @@ int replay(const CommandLine& cl) {
                      initialFrame(loaded.scene, geometry));
     const InteractionState& state = step.state();
     std::optional<CarveReporter> reporter;
-    if (reporting) reporter.emplace(loaded, geometry);
+    if (reporting) reporter.emplace(loaded, geometry, programVersion());
     std::string removalCsv = "frame,time_s,removed_ml,touched_voxels,cut_streamlines,protected_touched\n";
     std::optional<plan::Report> lastReport;
     InteractionState lastReportState;
@@ -176,7 +176,7 @@ int replay(const CommandLine& cl) {
             writePng(*out / movieFrames.back(), image, glm::vec4(loaded.scene.background));
         }
         if (reporter) {
-            plan::Report report = reporter->compute(renderer->clipMeshes());
+            plan::Report report = reporter->compute(renderer->clipMeshes(), state);
             char name[64];
             std::snprintf(name, sizeof name, "frame_%06zu", f.index);
             reporter->write(*out / "report" / name, report, state, PlanExportOptions{io::MeshSpace::Ras, false});

@@ -44,13 +44,13 @@ int report(const CommandLine& cl) {
                      initialFrame(loaded.scene, geometry));
         for (int n = 0; n <= frame; ++n)
             step->follow(session->frames[std::size_t(n)], scenePath.parent_path(), *cl.value("session") + " line " + std::to_string(n + 2));
-        step->syncTo(renderer.clipMeshes());
+        step->syncTo(renderer, loaded.tracts);   // the renderer in the state at that frame, its meshes and settings
         where = *cl.value("session") + " frame " + std::to_string(frame);
     }
     InteractionState state = step ? step->state() : InteractionState::fromScene(loaded.scene);
 
-    CarveReporter reporter(loaded, geometry);
-    plan::Report report = reporter.compute(renderer.clipMeshes());
+    CarveReporter reporter(loaded, geometry, programVersion());
+    plan::Report report = reporter.compute(renderer.clipMeshes(), state);
     PlanExportOptions options;
     options.meshSpace = cl.flag("lps") ? io::MeshSpace::Lps : io::MeshSpace::Ras;
     options.exports = !cl.flag("no-exports");

@@ -8,7 +8,7 @@
 // and the exact frame once the motion has settled; step I runs in slices with a preview meanwhile, so the window
 // never freezes for it; the overlay says PREVIEW or EXACT and shows step I's progress. The plan panel shows the removal report (removed mL,
 // the structures and bundles the carve touches or must spare, margins; protected ones in red when touched),
-// updated 0.2 s after the meshes stop; F5 writes the report and the plan's exports (session/carve_report.h).
+// of the state on screen (its TF and bundles too), updated 0.2 s after the meshes or those settings stop changing; F5 writes the report and the plan's exports (session/carve_report.h).
 // The settings panels (viewer/view_panels.h) turn every widget into a setting edit that the session step
 // applies with the frame's actions (and a recording records). --play F plays a recorded session in this
 // loop instead of live input (its poses, lights and edits through SessionStep::follow), then writes a
@@ -267,7 +267,7 @@ void ViewWindow::drawOverlay() {
     if (const std::optional<plan::Report>& r = report.report()) {
         ImGui::Separator();
         ImGui::Text("removed %.2f +-%.2f mL%s (%.0f ms; F5 writes the plan)", r->removedMl, r->removedUncertaintyMl,
-                    report.current(renderer.clipMeshes()) ? "" : " (updating)", report.ms());
+                    report.current(renderer.clipMeshes(), s) ? "" : " (updating)", report.ms());
         for (const plan::StructureRow& row : r->structures) {
             if (!row.touched && !row.isProtected) continue;
             ImVec4 colour = row.isProtected && row.touched ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
@@ -316,9 +316,9 @@ bool ViewWindow::renderAndPresent(const Polled& p, bool moved) {
     return true;
 }
 
-// The removal report once the meshes are still; F5 writes it and the plan's exports.
+// The removal report once the meshes and the settings it reads are still; F5 writes it and the plan's exports.
 void ViewWindow::refreshReport(double now) {
-    report.refresh(reporter, renderer.clipMeshes(), now);
+    report.refresh(reporter, renderer.clipMeshes(), state(), now);
     bool exportKeyDown = keyDown(GLFW_KEY_F5);
     if (exportKeyDown && !exportKeyWasDown && report.report()) {
         messages.push_back(report.exportPlan(reporter, renderer.clipMeshes(), state(), fileNameTimestamp()));
@@ -375,7 +375,7 @@ int view(const CommandLine& cl) {
     LiveInput live(openHid(!cl.flag("no-devices") && !play), mapping, 40.0, 60.0);
     ViewWindow viewWindow{*window, loaded, scenePath, renderer, step, panels, live, play, cl.valueOr("screenshot", "curette-play.png"),
                           ViewerState(loopSettings), loopSettings.quality == ViewQuality::Exact, Presenter(),
-                          CarveReporter(loaded, renderer.geometry())};
+                          CarveReporter(loaded, renderer.geometry(), programVersion())};
     if (auto path = cl.value("record")) viewWindow.startRecording(*path, glfwGetTime());
 
     IMGUI_CHECKVERSION();
