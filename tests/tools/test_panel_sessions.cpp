@@ -15,22 +15,10 @@
 #include "render/renderer.h"
 
 #include "tests/tools/run_curette.h"
+#include "tests/tools/tool_test_support.h"
 
 #include <gtest/gtest.h>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wold-style-cast"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wnull-dereference"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#include <stb/stb_image.h>
-#pragma GCC diagnostic pop
 
 #include <cstdlib>
 #include <cstring>
@@ -192,20 +180,8 @@ LiveRun recordEditSession(const std::filesystem::path& scene, const std::filesys
     return recordPanelSession(scene, session, script);
 }
 
-struct Png {
-    int width = 0, height = 0;
-    std::vector<std::uint8_t> rgba;
-};
-
-Png readPng(const std::filesystem::path& path) {
-    Png png;
-    int channels = 0;
-    stbi_uc* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 4);
-    if (!data) return png;
-    png.rgba.assign(data, data + static_cast<std::size_t>(png.width) * static_cast<std::size_t>(png.height) * 4);
-    stbi_image_free(data);
-    return png;
-}
+using curette::testing::Png;
+using curette::testing::readPng;
 
 // `curette replay` of `session`, following the recorded poses and re-deriving them from the reports, writes
 // frames with the live run's image hashes (and the re-derived poses equal the recorded ones).

@@ -15,23 +15,11 @@
 #include "render/renderer.h"
 
 #include "tests/tools/run_curette.h"
+#include "tests/tools/tool_test_support.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wold-style-cast"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wnull-dereference"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#include <stb/stb_image.h>
-#pragma GCC diagnostic pop
 
 #include <filesystem>
 #include <random>
@@ -50,16 +38,7 @@ fs::path scratch(const std::string& name) { return curette::testing::freshScratc
 const char* const kSceneTf = R"({"color": [[0, 0, 0, 0], [100, 0.8, 0.6, 0.5], [255, 1, 1, 1]], "opacity": [[0, 0], [60, 0], [100, 0.2], [255, 0.8]]})";
 
 fs::path writeBallScene(const fs::path& dir, const std::string& tf = kSceneTf) {
-    std::vector<std::uint8_t> voxels(32 * 32 * 32);
-    std::mt19937 random(5);
-    std::uniform_int_distribution<int> noise(0, 20);
-    for (int z = 0; z < 32; ++z)
-        for (int y = 0; y < 32; ++y)
-            for (int x = 0; x < 32; ++x) {
-                double r = std::sqrt((x - 15.5) * (x - 15.5) + (y - 15.5) * (y - 15.5) + (z - 15.5) * (z - 15.5));
-                int v = r < 9 ? 200 : r < 13 ? 120 : 0;
-                voxels[static_cast<std::size_t>((z * 32 + y) * 32 + x)] = static_cast<std::uint8_t>(std::min(255, v + noise(random)));
-            }
+    const std::vector<std::uint8_t> voxels = curette::testing::noisyBallVoxels();
     writeFileAtomically(dir / "ball.raw", voxels);
     writeFileAtomically(dir / "scene.json", R"({
   "volume": {"path": "ball.raw", "format": "raw", "raw": {"dims": [32, 32, 32], "type": "uint8", "spacing": [2, 2, 2]}},
@@ -96,12 +75,9 @@ double reportOfScene(const fs::path& scene, const fs::path& out) {
 }
 
 std::string pngHash(const fs::path& path) {
-    int w = 0, h = 0, channels = 0;
-    stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
-    if (!data) return "(no image " + path.string() + ")";
-    std::vector<std::uint8_t> rgba(data, data + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
-    stbi_image_free(data);
-    return imageHash(rgba);
+    const curette::testing::Png png = curette::testing::readPng(path);
+    if (png.rgba.empty()) return "(no image " + path.string() + ")";
+    return imageHash(png.rgba);
 }
 
 // The viewer's loop without a window: the step applying the frame's input and panel edits, the renderer in

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/tools/run_curette.h"
+#include "tests/tools/tool_test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -424,16 +425,7 @@ TEST(Session, RecorderCheckpointsCompleteSessionsAndLeavesNoTemporaryFiles) {
 
 // A 32^3 ball with a soft shell, as a raw file, and a CAO scene with two clip meshes around it.
 std::filesystem::path writeSmallScene(const std::filesystem::path& dir) {
-    std::vector<std::uint8_t> voxels(32 * 32 * 32);
-    std::mt19937 random(5);
-    std::uniform_int_distribution<int> noise(0, 20);
-    for (int z = 0; z < 32; ++z)
-        for (int y = 0; y < 32; ++y)
-            for (int x = 0; x < 32; ++x) {
-                double r = std::sqrt((x - 15.5) * (x - 15.5) + (y - 15.5) * (y - 15.5) + (z - 15.5) * (z - 15.5));
-                int v = r < 9 ? 200 : r < 13 ? 120 : 0;
-                voxels[static_cast<std::size_t>((z * 32 + y) * 32 + x)] = static_cast<std::uint8_t>(std::min(255, v + noise(random)));
-            }
+    const std::vector<std::uint8_t> voxels = curette::testing::noisyBallVoxels();
     std::ofstream(dir / "ball.raw", std::ios::binary).write(reinterpret_cast<const char*>(voxels.data()), static_cast<std::streamsize>(voxels.size()));
     writeText(dir / "scene.json", R"({
   "volume": {"path": "ball.raw", "format": "raw", "raw": {"dims": [32, 32, 32], "type": "uint8", "spacing": [2, 2, 2]}},
