@@ -47,16 +47,7 @@ std::string readText(const std::filesystem::path& path) { return curette::testin
 //    than a fresh one and the cut differs in a few pixels (with a 24 mm sphere scaled 1.4 and 8 LAO samples:
 //    31 channels, up to 6 levels, in a 48 x 48 image).
 std::filesystem::path writeBallScene(const std::filesystem::path& dir) {
-    std::vector<std::uint8_t> voxels(32 * 32 * 32);
-    std::mt19937 random(5);
-    std::uniform_int_distribution<int> noise(0, 20);
-    for (int z = 0; z < 32; ++z)
-        for (int y = 0; y < 32; ++y)
-            for (int x = 0; x < 32; ++x) {
-                double r = std::sqrt((x - 15.5) * (x - 15.5) + (y - 15.5) * (y - 15.5) + (z - 15.5) * (z - 15.5));
-                int v = r < 9 ? 200 : r < 13 ? 120 : 0;
-                voxels[static_cast<std::size_t>((z * 32 + y) * 32 + x)] = static_cast<std::uint8_t>(std::min(255, v + noise(random)));
-            }
+    const std::vector<std::uint8_t> voxels = curette::testing::noisyBallVoxels();
     writeFileAtomically(dir / "ball.raw", voxels);
     writeFileAtomically(dir / "scene.json", R"({
   "volume": {"path": "ball.raw", "format": "raw", "raw": {"dims": [32, 32, 32], "type": "uint8", "spacing": [2, 2, 2]}},
