@@ -233,7 +233,6 @@ Margin refineOver(glm::ivec3 dims, const glm::dmat4& indexToWorld, glm::ivec3 lo
             if (!std::isfinite(b) && candidates[cell].touched) b = candidates[cell].lower;
             margin.mm = std::min(margin.mm, std::max(b, candidates[cell].lower));
         }
-        margin.refined = true;
         first = end;
     }
     if (margin.contact) margin.mm = 0;

@@ -11,9 +11,10 @@
 // Accuracy: a cell the carve covers only in part counts whole, so a cell gap is never larger than the gap to
 // what is removed, and smaller by at most the uncovered part of the nearest touched cell (under a cell
 // diagonal; exact when the carve's faces lie on cell faces). refinedMargin closes that: it probes the partly
-// covered cells nearest the structure at a lattice of sub-points with the clip test itself and measures from
-// the inside ones, so the margin is then larger than the true gap by at most half a sub-point diagonal
-// (kRefineStepMm), and never smaller than the cell gap. Grids with an oblique affine use the column norms as
+// covered cells nearest the structure at a lattice of sub-points with the clip test itself, then along a ray
+// from the nearest inside one towards the structure, and measures from the inside points: for a face flat over
+// a sub-point the margin is then within a quarter of a sub-point diagonal (Margin::uncertaintyMm) of the true
+// gap, and never smaller than the cell gap. Grids with an oblique affine use the column norms as
 // spacings (plan/distance_transform.h).
 
 #include "plan/removal_field.h"
@@ -52,14 +53,13 @@ double marginUncertaintyMm(glm::dvec3 spacingMm);
 // (RemovalProbe::insideFlags) or a CPU twin.
 using PointsInside = std::function<std::vector<std::uint8_t>(const std::vector<glm::dvec3>& world)>;
 
-// The sub-point spacing refinedMargin aims for, per axis (at most 16 sub-points per cell axis).
+// The sub-point spacing refinedMargin aims for, per axis (2 to 8 sub-points per cell axis).
 inline constexpr double kRefineStepMm = 0.125;
 
 struct Margin {
     double mm = 0;
     double uncertaintyMm = 0;   // refined: the gap to a face flat over a sub-point lies within this of mm;
                                 // cells only: the gap lies in [mm, mm + this]
-    bool refined = false;
     bool contact = false;       // a probe point inside the carve lies in the structure (between the field's samples)
 };
 

@@ -3,6 +3,7 @@
 // true gap is 31.5 - c.
 #include "mesh/coverage.h"
 #include "plan/removal_report.h"
+#include "plan/tract_probe.h"
 #include "plan_test_support.h"
 
 #include <gtest/gtest.h>
@@ -45,11 +46,7 @@ Report wallReport(const WallScene& s, const InsideTest& refineWith = {}) {
     LabelSet set{"walls", &s.labels, &s.table, {1}};
     PointsInside inside;
     if (refineWith)
-        inside = [refineWith](const std::vector<glm::dvec3>& points) {
-            std::vector<std::uint8_t> flags;
-            for (const glm::dvec3& p : points) flags.push_back(refineWith(p) ? 1 : 0);
-            return flags;
-        };
+        inside = [refineWith](const std::vector<glm::dvec3>& points) { return insideFlagsCpu(points, refineWith); };
     return computeReport(s.volume, stepTf(), ReportSettings{}, s.field, {set}, {}, inside);
 }
 
