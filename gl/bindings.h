@@ -26,6 +26,7 @@ inline constexpr unsigned ismosLayerAlpha = 18;
 inline constexpr unsigned ismosLayerBack = 19;
 inline constexpr unsigned ismosFit = 20;
 inline constexpr unsigned seenBricks = 21;
+inline constexpr unsigned clipNormals = 22;
 
 inline constexpr unsigned imageOutput = 0;
 inline constexpr unsigned imageOpacity = 1;

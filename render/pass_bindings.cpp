@@ -27,6 +27,7 @@ Lookup sampler(unsigned unit) {
         case b::precomputedAo: return {R::PrecomputedAo};
         case b::mask: return {R::CategoryMask};
         case b::clipDepth:
+        case b::clipNormals:
         case b::clipDilated: return {R::ClipMaps};
         case b::occlusionPrevious: return {R::OcclusionBuffers};
         case b::tubeDepth:

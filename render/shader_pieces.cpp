@@ -113,6 +113,7 @@ void SampleShadingPiece::addCutFaceDefines(gl::Defines& defines, const CutFaceSe
 
 void SampleShadingPiece::apply(gl::Program& p) const {
     p.set("cutFaceNormalDepthMm", static_cast<float>(cutFace.normalDepthMm));
+    p.set("cutFaceNormalOpacity", static_cast<float>(cutFace.normalOpacity));
     if (!usesAmbientOcclusion(mode)) return;
     p.set("ambientScale", static_cast<float>(ambientScale));
     if (ambient) glBindTextureUnit(binding::ambient, ambient);

@@ -17,7 +17,7 @@
 //   "lights": [{"direction": [x,y,z], "color": [r,g,b], "intensity": 1, "space": "camera" | "world"}],
 //   "image": {"width": 512, "height": 512, "background": [r,g,b,a]},
 //   "raycast": {"step_mm": 0 (auto), "early_termination": 0.99, "jitter_seed": 0, "skip_empty_space": true,
-//               "cut_faces": {"enabled": true, "normal_depth_mm": 2.0}},
+//               "cut_faces": {"enabled": true, "normal_depth_mm": 10.0, "normal_opacity": 0.9}},
 //   "ambient_occlusion": {"rays": "26" | "6" | "14" | "54" | "fibonacci:K", "samples": 20, "step_mm": 1.0,
 //                         "antialiasing_samples": 32, "jitter": 0.025, "weights": "uniform" | "sky",
 //                         "ambient_scale": 2.0, "dispatch": "compacted" | "full_grid"},

@@ -80,6 +80,7 @@ RaycastSettings readRaycast(const JsonReader& r) {
         CutFaceSettings& f = rc.cutFace;
         if (auto e = faces->find("enabled")) f.enabled = e->boolean();
         if (auto d = faces->find("normal_depth_mm")) f.normalDepthMm = d->number(0.01, 100);
+        if (auto o = faces->find("normal_opacity")) f.normalOpacity = o->number(0.01, 1.0);
         faces->finish();
     }
     r.finish();

@@ -101,6 +101,19 @@ ShadingMode parseShadingOption(const std::string& option, const std::string& tex
     return *mode;
 }
 
+std::vector<ShadingMode> parseShadingList(const std::string& option, const std::string& text) {
+    std::vector<ShadingMode> modes;
+    std::size_t start = 0;
+    while (true) {
+        std::size_t comma = text.find(',', start);
+        ShadingMode mode = parseShadingOption(option, text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (std::find(modes.begin(), modes.end(), mode) == modes.end()) modes.push_back(mode);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return modes;
+}
+
 void applyOverrides(const FrameOverrides& o, FrameDescription& frame) {
     if (o.size) frame.size = *o.size;
     if (o.shading) frame.shading = *o.shading;

@@ -42,5 +42,7 @@ struct FrameOverrides {
 };
 void applyOverrides(const FrameOverrides& overrides, FrameDescription& frame);
 ShadingMode parseShadingOption(const std::string& option, const std::string& text);
+// A comma-separated list of shading modes (a command's --option), each once, in the order given.
+std::vector<ShadingMode> parseShadingList(const std::string& option, const std::string& text);
 
 }  // namespace curette

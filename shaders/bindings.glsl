@@ -22,6 +22,7 @@
 #define BINDING_ISMOS_LAYER_BACK 19    // sampler2D rgba32f: ISMOS z of each layer's last sample (exact opacity)
 #define BINDING_ISMOS_FIT 20           // sampler2D r32f: ISMOS beta of the transmittance fit exp(-beta z^2)
 #define BINDING_SEEN_BRICKS 21         // sampler3D r8: per seen brick 0 where a visible sample may read its LAO (steps I, V)
+#define BINDING_CLIP_NORMALS 22        // sampler2DArray rg16_snorm: per depth-map pixel the mesh-local surface normal (octahedral)
 
 #define IMAGE_OUTPUT 0              // image2D: the rendered RGBA
 #define IMAGE_OPACITY 1             // image3D r16: V_o written by step IV

@@ -8,6 +8,7 @@
 // small fraction of a voxel of the mesh's; the dilated maps cover the map square at a coarser one. Lookups use
 // the nearest pixel of either, the rule render/passes/clip_mesh_set.cpp's derivations assume.
 #include "bindings.glsl"
+#include "octahedral.glsl"
 
 #define MAX_CLIP_MESHES 16
 
@@ -30,6 +31,7 @@ struct ClipMeshGpu {
 // which llvmpipe then loads once per SIMD group instead of gathering per lane.
 layout(std140, binding = UBO_CLIP_MESHES) uniform ClipMeshes { ClipMeshGpu clipMeshes[MAX_CLIP_MESHES]; };
 layout(binding = BINDING_CLIP_DEPTH) uniform sampler2DArray clipDepthMaps;
+layout(binding = BINDING_CLIP_NORMALS) uniform sampler2DArray clipNormalMaps;   // the cut faces' normals
 layout(binding = BINDING_CLIP_DILATED) uniform sampler2DArray clipDilatedMaps;
 // NO_CLIP_MESHES (ClipMeshSet::addDefines, a frame without meshes): the count is the constant 0, so every test
 // below folds to "outside" at compile time. As a uniform 0 the tests were still paid: llvmpipe runs a branch's
@@ -169,51 +171,51 @@ bool insideAnyDilatedMesh(vec3 world) {
 int clipMeshHolding(vec3 world) { return clipMeshHoldingAmong(0xffffffffu, world); }
 
 // Where the segment from `inside` (held by mesh i) to `outside` (held by no mesh) leaves mesh i, as the
-// fraction s in [0, 1] along it, and the mesh's outward unit world normal there. The layer it leaves through
-// is the back of the interval holding `inside` when the segment runs deeper along the mesh's camera, else its
-// front. That layer is read as a bilinear surface through the map texel centres (the 2 x 2 texels around the
-// segment's middle), not as the nearest-pixel terraces the clip test sees, so the face is smooth: the depth z
-// is linear along the segment and the bilinear depth B quadratic, and two Newton steps from the middle solve
-// z(s) = B(s). The normal is -grad g of g = z - B (front: inside behind it) or g = B - z (back), carried to
-// world by the transpose of the linear part of worldToMap (a normal is a covector). Where a texel of the
-// patch holds no surface (a silhouette of the map) the answer is s = 1 (the lattice sample) and the normal
-// faces back along the segment.
+// fraction s in [0, 1] along it, and the mesh's outward unit world normal there. The crossing is found by
+// bisection with the clip test itself (insideMeshMaps), so the face lies exactly where the samples around it
+// are clipped or kept: on the depth maps' pixels, a small fraction of a voxel across (the depth square,
+// ClipMapSettings::depthResolution). (Newton steps on a bilinear reading of the maps did this before; near a
+// silhouette of the map, where the surface is steep, they found no root or the wrong one, and the face
+// showed a salt of misplaced samples there.) The normal is the surface's (mesh/surface_normals.h) from the
+// normal maps: the texels of the interval's front and back around the crossing, each weighted by the inverse
+// square of its surface point's distance from the crossing in millimetres plus a texel's square (near a
+// silhouette texels a pixel apart in x, y lie millimetres apart in depth, and only the distance in all three
+// axes tells which of them the crossing is on), carried from mesh-local to world through worldToMap (whose
+// rows are the local axes over the map's extents). With no surface near it faces back along the segment.
+const int kCrossingBisections = 8;   // 1/256 of a ray step
+
 float clipExitFraction(int i, vec3 inside, vec3 outside, out vec3 outwardWorld) {
+    float lo = 0.0, hi = 1.0;
+    for (int step = 0; step < kCrossingBisections; ++step) {
+        float middle = 0.5 * (lo + hi);
+        if (insideMeshMaps(i, mix(inside, outside, middle), false)) lo = middle;
+        else hi = middle;
+    }
+    float s = hi;   // the first point found outside: the sample taken there is kept, as the lattice's would be
     ClipMeshGpu mesh = clipMeshes[i];
-    vec3 m0 = (mesh.worldToMap * vec4(inside, 1.0)).xyz, m1 = (mesh.worldToMap * vec4(outside, 1.0)).xyz;
-    // In the depth square's coordinates (its x, y are the map's scaled by depthMap.z).
-    m0.xy = (m0.xy - mesh.depthMap.xy) * mesh.depthMap.z;
-    m1.xy = (m1.xy - mesh.depthMap.xy) * mesh.depthMap.z;
+    vec3 m0 = (mesh.worldToMap * vec4(inside, 1.0)).xyz, m = (mesh.worldToMap * vec4(mix(inside, outside, s), 1.0)).xyz;
     int resolution = int(mesh.depthMap.w);
-    ivec2 pixel0 = clamp(ivec2(m0.xy * float(resolution)), ivec2(0), ivec2(resolution - 1));
-    int layer = mesh.info.x;
+    // In the depth square's texels (its x, y are the map's scaled by depthMap.z), z in mm.
+    vec3 q = vec3((m.xy - mesh.depthMap.xy) * mesh.depthMap.z * float(resolution), m.z);
+    ivec2 pixel0 = clamp(ivec2((m0.xy - mesh.depthMap.xy) * mesh.depthMap.z * float(resolution)), ivec2(0), ivec2(resolution - 1));
+    int layer = mesh.info.x;   // the front of the interval holding `inside`
     for (int interval = 1; interval < mesh.info.y; ++interval) {
         int front = mesh.info.x + 2 * interval;
         if (texelFetch(clipDepthMaps, ivec3(pixel0, front), 0).r < m0.z) layer = front;  // the last front before m0
     }
-    bool back = m1.z > m0.z;
-    layer += back ? 1 : 0;
-    vec2 corner = clamp(floor(mix(m0.xy, m1.xy, 0.5) * float(resolution) - 0.5), vec2(0.0), vec2(resolution - 2));
-    ivec2 c = ivec2(corner);
-    float d00 = texelFetch(clipDepthMaps, ivec3(c, layer), 0).r, d10 = texelFetch(clipDepthMaps, ivec3(c + ivec2(1, 0), layer), 0).r;
-    float d01 = texelFetch(clipDepthMaps, ivec3(c + ivec2(0, 1), layer), 0).r, d11 = texelFetch(clipDepthMaps, ivec3(c + ivec2(1, 1), layer), 0).r;
-    bool surface = max(max(abs(d00), abs(d10)), max(abs(d01), abs(d11))) < 1e30;
-    // Bilinear depth over texel coordinates u = m.xy * resolution - 0.5 - corner.
-    vec2 u0 = m0.xy * float(resolution) - 0.5 - corner, du = (m1.xy - m0.xy) * float(resolution);
-    float s = 0.5;
-    vec2 gradientTexels = vec2(0.0);
-    for (int step = 0; step < 2; ++step) {
-        vec2 u = u0 + s * du;
-        float depth = mix(mix(d00, d10, u.x), mix(d01, d11, u.x), u.y);
-        gradientTexels = vec2(mix(d10 - d00, d11 - d01, u.y), mix(d01 - d00, d11 - d10, u.x));
-        float g = mix(m0.z, m1.z, s) - depth;
-        float slope = (m1.z - m0.z) - dot(gradientTexels, du);
-        s = clamp(s - g / (abs(slope) > 1e-12 ? slope : 1e-12), 0.0, 1.0);
+    mat3 L = mat3(mesh.worldToMap);
+    vec3 extent = vec3(1.0 / length(vec3(L[0][0], L[1][0], L[2][0])), 1.0 / length(vec3(L[0][1], L[1][1], L[2][1])), 1.0);
+    vec2 texelMm = extent.xy / (float(resolution) * mesh.depthMap.z);
+    ivec2 c = ivec2(clamp(floor(q.xy - 0.5), vec2(0.0), vec2(resolution - 2)));
+    vec3 local = vec3(0.0);
+    for (int n = 0; n < 8; ++n) {
+        ivec3 texel = ivec3(c + ivec2(n & 1, (n >> 1) & 1), layer + (n >> 2));
+        float z = texelFetch(clipDepthMaps, texel, 0).r;
+        vec3 d = vec3((vec2(texel.xy) + 0.5 - q.xy) * texelMm, z - q.z);
+        float w = abs(z) < 1e30 ? 1.0 / (dot(d, d) + dot(texelMm, texelMm)) : 0.0;
+        local += w * octahedralDecode(texelFetch(clipNormalMaps, texel, 0).rg);
     }
-    // grad (m.z - B) in map coordinates (x, y in [0, 1] per map side, z in mm): depth-square texels per map unit
-    // are resolution * depthMap.z.
-    vec3 gradientFront = vec3(-gradientTexels * float(resolution) * mesh.depthMap.z, 1.0);
-    vec3 outwardMap = back ? gradientFront : -gradientFront;
-    outwardWorld = surface ? normalize(transpose(mat3(mesh.worldToMap)) * outwardMap) : normalize(outside - inside);
-    return surface ? s : 1.0;
+    // Local -> world: worldToMap's linear part L = diag(1 / extent.x, 1 / extent.y, 1) R^T, so R n = L^T (n * extent).
+    outwardWorld = dot(local, local) > 0.0 ? normalize(transpose(L) * (local * extent)) : normalize(outside - inside);
+    return s;
 }

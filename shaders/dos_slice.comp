@@ -126,7 +126,7 @@ void main() {
     vec4 eye = imageLoad(eyeBuffer, pixel);
     if (!behindSurface && eyeAlpha > 0.0 && eye.a < earlyTerminationAlpha) {
 #ifdef CUT_FACES
-        vec3 color = shadeCutFaceSample(point, tex, -direction, faceNormal, onFace ? 0.0 : 1e30);
+        vec3 color = shadeCutFaceSample(point, tex, -direction, faceNormal, onFace ? 0.0 : 1e30, onFace ? 0.0 : 1.0);
 #else
         vec3 color = shadeSample(point, tex, -direction);
 #endif

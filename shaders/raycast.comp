@@ -66,6 +66,7 @@ bool intersectBox(vec3 origin, vec3 direction, vec3 lo, vec3 hi, out float tNear
 float faceT;          // ray parameter of the last cut face crossed (-1: none)
 vec3 faceNormal;
 float faceCosine;     // |cos| between the ray and the face normal: depth behind the face per mm of ray
+float faceOpacityStart;   // the ray's opacity in front of the face
 #endif
 #ifdef ISMOS_LAYERS
 IsmosLayers layers;
@@ -76,7 +77,8 @@ float depthPerMm;
 bool shadeAndComposite(inout vec4 accumulated, VolumeSample point, vec3 tex, float t, float alpha, vec3 direction) {
     point = withShadingGradient(point, tex);
 #ifdef CUT_FACES
-    vec3 color = shadeCutFaceSample(point, tex, -direction, faceNormal, faceT >= 0.0 ? (t - faceT) * faceCosine : 1e30);
+    float behind = faceT >= 0.0 ? (accumulated.a - faceOpacityStart) / max(1.0 - faceOpacityStart, 1e-6) : 1.0;
+    vec3 color = shadeCutFaceSample(point, tex, -direction, faceNormal, faceT >= 0.0 ? (t - faceT) * faceCosine : 1e30, behind);
 #else
     vec3 color = shadeSample(point, tex, -direction);
 #endif
@@ -129,9 +131,6 @@ bool skipEmptyBricks(vec3 tex, vec3 originTex, vec3 directionTex, float jitter, 
     float bNear, bFar;
     intersectBox(originTex, directionTex, lo, hi, bNear, bFar);
     k = max(k, int(floor(bFar / stepMm - jitter)));
-#ifdef CUT_FACES
-    faceT = -1.0;
-#endif
 #ifdef ISMOS_LAYERS
     ismosGap(layers);
 #endif
@@ -157,6 +156,7 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
     faceT = -1.0;
     faceNormal = vec3(0.0);
     faceCosine = 0.0;
+    faceOpacityStart = 0.0;
     int meshBehind = -1;        // the mesh holding the last lattice sample (-1: none)
 #endif
     // The ray runs in rounds. A round's sample loop walks the lattice until it meets a crossing (the first
@@ -190,6 +190,7 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
         float faceSegment = stepMm;
         if (atFace) {
             faceSegment = crossFace(meshBehind, k, jitter, direction);
+            faceOpacityStart = accumulated.a;
             meshBehind = -1;
         }
 #endif
@@ -245,9 +246,9 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
             VolumeSample point = classifyOpacity(tex);
             float alpha = correctOpacity(point.alphaUnit, segment);
             if (alpha <= 0.0) {
-#ifdef CUT_FACES
-                faceT = -1.0;  // the face's layer ends where its tissue does (a grazing ray may go on to other surfaces)
-#endif
+                // (A cut face's layer goes on through transparent samples: ending it at the first one lit the
+                // tissue beyond a face in faint tissue by its gradient in some pixels and by the face in their
+                // neighbours, a salt of specular dots. The depth and opacity fades end it.)
 #ifdef ISMOS_LAYERS
                 ismosGap(layers);
 #endif

@@ -26,12 +26,14 @@ vec3 shadeSample(VolumeSample s, vec3 tex, vec3 toEye) {
 }
 
 #ifdef CUT_FACES
-// A cut face (Weiskopf, Engel and Ertl 2003, sec. 5): the samples in a thin layer behind a clip boundary are
-// lit as the clip surface, not as the data. `faceNormal` is the cut face's unit world normal (out of the
-// tissue, into the clipped region); `depthMm` how far behind the face the sample lies, measured along it
-// (1e30: no face in front of it).
-//  - phong: the normal is the face normal at the face, blended into the volume's gradient normal by
-//    cutFaceNormalDepthMm (smoothstep): the gradient of homogeneous tissue is noise, the face is not;
+// A cut face (Weiskopf, Engel and Ertl 2003, sec. 5): the tissue seen through a clip boundary is lit as the
+// clip surface, not as the data. `faceNormal` is the cut face's unit world normal (out of the tissue, into
+// the clipped region); `depthMm` how far behind the face the sample lies, measured along it (1e30: no face in
+// front of it); `opacityBehindFace` the opacity the ray has gathered since the face.
+//  - phong: the normal is the face normal, blended into the volume's gradient normal only once the ray has
+//    gathered cutFaceNormalOpacity of its opacity behind the face (fading out by full opacity) or passed half
+//    of cutFaceNormalDepthMm (fading out by all of it): the gradient of homogeneous tissue is noise, and even
+//    a small share of it in the blend speckles the face, so the fade comes late;
 //  - lao/cao: shadeSample's rule, V_AO at the sample; the face's own sample lies on the face (raycast.comp),
 //    so the face reads V_AO at the boundary in every pixel, not wherever the lattice put its first sample.
 //    (Reading it 1 or 2 mm deeper along the normal instead was measured: 4 % and 2 % less roughness on the
@@ -40,10 +42,12 @@ vec3 shadeSample(VolumeSample s, vec3 tex, vec3 toEye) {
 // Beyond both depths the result is shadeSample's, bit for bit, and the cost is one select: no branch, so
 // llvmpipe does not pay for a second shading path on every sample.
 uniform float cutFaceNormalDepthMm;
+uniform float cutFaceNormalOpacity;
 
-vec3 shadeCutFaceSample(VolumeSample s, vec3 tex, vec3 toEye, vec3 faceNormal, float depthMm) {
+vec3 shadeCutFaceSample(VolumeSample s, vec3 tex, vec3 toEye, vec3 faceNormal, float depthMm, float opacityBehindFace) {
 #if SHADING == SHADING_PHONG
-    float faceWeight = 1.0 - smoothstep(0.0, cutFaceNormalDepthMm, depthMm);
+    float faceWeight = (1.0 - smoothstep(cutFaceNormalOpacity, 1.0, opacityBehindFace)) *
+                       (1.0 - smoothstep(0.5 * cutFaceNormalDepthMm, cutFaceNormalDepthMm, depthMm));
     float magnitude = length(s.gradient);
     vec3 volumeNormal = magnitude < 1e-6 ? faceNormal : -s.gradient / magnitude;
     volumeNormal = dot(volumeNormal, faceNormal) < 0.0 ? -volumeNormal : volumeNormal;  // the side the face shows

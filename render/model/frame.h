@@ -37,12 +37,13 @@ struct IsmosLightShape {
 // Cut faces: where a ray leaves a clip mesh (shaders/raycast.comp, dos_slice.comp, shade_sample.glsl;
 // Weiskopf, Engel and Ertl 2003, sec. 5). The first sample behind the face lies on the face, standing for the
 // ray from there with its partial length, so every mode reads colour, opacity and V_AO at the boundary;
-// phong lights the layer behind the face with the clip surface's normal, blended into the volume gradient
-// over normalDepthMm (2 mm: the face normal carries most of the colour of tissue of 0.3 opacity per mm and
-// more). Off: the lattice alone, as before (for comparison).
+// phong lights the tissue seen through the face with the clip surface's normal (mesh/surface_normals.h) until
+// the ray has gathered normalOpacity of its opacity behind the face or passed half of normalDepthMm, then
+// fades into the volume gradient by full opacity or normalDepthMm. Off: the lattice alone (for comparison).
 struct CutFaceSettings {
     bool enabled = true;
-    double normalDepthMm = 2.0;
+    double normalDepthMm = 10.0;
+    double normalOpacity = 0.9;
     bool operator==(const CutFaceSettings&) const = default;
 };
 

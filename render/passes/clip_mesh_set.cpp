@@ -1,5 +1,7 @@
 #include "render/passes/clip_mesh_set.h"
 
+#include "mesh/surface_normals.h"
+
 #include "base/error.h"
 #include "base/log.h"
 #include "gl/bindings.h"
@@ -7,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 
@@ -116,31 +119,36 @@ double ClipMeshSet::kernelRadiusMm(int index) const {
 }
 
 void ClipMeshSet::uploadGeometry(Mesh& mesh) {
-    std::vector<glm::vec3> positions(mesh.geometry->positions.size());
     mesh.localMin = glm::dvec3(std::numeric_limits<double>::infinity());
     mesh.localMax = -mesh.localMin;
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-        glm::dvec3 p = glm::dvec3(mesh.geometry->positions[i]) * mesh.scale;
-        positions[i] = glm::vec3(p);
+    for (const glm::vec3& q : mesh.geometry->positions) {
+        glm::dvec3 p = glm::dvec3(q) * mesh.scale;
         mesh.localMin = glm::min(mesh.localMin, p);
         mesh.localMax = glm::max(mesh.localMax, p);
     }
     glm::dvec3 centre = 0.5 * (mesh.localMin + mesh.localMax);
     mesh.hullRadius = 0.0;
-    for (const glm::vec3& p : positions) mesh.hullRadius = std::max(mesh.hullRadius, glm::length(glm::dvec3(p) - centre));
+    for (const glm::vec3& q : mesh.geometry->positions)
+        mesh.hullRadius = std::max(mesh.hullRadius, glm::length(glm::dvec3(q) * mesh.scale - centre));
+    // One vertex per triangle corner: its scaled position and the surface normal there (mesh/surface_normals.h),
+    // which step II draws into the normal maps for the cut faces.
+    std::vector<glm::vec3> normals = cornerNormals(*mesh.geometry, mesh.scale);
+    std::vector<CornerVertex> corners(normals.size());
+    for (std::size_t t = 0; t < mesh.geometry->triangles.size(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            std::size_t i = 3 * t + static_cast<std::size_t>(c);
+            corners[i] = {glm::vec3(glm::dvec3(mesh.geometry->positions[mesh.geometry->triangles[t][c]]) * mesh.scale), normals[i]};
+        }
     mesh.vertices = gl::createBuffer();
-    glNamedBufferStorage(mesh.vertices.name(), static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
-    mesh.indices = gl::createBuffer();
-    glNamedBufferStorage(mesh.indices.name(), static_cast<GLsizeiptr>(mesh.geometry->triangles.size() * sizeof(glm::uvec3)),
-                         mesh.geometry->triangles.data(), 0);
-    mesh.indexCount = static_cast<GLsizei>(3 * mesh.geometry->triangles.size());
+    glNamedBufferStorage(mesh.vertices.name(), static_cast<GLsizeiptr>(corners.size() * sizeof(CornerVertex)), corners.data(), 0);
+    mesh.vertexCount = static_cast<GLsizei>(corners.size());
     mesh.mapsDirty = true;
 }
 
 void ClipMeshSet::allocateArrays(int layers) {
-    auto makeArray = [&](const char* label, int resolution, int count) {
+    auto makeArray = [&](const char* label, int resolution, int count, GLenum format = GL_R32F) {
         gl::Texture t = gl::createTexture(GL_TEXTURE_2D_ARRAY);
-        glTextureStorage3D(t.name(), 1, GL_R32F, resolution, resolution, count);
+        glTextureStorage3D(t.name(), 1, format, resolution, resolution, count);
         glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glObjectLabel(GL_TEXTURE, t.name(), -1, label);
@@ -148,17 +156,23 @@ void ClipMeshSet::allocateArrays(int layers) {
     };
     const int depth = settings_.depthResolution;
     depthMaps_ = makeArray("clip depth maps (Z_front, Z_back per interval)", depth, layers);
+    normalMaps_ = makeArray("clip normal maps (octahedral mesh-local normal per depth-map pixel)", depth, layers, GL_RG16_SNORM);
     dilatedAllocated_ = dilatedNeeded_;
     dilatedMaps_ = dilatedAllocated_ ? makeArray("clip dilated maps (D_front, D_back per interval)", resolution_, layers) : gl::Texture();
     allocatedLayers_ = layers;
     scratch_ = gl::createTexture(GL_TEXTURE_2D);
     glTextureStorage2D(scratch_.name(), 1, GL_R32F, depth, depth);
+    normalScratch_ = gl::createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(normalScratch_.name(), 1, GL_RG16_SNORM, depth, depth);
     reducedArray_ = makeArray("clip depth reduced to the dilated maps' pixels", resolution_, 1);
     scratchArray_ = makeArray("clip dilation, first pass", resolution_, 1);
     depthBuffer_ = gl::createRenderbuffer();
     glNamedRenderbufferStorage(depthBuffer_.name(), GL_DEPTH_COMPONENT32F, depth, depth);
     framebuffer_ = gl::createFramebuffer();
     glNamedFramebufferTexture(framebuffer_.name(), GL_COLOR_ATTACHMENT0, scratch_.name(), 0);
+    glNamedFramebufferTexture(framebuffer_.name(), GL_COLOR_ATTACHMENT1, normalScratch_.name(), 0);
+    const GLenum drawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(framebuffer_.name(), 2, drawBuffers);
     glNamedFramebufferRenderbuffer(framebuffer_.name(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_.name());
     if (glCheckNamedFramebufferStatus(framebuffer_.name(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw SystemError("clip depth-map framebuffer is incomplete");
@@ -190,7 +204,7 @@ bool ClipMeshSet::mapsCurrent(bool dilatedNeeded) const {
 
 std::size_t ClipMeshSet::geometryBytes() const {
     std::size_t bytes = 0;
-    for (const Mesh& m : meshes_) bytes += m.geometry->positions.size() * sizeof(glm::vec3) + m.geometry->triangles.size() * sizeof(glm::uvec3);
+    for (const Mesh& m : meshes_) bytes += static_cast<std::size_t>(m.vertexCount) * sizeof(CornerVertex);
     return bytes;
 }
 
@@ -255,25 +269,32 @@ void ClipMeshSet::renderMaps(int index) {
     depthProgram_.use();
     depthProgram_.set("localToClip", glm::mat4(m.camera.localToClip()));
     glBindVertexArray(vertexArray_.name());
-    glVertexArrayVertexBuffer(vertexArray_.name(), 0, m.vertices.name(), 0, sizeof(glm::vec3));
-    glVertexArrayElementBuffer(vertexArray_.name(), m.indices.name());
-    glEnableVertexArrayAttrib(vertexArray_.name(), 0);
-    glVertexArrayAttribFormat(vertexArray_.name(), 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vertexArray_.name(), 0, 0);
+    glVertexArrayVertexBuffer(vertexArray_.name(), 0, m.vertices.name(), 0, sizeof(CornerVertex));
+    for (GLuint attribute : {0u, 1u}) {
+        glEnableVertexArrayAttrib(vertexArray_.name(), attribute);
+        glVertexArrayAttribFormat(vertexArray_.name(), attribute, 3, GL_FLOAT, GL_FALSE,
+                                  attribute == 0 ? offsetof(CornerVertex, position) : offsetof(CornerVertex, normal));
+        glVertexArrayAttribBinding(vertexArray_.name(), attribute, 0);
+    }
     glBindTextureUnit(binding::clipDepth, depthMaps_.name());
 
+    auto copyLayer = [&](int layer) {
+        glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, depth, depth, 1);
+        glCopyImageSubData(normalScratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, normalMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, depth, depth, 1);
+    };
     // Layers: 0 front 1, 1 back 1, 2 front 2 (peeled behind 0), 3 back 2 (peeled behind 1), and a probe
     // front 3 (peeled behind 2) that tells whether the mesh needs more than two intervals (then layer 3 is
     // redrawn as the farthest back face, below).
     for (int layer = 0; layer < 5; ++layer) {
         bool front = layer % 2 == 0;
         const float clearDepth = 1.0f;
-        const float clearColor[4] = {front ? kInfinity : -kInfinity, 0, 0, 0};
+        const float clearColor[4] = {front ? kInfinity : -kInfinity, 0, 0, 0}, noNormal[4] = {0, 0, 0, 0};
         glClearNamedFramebufferfv(framebuffer_.name(), GL_COLOR, 0, clearColor);
+        glClearNamedFramebufferfv(framebuffer_.name(), GL_COLOR, 1, noNormal);
         glClearNamedFramebufferfv(framebuffer_.name(), GL_DEPTH, 0, &clearDepth);
         glCullFace(front ? GL_BACK : GL_FRONT);
         depthProgram_.set("peelAgainst", layer >= 2 ? base + layer - 2 : -1);
-        glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+        glDrawArrays(GL_TRIANGLES, 0, m.vertexCount);
         if (layer == 2) m.intervals = anyFinite(scratch_.name(), depth) ? 2 : 1;
         if (layer == 4) {
             m.deeperThanTwoIntervals = anyFinite(scratch_.name(), depth);
@@ -284,21 +305,20 @@ void ClipMeshSet::renderMaps(int index) {
                 // exit: the third and later intervals (and the gaps between them) are clipped, as the hull would
                 // clip them, instead of being left as holes. Pixels with two intervals keep their back 2 (it
                 // is their farthest back face); pixels with one have no front 2, so no interval 2.
-                const float farthestClear = 0.0f, backClear[4] = {-kInfinity, 0, 0, 0};
+                const float farthestClear = 0.0f, backClear[4] = {-kInfinity, 0, 0, 0}, noNormal[4] = {0, 0, 0, 0};
                 glClearNamedFramebufferfv(framebuffer_.name(), GL_COLOR, 0, backClear);
+                glClearNamedFramebufferfv(framebuffer_.name(), GL_COLOR, 1, noNormal);
                 glClearNamedFramebufferfv(framebuffer_.name(), GL_DEPTH, 0, &farthestClear);
                 glDepthFunc(GL_GREATER);
                 glCullFace(GL_FRONT);
                 depthProgram_.set("peelAgainst", -1);
-                glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+                glDrawArrays(GL_TRIANGLES, 0, m.vertexCount);
                 glDepthFunc(GL_LESS);
-                glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
-                                   base + 3, depth, depth, 1);
+                copyLayer(base + 3);
             }
             break;
         }
-        glCopyImageSubData(scratch_.name(), GL_TEXTURE_2D, 0, 0, 0, 0, depthMaps_.name(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
-                           base + layer, depth, depth, 1);
+        copyLayer(base + layer);
     }
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
@@ -491,6 +511,7 @@ void ClipMeshSet::apply(gl::Program& program) const {
     glBindBufferBase(GL_UNIFORM_BUFFER, binding::uboClipMeshes, cameraBuffer_.name());
     glBindTextureUnit(binding::clipDepth, depthMaps_.name());
     glBindTextureUnit(binding::clipDilated, dilatedAllocated_ ? dilatedMaps_.name() : depthMaps_.name());
+    glBindTextureUnit(binding::clipNormals, normalMaps_.name());
 }
 
 std::vector<float> ClipMeshSet::readMap(int index, int layer, bool dilated) const {
@@ -505,8 +526,9 @@ std::vector<float> ClipMeshSet::readMap(int index, int layer, bool dilated) cons
 std::size_t ClipMeshSet::gpuBytes() const {
     const std::size_t layer = static_cast<std::size_t>(resolution_) * static_cast<std::size_t>(resolution_) * 4u;
     const std::size_t depthLayer = static_cast<std::size_t>(settings_.depthResolution) * static_cast<std::size_t>(settings_.depthResolution) * 4u;
-    // The depth and dilated arrays, the two single-layer arrays, and the render target with its depth buffer.
-    return (depthLayer + (dilatedAllocated_ ? layer : 0u)) * static_cast<std::size_t>(allocatedLayers_) + 2u * layer + 2u * depthLayer;
+    // The depth, normal (4 bytes a pixel too) and dilated arrays, the two single-layer arrays, and the render
+    // target (depth, normal) with its depth buffer.
+    return (2u * depthLayer + (dilatedAllocated_ ? layer : 0u)) * static_cast<std::size_t>(allocatedLayers_) + 2u * layer + 3u * depthLayer;
 }
 
 }  // namespace curette::clip

@@ -144,7 +144,7 @@ public:
     // resolution() pixels a side.
     std::vector<float> readMap(int index, int layer, bool dilated) const;
     std::size_t gpuBytes() const;        // the map arrays
-    std::size_t geometryBytes() const;   // the meshes' vertex and index buffers
+    std::size_t geometryBytes() const;   // the meshes' vertex buffers
 
 private:
     struct Mesh {
@@ -158,10 +158,13 @@ private:
         bool clipsTubes = false;
         bool mapsDirty = true;
         bool dilatedDirty = true;
-        gl::Buffer vertices, indices;
-        GLsizei indexCount = 0;
+        gl::Buffer vertices;   // CornerVertex per triangle corner
+        GLsizei vertexCount = 0;
         glm::dvec3 localMin{0.0}, localMax{0.0};
         double hullRadius = 0.0;   // the farthest scaled vertex from the centre of localMin..localMax
+    };
+    struct CornerVertex {
+        glm::vec3 position, normal;   // scaled mesh-local
     };
     void uploadGeometry(Mesh& mesh);
     // The ball around mesh `index`'s hull grown as a box with upper corner `boxHi` is grown across the map.
@@ -182,7 +185,7 @@ private:
     bool dilatedAllocated_ = false;
     std::uint64_t version_ = 1, mapRenders_ = 0;
     bool depthBoxTests_ = true;
-    gl::Texture depthMaps_, dilatedMaps_, reducedArray_, scratchArray_, scratch_;
+    gl::Texture depthMaps_, normalMaps_, dilatedMaps_, reducedArray_, scratchArray_, scratch_, normalScratch_;
     gl::Renderbuffer depthBuffer_;
     gl::Framebuffer framebuffer_;
     gl::VertexArray vertexArray_;

@@ -72,12 +72,13 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
     glm::dvec4& acc = result.rgba;
     // Cut faces (the rules of shaders/raycast.comp and shade_sample.glsl, render/model/frame.h CutFaceSettings): the
     // first visible lattice sample after clipped ones is taken at the crossing (here by bisection with the
-    // exact inside test), standing for the ray to the end of its half step; phong lights the layer behind the
-    // face with the face normal, blended into the gradient normal over normalDepthMm.
+    // exact inside test), standing for the ray to the end of its half step; phong lights the
+    // tissue behind the face with the face normal until normalOpacity or half of normalDepthMm, then fades
+    // into the gradient normal.
     const CutFaceSettings& faces = frame.raycast.cutFace;
     bool cutFaces = faces.enabled && options.clipped && options.clipNormal;
     bool afterClipped = false;
-    double faceT = -1.0;
+    double faceT = -1.0, faceOpacityStart = 0.0;
     glm::dvec3 faceNormal(0.0);
     for (; k <= kLast; ++k) {
         double t = (static_cast<double>(k) + jitter) * stepMm;
@@ -94,6 +95,7 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
                 (options.clipped(eye + middle * direction) ? inside : outside) = middle;
             }
             faceT = outside;
+            faceOpacityStart = acc.a;
             faceNormal = -options.clipNormal(eye + faceT * direction);
             segment = t + 0.5 * stepMm - faceT;
             t = faceT;
@@ -105,15 +107,17 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
         glm::dvec3 gradient = useGradient ? sampler.gradientWorld(tex) : glm::dvec3(0);
         double alphaUnit = tf.evaluateOpacity(value) * tf.evaluateGradientOpacity(glm::length(gradient));
         double alpha = sampler.noData(texel) ? 0.0 : 1.0 - std::pow(std::max(1.0 - alphaUnit, 0.0), segment / tf.unitLengthMm);
-        if (alpha <= 0) {
-            faceT = -1.0;
-            continue;
-        }
+        if (alpha <= 0) continue;
         glm::dvec3 albedo = tf.evaluateColor(value);
         if (cutFaces && faceT >= 0 && frame.shading == ShadingMode::Phong) {
             double depth = (t - faceT) * std::abs(glm::dot(direction, faceNormal));
-            double x = std::clamp(depth / faces.normalDepthMm, 0.0, 1.0);
-            double faceWeight = 1.0 - x * x * (3.0 - 2.0 * x);
+            double behind = (acc.a - faceOpacityStart) / std::max(1.0 - faceOpacityStart, 1e-6);
+            auto smoothstep = [](double lo, double hi, double x) {
+                x = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
+                return x * x * (3.0 - 2.0 * x);
+            };
+            double faceWeight = (1.0 - smoothstep(faces.normalOpacity, 1.0, behind)) *
+                                (1.0 - smoothstep(0.5 * faces.normalDepthMm, faces.normalDepthMm, depth));
             double magnitude = glm::length(gradient);
             glm::dvec3 volumeNormal = magnitude < 1e-6 ? faceNormal : -gradient / magnitude;
             if (glm::dot(volumeNormal, faceNormal) < 0) volumeNormal = -volumeNormal;

@@ -53,17 +53,8 @@ int benchStereo(const CommandLine& cl) {
     MatchSettings settings;
     settings.stride = CommandLine::parseInt("stride", cl.valueOr("stride", "2"), 1, 64);
     std::vector<ShadingMode> modes{ShadingMode::Solid};   // first: the floor every mode shares
-    {
-        std::string list = cl.valueOr("modes", "solid,phong,lao,cao,dos,ismos");
-        std::size_t start = 0;
-        while (true) {
-            std::size_t comma = list.find(',', start);
-            ShadingMode mode = parseShadingOption("modes", list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-            if (std::find(modes.begin(), modes.end(), mode) == modes.end()) modes.push_back(mode);
-            if (comma == std::string::npos) break;
-            start = comma + 1;
-        }
-    }
+    for (ShadingMode mode : parseShadingList("modes", cl.valueOr("modes", "solid,phong,lao,cao,dos,ismos")))
+        if (mode != ShadingMode::Solid) modes.push_back(mode);
     std::string jsonPath = cl.valueOr("json", "bench-stereo.json");
 
     auto context = gl::createHeadlessContext(gpuChoice(cl));

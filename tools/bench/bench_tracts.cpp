@@ -115,14 +115,6 @@ VertexDifference vertexDifference(const TubeSet& gpu, const TubeVertices& cpu) {
     return d;
 }
 
-std::vector<ShadingMode> parseModes(const std::string& text) {
-    std::vector<ShadingMode> modes;
-    std::stringstream list(text);
-    for (std::string item; std::getline(list, item, ',');) modes.push_back(parseShadingOption("modes", item));
-    if (modes.empty()) throw InputError("<command line>", "--modes", "a comma-separated list of shading modes", "\"" + text + "\"");
-    return modes;
-}
-
 }  // namespace
 
 int benchTracts(const CommandLine& cl) {
@@ -132,7 +124,7 @@ int benchTracts(const CommandLine& cl) {
     std::vector<int> counts = CommandLine::parseIntList("counts", cl.valueOr("counts", "1000,10000,100000"), 1, 50'000'000);
     glm::ivec2 size = CommandLine::parseSize("size", cl.valueOr("size", "512x512"));
     int frames = CommandLine::parseInt("frames", cl.valueOr("frames", "3"), 1, 1000);
-    std::vector<ShadingMode> modes = parseModes(cl.valueOr("modes", "phong,dos"));
+    std::vector<ShadingMode> modes = parseShadingList("modes", cl.valueOr("modes", "phong,dos"));
     std::string jsonPath = cl.valueOr("json", "bench-tracts.json");
     std::optional<std::string> imageDir = cl.value("images");
 

@@ -61,6 +61,8 @@ std::vector<Command> benchCommands() {
                 {"frames", true, "frames timed per configuration (default 3)"},
                 {"images", true, "folder to write each configuration's image to (PNG)"},
                 {"normal-depth", true, "mm behind the face lit by its normal (default: the scene's)"},
+                {"normal-opacity", true, "opacity behind the face over which its normal fades (default: the scene's)"},
+                {"modes", true, "shading modes to measure, comma-separated (default all; solid always runs: the others are measured against it)"},
                 {"json", true, "JSON output file (default bench-cut-face.json)"}})},
          &bench::benchCutFace},
         {{"bench input", "", "report parsing throughput and report-to-pose latency",
