@@ -332,7 +332,11 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
     SampleShadingPiece{shading, laoSettings_.ambientScale, context.ambient, frame.raycast.cutFace}.apply(p);
     setLightingUniforms(p, frame, tf_->material());
     if (ismosLayers) ismos_->applyLayers(p, frame, ismosSpaceOf(frame), resolveStepMm(frame.raycast));
-    if (tubes) glBindTextureUnit(binding::tubeDepth, gbuffer_.depth());
+    if (tubes) {
+        glBindTextureUnit(binding::tubeDepth, gbuffer_.depth());
+        glBindTextureUnit(binding::tubeNormal, gbuffer_.normal());
+        p.set("ismosTubeThicknessMm", static_cast<float>(tubeShading_.thicknessMm));
+    }
     p.set("stepMm", static_cast<float>(resolveStepMm(frame.raycast)));
     p.set("earlyTerminationAlpha", static_cast<float>(frame.raycast.earlyTerminationAlpha));
     p.set("jitterSeed", static_cast<unsigned>(frame.raycast.jitterSeed));

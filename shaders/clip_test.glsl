@@ -182,7 +182,7 @@ int clipMeshHolding(vec3 world) { return clipMeshHoldingAmong(0xffffffffu, world
 // silhouette texels a pixel apart in x, y lie millimetres apart in depth, and only the distance in all three
 // axes tells which of them the crossing is on), carried from mesh-local to world through worldToMap (whose
 // rows are the local axes over the map's extents). With no surface near it faces back along the segment.
-const int kCrossingBisections = 8;   // 1/256 of a ray step
+const int kCrossingBisections = 6;   // 1/64 of a ray step
 
 float clipExitFraction(int i, vec3 inside, vec3 outside, out vec3 outwardWorld) {
     float lo = 0.0, hi = 1.0;

@@ -17,6 +17,8 @@ layout(r32f, binding = IMAGE_ISMOS_FIT) uniform writeonly image2D ismosFit;
 #endif
 #ifdef ISMOS_TUBES
 layout(binding = BINDING_TUBE_DEPTH) uniform sampler2D ismosTubeDepth;   // G-buffer view depth, 0: no tube
+layout(binding = BINDING_TUBE_NORMAL) uniform sampler2D ismosTubeNormal;  // G-buffer normal (tubes), w: kind
+uniform float ismosTubeThicknessMm;   // the tubes' diameter (TubeShading::thicknessMm)
 #endif
 uniform vec3 ismosForward;        // the camera's unit forward
 uniform float ismosDepthRangeMm;  // far - near of the bounding sphere
@@ -61,6 +63,15 @@ void ismosSample(inout IsmosLayers l, float depth, float alpha, float transmitta
 
 void ismosTerminated(inout IsmosLayers l) {
     if (l.open && l.count <= ISMOS_LAYERS) l.back[l.count - 1] = ISMOS_SOLID;
+}
+
+// A tube surface at normalised depth `depth` filling `thickness` behind it: an opaque layer of that
+// thickness, not one opaque to the back of the box (which shadowed everything a path passed behind a tube
+// floating in front of the tissue). The ray cast stops at the surface; the fit sees one opaque sample.
+void ismosOpaqueSlab(inout IsmosLayers l, float depth, float thickness, float transmittance) {
+    ismosGap(l);
+    ismosSample(l, depth, 1.0, transmittance);
+    if (l.count <= ISMOS_LAYERS) l.back[l.count - 1] = 1.0 - (depth + thickness);
 }
 
 void ismosStore(IsmosLayers l, ivec2 pixel) {

@@ -278,15 +278,18 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
 }
 
 #ifdef ISMOS_LAYERS
-// The pixel's ISMOS layers; a tube is an opaque layer at its depth (the compositor adds its colour behind
-// the volume).
+// The pixel's ISMOS layers; a tube is an opaque layer at its depth, as thick as the tube there (the compositor
+// adds its colour behind the volume).
 void storeIsmosLayers(ivec2 pixel, vec4 accumulated) {
 #ifdef ISMOS_TUBES
     float surface = texelFetch(ismosTubeDepth, pixel, 0).r;
     if (surface > 0.0 && accumulated.a < earlyTerminationAlpha) {
-        ismosGap(layers);
-        ismosSample(layers, surface / ismosDepthRangeMm - ismosNearDepth, 1.0, 1.0 - earlyTerminationAlpha);
-        ismosTerminated(layers);
+        // The view depth the tube fills at this pixel: a round tube's chord along the view, its diameter times
+        // |n . forward| (n the surface normal; a line has no chord: the diameter).
+        vec4 normalKind = texelFetch(ismosTubeNormal, pixel, 0);
+        float chord = normalKind.w == SURFACE_TUBE ? ismosTubeThicknessMm * abs(dot(normalize(normalKind.xyz), ismosForward))
+                                                   : ismosTubeThicknessMm;
+        ismosOpaqueSlab(layers, surface / ismosDepthRangeMm - ismosNearDepth, chord / ismosDepthRangeMm, 1.0 - earlyTerminationAlpha);
     }
 #endif
     ismosStore(layers, pixel);

@@ -124,7 +124,7 @@ IsmosPixel ismosOcclusionPixel(const IsmosLayerImages& layers, const std::vector
 }
 
 IsmosLayersPixel ismosLayersPixel(const VolumeData& volume, const TransferFunction& tf, const FrameDescription& frame, double stepMm,
-                                  const IsmosSpace& space, glm::ivec2 pixel, const OccluderTriangles* tubes) {
+                                  const IsmosSpace& space, glm::ivec2 pixel, const OccluderTriangles* tubes, double tubeThicknessMm) {
     VolumeGeometry g{volume.dims, volume.indexToWorld};
     glm::dmat4 worldToTexture = g.worldToTexture();
     const auto [eye, direction] = cameraRay(frame, pixel);
@@ -199,11 +199,17 @@ IsmosLayersPixel ismosLayersPixel(const VolumeData& volume, const TransferFuncti
             }
         }
     }
-    // The tube is an opaque layer at its depth.
+    // The tube is an opaque layer at its depth, as thick as the tube.
     if (tubeT > 0 && accumulated < frame.raycast.earlyTerminationAlpha) {
         open = false;
-        addSample((tubeT * cosine - space.nearMm) / range, 1.0, 1.0 - frame.raycast.earlyTerminationAlpha);
-        terminated();
+        double depth = (tubeT * cosine - space.nearMm) / range;
+        addSample(depth, 1.0, 1.0 - frame.raycast.earlyTerminationAlpha);
+        // The chord through the tube along the ray, in view depth, at most the tube's diameter (the GPU takes
+        // the diameter times |n . forward| from the G-buffer's normal: the same for a round tube).
+        constexpr double reach = 1e6;
+        double past = tubes->firstHit(eye + (tubeT + 1e-6) * direction, eye + reach * direction);
+        double chord = past > 0 ? std::min(past * reach * cosine, tubeThicknessMm) : tubeThicknessMm;
+        if (count <= maxLayers) out.back[count - 1] = 1.0 - (depth + chord / range);
     }
     out.alpha = glm::dvec4(1.0) - transmittance;
     out.beta = fit.beta();

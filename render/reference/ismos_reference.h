@@ -30,13 +30,15 @@ class OccluderTriangles;
 
 // The twin of pass 1's additions (shaders/ismos_layers.glsl) for one pixel without clip meshes: the same
 // rays and sample lattice as reference::raycastPixel, the layers and the fit's beta. With `tubes` the ray
-// stops before the first tube surface it meets, which becomes an opaque layer (raycast.comp, ISMOS_TUBES).
+// stops before the first tube surface it meets, which becomes an opaque layer `tubeThicknessMm` thick
+// (raycast.comp, ISMOS_TUBES).
 struct IsmosLayersPixel {
     glm::dvec4 front{-1.0}, alpha{0.0}, back{-1.0};   // back -1e30: the ray terminated in the layer
     double beta = 0;
 };
 IsmosLayersPixel ismosLayersPixel(const VolumeData& volume, const TransferFunction& tf, const FrameDescription& frame, double stepMm,
-                                  const IsmosSpace& space, glm::ivec2 pixel, const OccluderTriangles* tubes = nullptr);
+                                  const IsmosSpace& space, glm::ivec2 pixel, const OccluderTriangles* tubes = nullptr,
+                                  double tubeThicknessMm = 0.0);
 
 // `stepDepth`: one ray-casting step in depth units (stepMm / (far - near)).
 IsmosPixel ismosOcclusionPixel(const IsmosLayerImages& layers, const std::vector<IsmosLight>& lights, const IsmosSettings& settings,

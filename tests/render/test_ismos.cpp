@@ -656,6 +656,7 @@ TEST(Ismos, PhysicalReferenceAndLayerTwinStopAtTubes) {
     TransferFunction tf = tubeSceneTransferFunction();
     auto frame = tubeSceneFrame;
     TubeShading shading;
+    shading.thicknessMm = 6.0;   // the tubes' diameter (sceneTubeShading)
     reference::PhysicalSettings physical;
     physical.stepMm = 0.5;
     {
@@ -678,15 +679,18 @@ TEST(Ismos, PhysicalReferenceAndLayerTwinStopAtTubes) {
         for (const IsmosLight& l : lights) points.push_back(l.samples);
         double step = r.resolveStepMm(f.raycast);
         physical.startOffsetMm = f.ismos.depthBias * space.boxMm.z;
-        int tubeShadow = 0, agree = 0, slabPixels = 0, twinOff = 0, tubePixels = 0, missed = 0;
+        int tubeShadow = 0, agree = 0, slabPixels = 0, twinOff = 0, tubePixels = 0, missed = 0, overShadowed = 0;
         for (int y = 0; y < 64; ++y)
             for (int x = 0; x < 64; ++x) {
                 std::size_t i = layers.index({x, y});
-                reference::IsmosLayersPixel twin = reference::ismosLayersPixel(slab, tf, f, step, space, {x, y}, &occluders);
+                reference::IsmosLayersPixel twin = reference::ismosLayersPixel(slab, tf, f, step, space, {x, y}, &occluders, shading.thicknessMm);
                 bool same = true;
+                // A tube layer's back: the GPU's chord is the diameter times |n . forward| of the G-buffer's
+                // smooth normal, the twin's the chord through the 16-sided tube's triangles (within 0.3 mm).
+                double backTolerance = tubeDepth[i] > 0 ? 0.3 / (space.farMm - space.nearMm) : 1e-3;
                 for (int k = 0; k < 2; ++k)
                     same = same && std::abs(layers.front[i][k] - twin.front[k]) < 1e-3 && std::abs(layers.alpha[i][k] - twin.alpha[k]) < 2e-3 &&
-                           (twin.back[k] < -1e29 ? layers.back[i][k] < -1e29f : std::abs(layers.back[i][k] - twin.back[k]) < 1e-3);
+                           (twin.back[k] < -1e29 ? layers.back[i][k] < -1e29f : std::abs(layers.back[i][k] - twin.back[k]) < backTolerance);
                 twinOff += !same;
                 bool onTube = tubeDepth[i] > 0;
                 tubePixels += onTube;
@@ -702,14 +706,17 @@ TEST(Ismos, PhysicalReferenceAndLayerTwinStopAtTubes) {
                 tubeShadow += occ > 0.99;
                 agree += dark == (occ > 0.5);
                 missed += occ > 0.99 && !dark;
+                overShadowed += dark && occ < 0.5;
             }
-        std::printf("[ tubes ] reference: %d of %d slab pixels in the tube's shadow (the GPU lit at %d of them), GPU agrees at %d; layer twin off "
-                    "at %d of 4096 (%d tube pixels)\n",
-                    tubeShadow, slabPixels, missed, agree, twinOff, tubePixels);
+        std::printf("[ tubes ] reference: %d of %d slab pixels in the tube's shadow (the GPU lit at %d of them, darkened %d it lights), "
+                    "GPU agrees at %d; layer twin off at %d of 4096 (%d tube pixels)\n",
+                    tubeShadow, slabPixels, missed, overShadowed, agree, twinOff, tubePixels);
         EXPECT_GT(tubeShadow, 20);
-        // The image-space tube is its height-field column (extruded away from the viewer), whose shadow holds
-        // the tube's own: every traced shadow pixel is dark on the GPU; a band beside it is the model's error.
+        // The image-space tube is a layer as thick as the tube's chord, not a height-field column to the back of
+        // the box, whose shadow held a band beside the tube's own where paths pass behind the tube (seen: 36
+        // such pixels with the column, 12 with a layer of the full diameter, 4 with the chord).
         EXPECT_LE(missed, tubeShadow / 20) << "the GPU lit pixels the traced tube shadows";
+        EXPECT_LE(overShadowed, tubeShadow / 10) << "the GPU darkened pixels whose paths pass behind the tube";
         EXPECT_GE(agree, slabPixels * 9 / 10) << "the image-space shadow and the traced one disagree";
         EXPECT_GT(tubePixels, 50);
         EXPECT_LE(twinOff, tubePixels / 50) << "pass 1 stops at the G-buffer's tube, the twin at the triangles: the same surface";
