@@ -27,6 +27,8 @@ inline constexpr unsigned ismosLayerBack = 19;
 inline constexpr unsigned ismosFit = 20;
 inline constexpr unsigned seenBricks = 21;
 inline constexpr unsigned clipNormals = 22;
+inline constexpr unsigned labelField = 23;
+inline constexpr unsigned labelOpacity = 24;
 
 inline constexpr unsigned imageOutput = 0;
 inline constexpr unsigned imageOpacity = 1;

@@ -1,6 +1,9 @@
 #pragma once
 // Label volumes on the GPU (the binder of shaders/labels.glsl): one R16UI 3-D texture of label ids on the
-// scan grid and a 1-D RGBA32F table of styles per id (rgb, opacity per unit length; 0 hides the label).
+// scan grid, a 1-D RGBA32F table of styles per id (rgb, opacity per unit length; 0 hides the label), and the
+// label field the ray caster reads: per voxel its shown indicator, the shown colour and the opacity through a
+// separable Gaussian (kLabelSmoothingVoxels; RGBA8 and R8), redrawn when the styles change, so label surfaces
+// are smooth.
 // Several label sets share one id space (scene/scene_labels.h assigns each set a range). Attached to the
 // TransferFunctionTexture, whose binder adds LABELS and binds these: every pass that classifies samples
 // (ray cast, slab pass, step IV) carries the labels, and a scene without labels compiles none of it.
@@ -15,6 +18,11 @@
 
 namespace curette {
 
+// The Gaussian's standard deviation and reach, in voxels: enough to round a voxel staircase into a surface,
+// little enough to keep a 2-voxel structure.
+inline constexpr double kLabelSmoothingVoxels = 0.75;
+inline constexpr int kLabelSmoothingReach = 2;
+
 class LabelOverlay {
 public:
     // ids: dims.x * dims.y * dims.z label ids on the scan grid, i fastest. styles: one per id (index = id),
@@ -28,7 +36,7 @@ public:
     void apply(gl::Program& program) const;
 
     // For empty-space skipping: per brick of `brickSize` voxels (render/gpu_volume.h, grid `brickGrid`),
-    // whether a shown label lies in the brick or its one-voxel apron.
+    // whether a shown label's smoothed field reaches into the brick or its one-voxel apron.
     std::vector<std::uint8_t> occupiedBricks(glm::ivec3 brickGrid, int brickSize) const;
     std::size_t gpuBytes() const;
 
@@ -36,7 +44,8 @@ private:
     glm::ivec3 dims_;
     std::vector<std::uint16_t> ids_;
     std::vector<glm::vec4> styles_;
-    gl::Texture idsTexture_, stylesTexture_;
+    void uploadField();
+    gl::Texture idsTexture_, stylesTexture_, fieldTexture_, opacityTexture_;
     int styleTexels_ = 0;
 };
 

@@ -35,6 +35,8 @@ Lookup sampler(unsigned unit) {
         case b::tubeNormal:
         case b::partialOcclusion: return {R::GBuffer};
         case b::labelIds:
+        case b::labelField:
+        case b::labelOpacity:
         case b::labelStyles: return {R::LabelVolume};
         case b::ismosLayerFront:
         case b::ismosLayerAlpha: return {R::IsmosLayers};

@@ -23,6 +23,8 @@
 #define BINDING_ISMOS_FIT 20           // sampler2D r32f: ISMOS beta of the transmittance fit exp(-beta z^2)
 #define BINDING_SEEN_BRICKS 21         // sampler3D r8: per seen brick 0 where a visible sample may read its LAO (steps I, V)
 #define BINDING_CLIP_NORMALS 22        // sampler2DArray rg16_snorm: per depth-map pixel the mesh-local surface normal (octahedral)
+#define BINDING_LABEL_FIELD 23         // sampler3D rgba8: the shown labels' smoothed (rgb * shown, shown) on the scan grid
+#define BINDING_LABEL_OPACITY 24       // sampler3D r8: ... and their smoothed opacity * shown
 
 #define IMAGE_OUTPUT 0              // image2D: the rendered RGBA
 #define IMAGE_OPACITY 1             // image3D r16: V_o written by step IV

@@ -13,6 +13,9 @@ struct VolumeSample {
     vec3 albedo;       // TF colour
     float alphaUnit;   // opacity per tfUnitLengthMm, times the gradient-opacity factor
     vec3 gradient;     // world gradient of the value (zero when neither phong nor gradient opacity needs it)
+#ifdef LABELS
+    bool labelShapes;     // the label, not the TF, gives the opacity: phong lights it by the label's gradient
+#endif
 };
 
 // What decides whether the sample is visible: colour and opacity, and the gradient only when gradient
@@ -21,7 +24,11 @@ VolumeSample classifyOpacity(vec3 tex) {
     VolumeSample s;
     vec4 classified = classify(sampleTexel(tex));
 #ifdef LABELS
-    classified = withLabel(classified, labelStyleAt(tex));
+    LabelSample label = labelAt(tex);
+    // Phong lights a label's surface by the label's own gradient where the label makes the opacity: the data
+    // inside a structure may be homogeneous, and its gradient noise.
+    s.labelShapes = label.alpha > classified.a;
+    classified = withLabel(classified, label);
 #endif
     s.albedo = classified.rgb;
     s.gradient = useGradientOpacity ? gradientWorld(tex) : vec3(0.0);
@@ -34,6 +41,9 @@ VolumeSample classifyOpacity(vec3 tex) {
 VolumeSample withShadingGradient(VolumeSample s, vec3 tex) {
 #if SHADING == SHADING_PHONG
     if (!useGradientOpacity) s.gradient = gradientWorld(tex);
+#ifdef LABELS
+    if (s.labelShapes) s.gradient = gradientToWorld * labelShownGradient(tex, texelSize);
+#endif
 #endif
     return s;
 }
@@ -41,4 +51,13 @@ VolumeSample withShadingGradient(VolumeSample s, vec3 tex) {
 VolumeSample classifySample(vec3 tex) { return withShadingGradient(classifyOpacity(tex), tex); }
 
 // Nothing there: outside the volume or inside a clip mesh.
-VolumeSample emptySample() { return VolumeSample(vec3(0.0), 0.0, vec3(0.0)); }
+VolumeSample emptySample() {
+    VolumeSample s;
+    s.albedo = vec3(0.0);
+    s.alphaUnit = 0.0;
+    s.gradient = vec3(0.0);
+#ifdef LABELS
+    s.labelShapes = false;
+#endif
+    return s;
+}

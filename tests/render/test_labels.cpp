@@ -1,13 +1,15 @@
 // Label volumes in the classification (shaders/labels.glsl, render/label_overlay.h): a label region renders
-// where the analytic mask says, a hidden label changes nothing, labels survive empty-space skipping, and
-// the AO modes see the labels' opacity.
+// where the analytic mask says, a hidden label changes nothing, labels survive empty-space skipping, the AO
+// modes see the labels' opacity, and a label's surface reads as the smooth surface its voxels sample.
 #include "render/label_overlay.h"
 #include "render/renderer.h"
+#include "render/lighting.h"
 #include "tests/render/gl_test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace curette {
 namespace {
@@ -141,6 +143,61 @@ TEST(Labels, AmbientOcclusionSeesTheLabelsOpacity) {
     };
     double without = meanAmbientNearTheBall(false), with = meanAmbientNearTheBall(true);
     EXPECT_LT(with, without - 0.05) << "voxels next to an opaque label must be occluded by it (without " << without << ", with " << with << ")";
+}
+
+// A label's surface reads as a surface, not as the staircase of its voxels' cells: the labelled ball (voxels
+// whose centres lie within r of the centre) shows as the analytic sphere of radius r, in its silhouette (the
+// staircase of cells reaches r + 0.87 mm at their corners) and, in phong, in its shading by the sphere's
+// normal (the data inside it is uniform: its gradient says nothing).
+TEST(Labels, ALabelSurfaceReadsAsTheSphereItsVoxelsSample) {
+    LabelScene scene;
+    Renderer labelled(glContext(), scene.volume, scene.tf);
+    labelled.setLabels(std::make_unique<LabelOverlay>(scene.volume.dims, scene.ids, scene.styles(1.0f)));
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong}) {
+        FrameDescription f = frame(mode);
+        f.size = glm::ivec2(128, 128);
+        f.lights = {Light{}};
+        labelled.render(f);
+        Image image = labelled.readImage();
+        const glm::dvec3 light = worldLightDirection(f.lights[0], f.camera), eye = f.camera.position();
+        const TransferFunction::Material& m = scene.tf.material;
+        const glm::dvec3 albedo(1.0, 0.1, 0.1);
+        int silhouetteWrong = 0, rimPixels = 0, shaded = 0;
+        double sum = 0, worst = 0;
+        for (int y = 0; y < f.size.y; ++y)
+            for (int x = 0; x < f.size.x; ++x) {
+                double d = rayDistanceToCentre(f, x, y);
+                const glm::vec4& c = image.at(x, y);
+                if (std::abs(d - kRadius) > 0.35 && std::abs(d - kRadius) < 1.5) {
+                    ++rimPixels;
+                    silhouetteWrong += d < kRadius ? c.a < 0.9f : c.a > 0.1f;
+                }
+                if (mode != ShadingMode::Phong || d > kRadius - 1.5) continue;
+                // The sphere's first hit along the pixel's ray and its normal there.
+                glm::dvec3 w = kCentre - eye;
+                double t = std::tan(glm::radians(f.camera.fovYDeg) / 2), aspect = double(f.size.x) / f.size.y;
+                double u = ((x + 0.5) / f.size.x * 2 - 1) * t * aspect, v = (1 - (y + 0.5) / f.size.y * 2) * t;
+                glm::dvec3 dir = glm::normalize(f.camera.forward() + u * f.camera.right() + v * f.camera.up());
+                double along = glm::dot(w, dir), hit = along - std::sqrt(kRadius * kRadius - d * d);
+                glm::dvec3 normal = glm::normalize(eye + hit * dir - kCentre);
+                double diffuse = std::max(glm::dot(normal, light), 0.0);
+                double specular = diffuse > 0 ? std::pow(std::max(glm::dot(normal, glm::normalize(light - dir)), 0.0), m.specularPower) : 0;
+                glm::dvec3 expected = m.ambient * albedo + f.lights[0].color * (m.diffuse * diffuse * albedo + m.specular * specular);
+                double e = glm::length(glm::dvec3(c) / double(c.a) - expected) / std::sqrt(3.0);
+                sum += e * e;
+                worst = std::max(worst, e);
+                ++shaded;
+            }
+        std::printf("[ labels ] %s: %d of %d rim pixels on the wrong side of the sphere's silhouette", shadingModeName(mode), silhouetteWrong, rimPixels);
+        if (shaded) std::printf(", colour RMS %.4f (max %.4f) against the sphere's phong over %d pixels", std::sqrt(sum / shaded), worst, shaded);
+        std::printf("\n");
+        ASSERT_GT(rimPixels, 200);
+        EXPECT_LE(silhouetteWrong, rimPixels / 50) << shadingModeName(mode);
+        if (mode == ShadingMode::Phong) {
+            ASSERT_GT(shaded, 300);
+            EXPECT_LT(std::sqrt(sum / shaded), 0.05) << "phong lights the label by the sphere's normal";
+        }
+    }
 }
 
 }  // namespace
