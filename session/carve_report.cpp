@@ -84,7 +84,7 @@ CarveReporter::CarveReporter(const LoadedScene& loaded, const VolumeGeometry& ge
       settings_(resolveSettings(loaded)),
       probe_(geometry, plan::kReportAntiAliasingSamples) {
     for (const LoadedLabelSet& set : loaded.labels) {
-        plan::LabelSet s{set.name, &set.onScanGrid, &set.table, set.protectedIds};
+        plan::LabelSet s{set.name, &set.onScanGrid, &set.table, set.protectedIds, {}};
         // The opacity the renderer draws each id with (scene/scene_labels.h labelRendering: the set's opacity
         // where the id is shown).
         s.shownOpacity.assign(set.shown.size(), 0.0);

@@ -450,10 +450,9 @@ void IsmosBench::tubes() {
     Target shadowed = headTarget(f, 15, inTubeShadow);
     evaluate("hard: tubes, pixels on the tubes (the volume shadows them)", onTubes, f, id, false);
     evaluate("hard: tubes, volume pixels in their shadow", shadowed, f, id, false);
-    // Is the error the test points' spacing (1/N_R of the path, ~10 mm here, more than a tube's 4 mm,
-    // the paper's Fig. 4a)? With 8 times as many it stays: it is the height field's. A tube is an opaque
-    // layer solid to the back of the box, so a path that passes behind a tube floating in front of the
-    // tissue counts as blocked.
+    // The test points' spacing (1/N_R of the path, ~10 mm here, more than a tube's 4 mm, the paper's Fig.
+    // 4a) against the layers' own error: a tube is a layer as thick as its chord (ismos_layers.glsl), the
+    // tissue's layers are what the ray caster saw of them.
     FrameDescription dense = f;
     dense.ismos.testPoints = 256;
     evaluate("hard: tubes, volume pixels in their shadow, N_R 256", shadowed, dense, id++, false);

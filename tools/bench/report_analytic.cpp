@@ -4,6 +4,7 @@
 #include "plan/removal_report.h"
 #include "render/passes/removal_probe.h"
 #include "render/renderer.h"
+#include "render/model/lao_settings.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -54,11 +55,11 @@ using Clock = std::chrono::steady_clock;
 
 // The report of one posed mesh on `volume`, with `labels` (may be empty) as one protected label set.
 plan::Report reportOf(gl::Context& context, const VolumeData& volume, const clip::TriangleMesh& mesh, const clip::RigidPose& pose,
-                      const std::vector<plan::LabelSet>& labels, double& ms) {
+                      const std::vector<plan::LabelSet>& labels, double& ms, int samples = plan::kReportAntiAliasingSamples) {
     const TransferFunction tf = opaque();
     Renderer renderer(context, volume, tf);
     renderer.clipMeshes().add(std::make_shared<const clip::TriangleMesh>(mesh), glm::dvec3(1.0), pose, "carve");
-    RemovalProbe probe(renderer.geometry(), plan::kReportAntiAliasingSamples);
+    RemovalProbe probe(renderer.geometry(), samples);
     const Clock::time_point start = Clock::now();
     plan::RemovalField field = probe.removalField(renderer.clipMeshes());
     plan::ReportSettings settings;
@@ -93,8 +94,12 @@ void volumeCases(gl::Context& context, std::vector<AnalyticCase>& out) {
                 const glm::dmat4 affine = gridAffine(g, extent, dims);
                 AnalyticCase c{"volume", g.name, name + turnName, std::abs(mesh.signedVolume()) / 1000.0};
                 // Off the lattice, so no face lies on a cell face by construction.
-                plan::Report r = reportOf(context, uniformScan(dims, affine), mesh, {glm::dvec3(0.37, -0.21, 0.13), turn}, {}, c.ms);
+                const clip::RigidPose pose{glm::dvec3(0.37, -0.21, 0.13), turn};
+                plan::Report r = reportOf(context, uniformScan(dims, affine), mesh, pose, {}, c.ms);
                 c.reported = r.removedMl, c.uncertainty = r.removedUncertaintyMl;
+                // What the image removes: step IV's coverage at the renderer's N.
+                double imageMs = 0;
+                c.atImageSamples = reportOf(context, uniformScan(dims, affine), mesh, pose, {}, imageMs, LaoSettings{}.antiAliasingSamples).removedMl;
                 out.push_back(c);
             }
     // A 20 x 14 x 16 mm box reaching 3.7 mm past the scan's +x face.
@@ -104,8 +109,11 @@ void volumeCases(gl::Context& context, std::vector<AnalyticCase>& out) {
     const double face = 0.5 * (dims.x - 1) + 0.5;
     const glm::dvec3 size(20.0, 14.0, 16.0);
     AnalyticCase c{"volume", g.name, "box partly outside", (size.x - 3.7) * size.y * size.z / 1000.0};
-    plan::Report r = reportOf(context, uniformScan(dims, affine), clip::makeBox(size), {glm::dvec3(face + 3.7 - 0.5 * size.x, 0.37, -0.21), {}}, {}, c.ms);
+    const clip::RigidPose pose{glm::dvec3(face + 3.7 - 0.5 * size.x, 0.37, -0.21), {}};
+    plan::Report r = reportOf(context, uniformScan(dims, affine), clip::makeBox(size), pose, {}, c.ms);
     c.reported = r.removedMl, c.uncertainty = r.removedUncertaintyMl;
+    double imageMs = 0;
+    c.atImageSamples = reportOf(context, uniformScan(dims, affine), clip::makeBox(size), pose, {}, imageMs, LaoSettings{}.antiAliasingSamples).removedMl;
     out.push_back(c);
 }
 

@@ -20,6 +20,7 @@ struct AnalyticCase {
     std::string kind;         // "volume" (mL) or "margin" (mm)
     std::string grid, name;
     double exact = 0, reported = 0, uncertainty = 0;
+    double atImageSamples = 0; // volume cases: mL removed at the image's N (step IV's, LaoSettings), not the report's
     bool wallTouched = false;  // margin cases: the report says the wall was touched (a warning)
     double ms = 0;             // the field and the report
     double error() const { return reported - exact; }
