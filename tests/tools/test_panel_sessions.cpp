@@ -47,22 +47,9 @@ std::string readText(const std::filesystem::path& path) { return curette::testin
 //    than a fresh one and the cut differs in a few pixels (with a 24 mm sphere scaled 1.4 and 8 LAO samples:
 //    31 channels, up to 6 levels, in a 48 x 48 image).
 std::filesystem::path writeBallScene(const std::filesystem::path& dir) {
-    const std::vector<std::uint8_t> voxels = curette::testing::noisyBallVoxels();
-    writeFileAtomically(dir / "ball.raw", voxels);
-    writeFileAtomically(dir / "scene.json", R"({
-  "volume": {"path": "ball.raw", "format": "raw", "raw": {"dims": [32, 32, 32], "type": "uint8", "spacing": [2, 2, 2]}},
-  "transfer_function": {"color": [[0, 0, 0, 0], [100, 0.8, 0.6, 0.5], [255, 1, 1, 1]], "opacity": [[0, 0], [60, 0], [100, 0.2], [255, 0.8]]},
-  "camera": {"target": "center", "distance_mm": 200, "azimuth_deg": 20, "elevation_deg": 25, "fov_deg": 30},
-  "shading": "lao",
-  "lights": [{"direction": [0.3, 0.5, 1.0]}],
-  "image": {"width": 48, "height": 48},
-  "ambient_occlusion": {"rays": "6", "samples": 4, "step_mm": 1.0, "antialiasing_samples": 4},
-  "clip_meshes": [
+    return curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"clip_meshes": [
     {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 44]},
-    {"name": "box", "mesh": {"shape": "box", "size_mm": [10, 10, 24]}, "position_mm": [22, 40, 24]}
-  ]
-})");
-    return dir / "scene.json";
+    {"name": "box", "mesh": {"shape": "box", "size_mm": [10, 10, 24]}, "position_mm": [22, 40, 24]}]})"));
 }
 
 nlohmann::json json(const std::string& text) { return nlohmann::json::parse(text); }
@@ -305,15 +292,10 @@ TEST(PanelSessions, ARecordingStartedAfterEditsStartsFromTheEditedState) {
 TEST(PanelSessions, LightsAddedAndRemovedReplayAndSaveToTheSameImages) {
     auto dir = scratch("lights");
     auto scene = writeBallScene(dir);
-    std::string text = readText(scene);
-    auto replace = [&](const std::string& from, const std::string& to) {
-        ASSERT_NE(text.find(from), std::string::npos) << from;
-        text.replace(text.find(from), from.size(), to);
-    };
-    replace("\"shading\": \"lao\"", "\"shading\": \"phong\"");
-    replace(R"("lights": [{"direction": [0.3, 0.5, 1.0]}])",
-            R"("lights": [{"direction": [0.3, 0.5, 1.0]}, {"direction": [0.6, -0.2, 0.8], "color": [1, 0.8, 0.5], "disk_radius": 0.15}])");
-    writeFileAtomically(scene, text);
+    nlohmann::json edited = nlohmann::json::parse(readText(scene));
+    edited["shading"] = "phong";
+    edited["lights"] = json(R"([{"direction": [0.3, 0.5, 1.0]}, {"direction": [0.6, -0.2, 0.8], "color": [1, 0.8, 0.5], "disk_radius": 0.15}])");
+    writeFileAtomically(scene, edited.dump(2));
     auto session = dir / "lights.jsonl";
     Script script;
     script.frames = 10;

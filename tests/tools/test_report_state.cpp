@@ -38,22 +38,11 @@ fs::path scratch(const std::string& name) { return curette::testing::freshScratc
 const char* const kSceneTf = R"({"color": [[0, 0, 0, 0], [100, 0.8, 0.6, 0.5], [255, 1, 1, 1]], "opacity": [[0, 0], [60, 0], [100, 0.2], [255, 0.8]]})";
 
 fs::path writeBallScene(const fs::path& dir, const std::string& tf = kSceneTf) {
-    const std::vector<std::uint8_t> voxels = curette::testing::noisyBallVoxels();
-    writeFileAtomically(dir / "ball.raw", voxels);
-    writeFileAtomically(dir / "scene.json", R"({
-  "volume": {"path": "ball.raw", "format": "raw", "raw": {"dims": [32, 32, 32], "type": "uint8", "spacing": [2, 2, 2]}},
-  "transfer_function": )" + tf + R"(,
-  "camera": {"target": "center", "distance_mm": 200, "azimuth_deg": 20, "elevation_deg": 25, "fov_deg": 30},
-  "shading": "lao",
-  "lights": [{"direction": [0.3, 0.5, 1.0]}],
-  "image": {"width": 48, "height": 48},
-  "ambient_occlusion": {"rays": "6", "samples": 4, "step_mm": 1.0, "antialiasing_samples": 4},
-  "clip_meshes": [
+    nlohmann::json changes = nlohmann::json::parse(R"({"clip_meshes": [
     {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 50]},
-    {"name": "box", "mesh": {"shape": "box", "size_mm": [10, 10, 24]}, "position_mm": [22, 40, 14]}
-  ]
-})");
-    return dir / "scene.json";
+    {"name": "box", "mesh": {"shape": "box", "size_mm": [10, 10, 24]}, "position_mm": [22, 40, 14]}]})");
+    changes["transfer_function"] = nlohmann::json::parse(tf);
+    return curette::testing::writeNoisyBallScene(dir, changes);
 }
 
 // The panel's opacity drag: the TF's current JSON with point 2 moved to (150, 0), which hides the shell.

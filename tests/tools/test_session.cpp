@@ -425,21 +425,12 @@ TEST(Session, RecorderCheckpointsCompleteSessionsAndLeavesNoTemporaryFiles) {
 
 // A 32^3 ball with a soft shell, as a raw file, and a CAO scene with two clip meshes around it.
 std::filesystem::path writeSmallScene(const std::filesystem::path& dir) {
-    const std::vector<std::uint8_t> voxels = curette::testing::noisyBallVoxels();
-    std::ofstream(dir / "ball.raw", std::ios::binary).write(reinterpret_cast<const char*>(voxels.data()), static_cast<std::streamsize>(voxels.size()));
-    writeText(dir / "scene.json", R"({
-  "volume": {"path": "ball.raw", "format": "raw", "raw": {"dims": [32, 32, 32], "type": "uint8", "spacing": [2, 2, 2]}},
-  "transfer_function": {"color": [[0, 0, 0, 0], [100, 0.8, 0.6, 0.5], [255, 1, 1, 1]], "opacity": [[0, 0], [60, 0], [100, 0.2], [255, 0.8]]},
-  "camera": {"target": "center", "distance_mm": 200, "azimuth_deg": 20, "elevation_deg": 25, "fov_deg": 30},
-  "shading": "cao",
-  "image": {"width": 48, "height": 48},
-  "ambient_occlusion": {"rays": "6", "samples": 8, "step_mm": 2.0, "antialiasing_samples": 4},
+    return curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({
+  "shading": "cao", "lights": null,
+  "ambient_occlusion": {"samples": 8, "step_mm": 2.0},
   "clip_meshes": [
     {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 12}, "position_mm": [30, 30, 40]},
-    {"name": "box", "mesh": {"shape": "box", "size_mm": [14, 14, 30]}, "position_mm": [20, 40, 20]}
-  ]
-})");
-    return dir / "scene.json";
+    {"name": "box", "mesh": {"shape": "box", "size_mm": [14, 14, 30]}, "position_mm": [20, 40, 20]}]})"));
 }
 
 TEST(Replay, FromReportsReproducesThePosesAndTamperingIsCaught) {

@@ -1,5 +1,7 @@
 #include "tests/tools/tool_test_support.h"
 
+#include "base/atomic_file.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -42,6 +44,22 @@ std::vector<std::uint8_t> noisyBallVoxels() {
                 voxels[static_cast<std::size_t>((z * 32 + y) * 32 + x)] = static_cast<std::uint8_t>(std::min(255, v + noise(random)));
             }
     return voxels;
+}
+
+std::filesystem::path writeNoisyBallScene(const std::filesystem::path& dir, const nlohmann::json& changes) {
+    writeFileAtomically(dir / "ball.raw", noisyBallVoxels());
+    nlohmann::json scene = nlohmann::json::parse(R"({
+  "volume": {"path": "ball.raw", "format": "raw", "raw": {"dims": [32, 32, 32], "type": "uint8", "spacing": [2, 2, 2]}},
+  "transfer_function": {"color": [[0, 0, 0, 0], [100, 0.8, 0.6, 0.5], [255, 1, 1, 1]], "opacity": [[0, 0], [60, 0], [100, 0.2], [255, 0.8]]},
+  "camera": {"target": "center", "distance_mm": 200, "azimuth_deg": 20, "elevation_deg": 25, "fov_deg": 30},
+  "shading": "lao",
+  "lights": [{"direction": [0.3, 0.5, 1.0]}],
+  "image": {"width": 48, "height": 48},
+  "ambient_occlusion": {"rays": "6", "samples": 4, "step_mm": 1.0, "antialiasing_samples": 4}
+})");
+    scene.merge_patch(changes);
+    writeFileAtomically(dir / "scene.json", scene.dump(2));
+    return dir / "scene.json";
 }
 
 }  // namespace curette::testing
