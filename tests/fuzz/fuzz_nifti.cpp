@@ -1,5 +1,5 @@
-// libFuzzer target: NIfTI-1 headers and data from arbitrary bytes. Input errors are expected; anything else
-// (a crash, a sanitizer report, an uncaught exception) is a bug.
+// libFuzzer target: NIfTI-1 and NIfTI-2 headers and data from arbitrary bytes (the seeds hold both). Input
+// errors are expected; anything else (a crash, a sanitizer report, an uncaught exception) is a bug.
 #include "io/nifti.h"
 #include "base/error.h"
 
