@@ -39,10 +39,10 @@ void LabelOverlay::setStyles(const std::vector<glm::vec4>& styles) {
         glObjectLabel(GL_TEXTURE, stylesTexture_.name(), -1, "label styles");
     }
     glTextureSubImage1D(stylesTexture_.name(), 0, 0, styleTexels_, GL_RGBA, GL_FLOAT, styles_.data());
-    uploadField();
+    fieldStale_ = true;
 }
 
-void LabelOverlay::uploadField() {
+void LabelOverlay::uploadField() const {
     // Per voxel (rgb * shown, shown) and opacity * shown of its style, blurred along x, y and z in turn.
     const std::size_t n = ids_.size();
     std::vector<glm::vec4> field(n), scratch(n);
@@ -107,6 +107,10 @@ void LabelOverlay::uploadField() {
 void LabelOverlay::addDefines(gl::Defines& defines) const { defines.emplace_back("LABELS", "1"); }
 
 void LabelOverlay::apply(gl::Program&) const {
+    if (fieldStale_) {
+        uploadField();
+        fieldStale_ = false;
+    }
     glBindTextureUnit(binding::labelIds, idsTexture_.name());
     glBindTextureUnit(binding::labelStyles, stylesTexture_.name());
     glBindTextureUnit(binding::labelField, fieldTexture_.name());

@@ -2,8 +2,8 @@
 // Label volumes on the GPU (the binder of shaders/labels.glsl): one R16UI 3-D texture of label ids on the
 // scan grid, a 1-D RGBA32F table of styles per id (rgb, opacity per unit length; 0 hides the label), and the
 // label field the ray caster reads: per voxel its shown indicator, the shown colour and the opacity through a
-// separable Gaussian (kLabelSmoothingVoxels; RGBA8 and R8), redrawn when the styles change, so label surfaces
-// are smooth.
+// separable Gaussian (kLabelSmoothingVoxels; RGBA8 and R8), redrawn when a pass first binds the labels after
+// the styles changed (a report that renders nothing never pays for it), so label surfaces are smooth.
 // Several label sets share one id space (scene/scene_labels.h assigns each set a range). Attached to the
 // TransferFunctionTexture, whose binder adds LABELS and binds these: every pass that classifies samples
 // (ray cast, slab pass, step IV) carries the labels, and a scene without labels compiles none of it.
@@ -44,8 +44,11 @@ private:
     glm::ivec3 dims_;
     std::vector<std::uint16_t> ids_;
     std::vector<glm::vec4> styles_;
-    void uploadField();
-    gl::Texture idsTexture_, stylesTexture_, fieldTexture_, opacityTexture_;
+    // The label field is a cache of the styles, drawn by apply() when stale: hence mutable.
+    void uploadField() const;
+    gl::Texture idsTexture_, stylesTexture_;
+    mutable gl::Texture fieldTexture_, opacityTexture_;
+    mutable bool fieldStale_ = true;
     int styleTexels_ = 0;
 };
 
