@@ -53,21 +53,33 @@ TransferFunction opaque() {
 
 using Clock = std::chrono::steady_clock;
 
-// The report of one posed mesh on `volume`, with `labels` (may be empty) as one protected label set.
+// The report of one posed mesh on `volume`, with `labels` (may be empty) as one protected label set; with
+// `imageRemovedMl`, also the volume step IV's coverage at the renderer's N removes, from the same clip maps.
 plan::Report reportOf(gl::Context& context, const VolumeData& volume, const clip::TriangleMesh& mesh, const clip::RigidPose& pose,
-                      const std::vector<plan::LabelSet>& labels, double& ms, int samples = plan::kReportAntiAliasingSamples) {
+                      const std::vector<plan::LabelSet>& labels, double& ms, double* imageRemovedMl = nullptr) {
     const TransferFunction tf = opaque();
     Renderer renderer(context, volume, tf);
     renderer.clipMeshes().add(std::make_shared<const clip::TriangleMesh>(mesh), glm::dvec3(1.0), pose, "carve");
-    RemovalProbe probe(renderer.geometry(), samples);
-    const Clock::time_point start = Clock::now();
-    plan::RemovalField field = probe.removalField(renderer.clipMeshes());
     plan::ReportSettings settings;
     settings.tissue = plan::TissueRule::All;
-    plan::PointsInside inside = [&](const std::vector<glm::dvec3>& p) { return probe.insideFlags(renderer.clipMeshes(), p); };
-    plan::Report report = plan::computeReport(volume, tf, settings, field, labels, {}, inside);
+    auto reportAt = [&](int samples) {
+        RemovalProbe probe(renderer.geometry(), samples);
+        plan::RemovalField field = probe.removalField(renderer.clipMeshes());
+        plan::PointsInside inside = [&](const std::vector<glm::dvec3>& p) { return probe.insideFlags(renderer.clipMeshes(), p); };
+        return plan::computeReport(volume, tf, settings, field, labels, {}, inside);
+    };
+    const Clock::time_point start = Clock::now();
+    plan::Report report = reportAt(plan::kReportAntiAliasingSamples);
     ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (imageRemovedMl) *imageRemovedMl = reportAt(LaoSettings{}.antiAliasingSamples).removedMl;
     return report;
+}
+
+// A volume case: the report's removal and its bound, and the image's removal beside it.
+void measureVolume(gl::Context& context, const VolumeData& volume, const clip::TriangleMesh& mesh, const clip::RigidPose& pose,
+                   AnalyticCase& c) {
+    plan::Report r = reportOf(context, volume, mesh, pose, {}, c.ms, &c.atImageSamples);
+    c.reported = r.removedMl, c.uncertainty = r.removedUncertaintyMl;
 }
 
 void volumeCases(gl::Context& context, std::vector<AnalyticCase>& out) {
@@ -94,12 +106,7 @@ void volumeCases(gl::Context& context, std::vector<AnalyticCase>& out) {
                 const glm::dmat4 affine = gridAffine(g, extent, dims);
                 AnalyticCase c{"volume", g.name, name + turnName, std::abs(mesh.signedVolume()) / 1000.0};
                 // Off the lattice, so no face lies on a cell face by construction.
-                const clip::RigidPose pose{glm::dvec3(0.37, -0.21, 0.13), turn};
-                plan::Report r = reportOf(context, uniformScan(dims, affine), mesh, pose, {}, c.ms);
-                c.reported = r.removedMl, c.uncertainty = r.removedUncertaintyMl;
-                // What the image removes: step IV's coverage at the renderer's N.
-                double imageMs = 0;
-                c.atImageSamples = reportOf(context, uniformScan(dims, affine), mesh, pose, {}, imageMs, LaoSettings{}.antiAliasingSamples).removedMl;
+                measureVolume(context, uniformScan(dims, affine), mesh, {glm::dvec3(0.37, -0.21, 0.13), turn}, c);
                 out.push_back(c);
             }
     // A 20 x 14 x 16 mm box reaching 3.7 mm past the scan's +x face.
@@ -109,11 +116,7 @@ void volumeCases(gl::Context& context, std::vector<AnalyticCase>& out) {
     const double face = 0.5 * (dims.x - 1) + 0.5;
     const glm::dvec3 size(20.0, 14.0, 16.0);
     AnalyticCase c{"volume", g.name, "box partly outside", (size.x - 3.7) * size.y * size.z / 1000.0};
-    const clip::RigidPose pose{glm::dvec3(face + 3.7 - 0.5 * size.x, 0.37, -0.21), {}};
-    plan::Report r = reportOf(context, uniformScan(dims, affine), clip::makeBox(size), pose, {}, c.ms);
-    c.reported = r.removedMl, c.uncertainty = r.removedUncertaintyMl;
-    double imageMs = 0;
-    c.atImageSamples = reportOf(context, uniformScan(dims, affine), clip::makeBox(size), pose, {}, imageMs, LaoSettings{}.antiAliasingSamples).removedMl;
+    measureVolume(context, uniformScan(dims, affine), clip::makeBox(size), {glm::dvec3(face + 3.7 - 0.5 * size.x, 0.37, -0.21), {}}, c);
     out.push_back(c);
 }
 
@@ -130,7 +133,7 @@ void marginCases(gl::Context& context, std::vector<AnalyticCase>& out) {
             for (int i = 0; i < dims.x; ++i) wall.ids[wall.linearIndex(i, j, k)] = i >= 32 ? 1 : 0;
     LabelTable table;
     table.entries = {{1, "Wall", glm::dvec4(1.0)}};
-    const std::vector<plan::LabelSet> labels = {{"walls", &wall, &table, {1}}};
+    const std::vector<plan::LabelSet> labels = {{"walls", &wall, &table, {1}, {}}};
     struct Case {
         std::string name;
         clip::TriangleMesh mesh;
