@@ -72,9 +72,8 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
     glm::dvec4& acc = result.rgba;
     // Cut faces (the rules of shaders/raycast.comp and shade_sample.glsl, render/model/frame.h CutFaceSettings): the
     // first visible lattice sample after clipped ones is taken at the crossing (here by bisection with the
-    // exact inside test), standing for the ray to the end of its half step; phong lights the
-    // tissue behind the face with the face normal until normalOpacity or half of normalDepthMm, then fades
-    // into the gradient normal.
+    // exact inside test), standing for the ray to the end of its half step; phong lights the tissue behind the
+    // face with the face normal until normalOpacity or half of normalDepthMm, then fades into the gradient normal.
     const CutFaceSettings& faces = frame.raycast.cutFace;
     bool cutFaces = faces.enabled && options.clipped && options.clipNormal;
     bool afterClipped = false;
@@ -112,12 +111,8 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
         if (cutFaces && faceT >= 0 && frame.shading == ShadingMode::Phong) {
             double depth = (t - faceT) * std::abs(glm::dot(direction, faceNormal));
             double behind = (acc.a - faceOpacityStart) / std::max(1.0 - faceOpacityStart, 1e-6);
-            auto smoothstep = [](double lo, double hi, double x) {
-                x = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
-                return x * x * (3.0 - 2.0 * x);
-            };
-            double faceWeight = (1.0 - smoothstep(faces.normalOpacity, 1.0, behind)) *
-                                (1.0 - smoothstep(0.5 * faces.normalDepthMm, faces.normalDepthMm, depth));
+            double faceWeight = (1.0 - glm::smoothstep(faces.normalOpacity, 1.0, behind)) *
+                                (1.0 - glm::smoothstep(0.5 * faces.normalDepthMm, faces.normalDepthMm, depth));
             double magnitude = glm::length(gradient);
             glm::dvec3 volumeNormal = magnitude < 1e-6 ? faceNormal : -gradient / magnitude;
             if (glm::dot(volumeNormal, faceNormal) < 0) volumeNormal = -volumeNormal;

@@ -168,7 +168,7 @@ int benchCutFace(const CommandLine& cl) {
                 {"shading", "cut faces", "HF RMS carved", "/ solid's", "HF RMS face", "/ solid's", "ms/frame (median, ray cast + cached AO)",
                  "max error vs CPU twin", "rms error vs CPU twin"});
     // The CPU double twin (render/reference/raycast_reference) models the same rules for solid and phong,
-    // with the meshes' exact inside test (winding number) and their facet normals: on carved pixels.
+    // with the meshes' exact inside test (winding number) and their surface normals: on face pixels.
     std::vector<glm::ivec2> twinPixels;
     for (int y = 0, n = 0; y < size.y; ++y)
         for (int x = 0; x < size.x; ++x)
@@ -223,10 +223,10 @@ int benchCutFace(const CommandLine& cl) {
     table.print();
     std::printf("(HF: high-frequency energy of the composited luma, 0..1 units; a smooth face scores near 0. Cut faces\n"
                 " off: the sample lattice alone; on: the first sample on the face with its partial length (every mode,\n"
-                " dos in the slab pass), the face's normal within %.2g mm behind it (phong, ismos over phong).\n"
-                " lao and cao images identical: %s. Twin: %zu carved pixels, RGBA in [0, 1], against the CPU double\n"
-                " twin with the same rules, the meshes' winding-number inside test and their facet normals.)\n",
-                base.raycast.cutFace.normalDepthMm, laoMatchesCao ? "yes" : "NO", twinPixels.size());
+                " dos in the slab pass), the face's normal behind it up to opacity %.2g or %.2g mm (phong, ismos over phong).\n"
+                " lao and cao images identical: %s. Twin: %zu face pixels, RGBA in [0, 1], against the CPU double\n"
+                " twin with the same rules, the meshes' winding-number inside test and their surface normals.)\n",
+                base.raycast.cutFace.normalOpacity, base.raycast.cutFace.normalDepthMm, laoMatchesCao ? "yes" : "NO", twinPixels.size());
     writeJson(jsonPath, {{"bench", "cut-face"},
                          {"scene", uniform ? "uniform" : scenePath},
                          {"size", {size.x, size.y}},
