@@ -4,7 +4,7 @@
 // mesh. Fixed keys:
 // W/S forward/back, A/D left/right, Q/E down/up (camera frame); Up/Down pitch, Left/Right yaw,
 // PageUp/PageDown roll; right-drag moves in the view plane; Tab next mesh; R reset; Insert add; Delete
-// remove; 1-6 solid/phong/lao/cao/dos/ismos; C cycle shading; F9 recording; P or F12 screenshot.
+// remove; 1-6 solid/phong/lao/cao/dos/ismos; C cycle shading; F9 recording; P or F12 screenshot; Shift fine steps.
 // Lights: J/L turn the selected light left/right (yaw about the camera's up axis), I/K raise/lower it, O selects
 // the next light, at the keyboard's degrees per second; a Shift + left drag turns it by kLightDegPerPixel
 // (right: towards the right of the screen, up: up).
@@ -20,6 +20,7 @@ enum class Key : int {
     Digit5, C, F9, P, F12,
     Digit6,   // after the others: recorded sessions store keys as bits, and old ones keep their meaning
     I, J, K, L, O,   // lights (session version 2)
+    Fine,            // Shift held: mesh motion from keys and devices at kFineStepFactor of its speed
     Count
 };
 
@@ -32,6 +33,10 @@ struct KeyboardMouseState {
 };
 
 static_assert(static_cast<int>(Key::Count) <= 32, "keys are recorded as the bits of one 32-bit word");
+
+// Fine steps (Shift held) scale every mesh motion of the frame, from the keys and from the devices, so a mesh
+// can be placed to a fraction of a millimetre (input/pipeline.cpp).
+inline constexpr double kFineStepFactor = 0.1;
 
 // A Shift + left drag turns the selected light by this much per framebuffer pixel.
 inline constexpr double kLightDegPerPixel = 0.25;

@@ -37,6 +37,11 @@ std::vector<Action> InputPipeline::step(const std::vector<RawReport>& reports, c
     actions.insert(actions.end(), fromDevices.begin(), fromDevices.end());
     std::vector<Action> fromKeys = keyboard_.update(keys, dt, meshCount);
     actions.insert(actions.end(), fromKeys.begin(), fromKeys.end());
+    if (keys.down(Key::Fine))
+        for (Action& a : actions) {
+            if (auto* move = std::get_if<MoveMesh>(&a)) move->translationMm *= kFineStepFactor, move->rotationRad *= kFineStepFactor;
+            if (auto* drag = std::get_if<DragMesh>(&a)) drag->pixels *= kFineStepFactor;
+        }
     return actions;
 }
 

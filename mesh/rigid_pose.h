@@ -16,4 +16,9 @@ struct RigidPose {
     bool operator==(const RigidPose&) const = default;
 };
 
+// Rotation angles in degrees about x, then y, then z (fixed axes: q = Rz * Ry * Rx), as scene files give a
+// mesh's "rotation_deg" and the mesh panel shows it; degreesFromOrientation inverts it (y within +-90).
+glm::dquat orientationFromDegrees(glm::dvec3 xyzDeg);
+glm::dvec3 degreesFromOrientation(glm::dquat orientation);
+
 }  // namespace curette::clip

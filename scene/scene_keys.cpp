@@ -166,17 +166,24 @@ std::shared_ptr<const clip::TriangleMesh> readMeshGeometry(const JsonReader& r, 
 
 glm::dvec3 readMeshScale(const JsonReader& r) { return r.isNumber() ? glm::dvec3(r.number(1e-6, 1e6)) : r.vec3(1e-6, 1e6); }
 
+void readMeshPoseKeys(const JsonReader& r, clip::RigidPose& pose) {
+    if (auto p = r.find("position_mm")) pose.position = p->vec3(-1e5, 1e5);
+    if (auto rot = r.find("rotation_deg")) pose.orientation = clip::orientationFromDegrees(rot->vec3(-3600, 3600));
+}
+
+clip::RigidPose readMeshPose(const JsonReader& r) {
+    clip::RigidPose pose;
+    readMeshPoseKeys(r, pose);
+    r.finish();
+    return pose;
+}
+
 SceneClipMesh readClipMesh(const JsonReader& r, const std::filesystem::path& directory, std::size_t index) {
     SceneClipMesh mesh;
     mesh.name = "mesh " + std::to_string(index);
     if (auto n = r.find("name")) mesh.name = n->string();
     mesh.geometry = readMeshGeometry(r.at("mesh"), directory);
-    if (auto p = r.find("position_mm")) mesh.pose.position = p->vec3(-1e5, 1e5);
-    if (auto rot = r.find("rotation_deg")) {
-        glm::dvec3 a = glm::radians(rot->vec3(-3600, 3600));
-        mesh.pose.orientation = glm::angleAxis(a.z, glm::dvec3(0, 0, 1)) * glm::angleAxis(a.y, glm::dvec3(0, 1, 0)) *
-                                glm::angleAxis(a.x, glm::dvec3(1, 0, 0));
-    }
+    readMeshPoseKeys(r, mesh.pose);
     if (auto c = r.find("clips_tubes")) mesh.clipsTubes = c->boolean();
     if (auto s = r.find("scale")) mesh.scale = readMeshScale(*s);
     r.finish();

@@ -65,5 +65,9 @@ SceneClipMesh readClipMesh(const JsonReader& r, const std::filesystem::path& dir
 std::shared_ptr<const clip::TriangleMesh> readMeshGeometry(const JsonReader& r, const std::filesystem::path& directory);
 // A clip mesh's "scale": a number or [sx, sy, sz].
 glm::dvec3 readMeshScale(const JsonReader& r);
+// A clip mesh entry's "position_mm" and "rotation_deg" (degrees about x, y, z: clip::orientationFromDegrees)
+// into `pose` (keys absent: left as they are); readMeshPose reads an object of just those two.
+void readMeshPoseKeys(const JsonReader& r, clip::RigidPose& pose);
+clip::RigidPose readMeshPose(const JsonReader& r);
 
 }  // namespace curette

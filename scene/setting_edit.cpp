@@ -24,6 +24,7 @@ constexpr SettingInfo kSettings[] = {
     {Setting::MeshShape, "clip_meshes.mesh", SettingTarget::Mesh, "mesh"},
     {Setting::MeshScale, "clip_meshes.scale", SettingTarget::Mesh, "mesh"},
     {Setting::MeshClipsTubes, "clip_meshes.clips_tubes", SettingTarget::Mesh, "mesh"},
+    {Setting::MeshPose, "clip_meshes.pose", SettingTarget::Mesh, "mesh"},
 };
 static_assert(rowsInEnumOrder(kSettings, &SettingInfo::setting, Setting::Count));
 
@@ -77,6 +78,7 @@ SettingValue readSettingValue(const SettingEdit& edit, const std::string& source
         case Setting::MeshShape: return MeshGeometry{readMeshGeometry(r, directory)};
         case Setting::MeshScale: return readMeshScale(r);
         case Setting::MeshClipsTubes: return r.boolean();
+        case Setting::MeshPose: return readMeshPose(r);
         case Setting::Count: break;
     }
     throw std::logic_error("readSettingValue: no such setting");

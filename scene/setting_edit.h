@@ -22,6 +22,7 @@
 //   clip_meshes.mesh        a mesh description (mesh/mesh_description.h): the shape and its size
 //   clip_meshes.scale       a number or [sx, sy, sz]
 //   clip_meshes.clips_tubes true | false
+//   clip_meshes.pose        {"position_mm": [x, y, z], "rotation_deg": [rx, ry, rz]} (RAS mm; typed in the panel)
 
 #include "scene/scene_keys.h"
 
@@ -53,6 +54,7 @@ enum class Setting {
     MeshShape,
     MeshScale,
     MeshClipsTubes,
+    MeshPose,
     Count
 };
 
@@ -87,7 +89,8 @@ struct LightValue {
     IsmosLightShape shape;
 };
 using SettingValue = std::variant<std::monostate, ShadingMode, TransferFunction, LaoSettings, RaycastSettings, DosSettings,
-                                  IsmosSettings, LightValue, TubeRendering, SceneTubes, SceneClipMesh, MeshGeometry, glm::dvec3, bool>;
+                                  IsmosSettings, LightValue, TubeRendering, SceneTubes, SceneClipMesh, MeshGeometry, glm::dvec3, bool,
+                                  clip::RigidPose>;
 
 // Reads `edit.value` as its setting's scene key (InputError naming `source` and `keyPath`, e.g.
 // "line 4: edits[0].value"). glTF paths are relative to `directory`. A "tubes" value becomes the SceneTubes

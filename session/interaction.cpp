@@ -295,6 +295,7 @@ void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const s
             }
             case Setting::MeshScale: meshById().scale = std::get<glm::dvec3>(value); break;
             case Setting::MeshClipsTubes: meshById().clipsTubes = std::get<bool>(value); break;
+            case Setting::MeshPose: meshById().pose = std::get<clip::RigidPose>(value); break;
             case Setting::Count: break;
         }
         if (std::string key = editedKeyName(edit); !key.empty()) editedKeys[key] = edit.value;

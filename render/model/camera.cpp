@@ -56,4 +56,21 @@ void OrbitCamera::zoom(double factor) {
     distanceMm = d;
 }
 
+const char* standardViewName(StandardView view) {
+    static const char* const names[] = {"anterior", "posterior", "left", "right", "superior", "inferior"};
+    return names[static_cast<int>(view)];
+}
+
+OrbitCamera viewedFrom(OrbitCamera camera, StandardView view) {
+    // Azimuth 0 puts the camera at +A (forward()); from above the camera stands anterior of the pole (azimuth
+    // 180) so anterior is up and the patient's right is on the right, from below the other way round.
+    struct Angles {
+        double azimuth, elevation;
+    };
+    static const Angles angles[] = {{0, 0}, {180, 0}, {-90, 0}, {90, 0}, {180, 89}, {0, -89}};
+    camera.azimuthDeg = angles[static_cast<int>(view)].azimuth;
+    camera.elevationDeg = angles[static_cast<int>(view)].elevation;
+    return camera;
+}
+
 }  // namespace curette

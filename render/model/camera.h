@@ -40,4 +40,11 @@ struct OrbitCamera {
     void zoom(double factor);
 };
 
+// The views a planner names (3D Slicer's A, P, L, R, S, I buttons): the camera on that side of its target,
+// looking at it, the head upright (superior up) or, from above and below, anterior up.
+enum class StandardView { Anterior, Posterior, Left, Right, Superior, Inferior, Count };
+const char* standardViewName(StandardView view);
+// `camera` turned to look from `view`; its target, distance and field of view stay.
+OrbitCamera viewedFrom(OrbitCamera camera, StandardView view);
+
 }  // namespace curette

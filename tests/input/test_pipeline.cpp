@@ -121,6 +121,34 @@ TEST(Pipeline, AHoldRequestMovesTheNewMeshFromThatStepOn) {
     EXPECT_THROW(p.step({}, {}, 0.1, 2, {{9, 0}}), std::invalid_argument);
 }
 
+// Shift held (Key::Fine): the frame's mesh motion, from the keys and from a device alike, at a tenth of its speed.
+TEST(Pipeline, FineStepsScaleEveryMeshMotionOfTheFrame) {
+    auto motion = [](bool fine) {
+        InputPipeline p(defaultMapping(), 40.0, 60.0);
+        p.addDevice(1, DeviceFamily::SpaceMouse);
+        DeviceState pushed;
+        pushed.axes[0] = 0.8f;
+        pushed.axes[4] = 0.5f;
+        KeyboardMouseState keys;
+        keys.keys = 1u << static_cast<int>(Key::W) | 1u << static_cast<int>(Key::Up);
+        if (fine) keys.keys |= 1u << static_cast<int>(Key::Fine);
+        keys.rightDragPixels = {30, -10};
+        std::vector<glm::dvec3> out;
+        for (const Action& a : p.step({{1, 0, encodeSpaceMouseCombined(pushed)}}, keys, 0.1, 3)) {
+            if (auto* m = std::get_if<MoveMesh>(&a)) out.push_back(m->translationMm), out.push_back(m->rotationRad);
+            if (auto* d = std::get_if<DragMesh>(&a)) out.push_back(glm::dvec3(d->pixels, 0));
+        }
+        return out;
+    };
+    std::vector<glm::dvec3> normal = motion(false), fine = motion(true);
+    ASSERT_EQ(normal.size(), 5u) << "the SpaceMouse's move, the keys' move and the drag";
+    ASSERT_EQ(fine.size(), normal.size());
+    for (std::size_t i = 0; i < normal.size(); ++i) {
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(fine[i][c], kFineStepFactor * normal[i][c], 1e-12) << i;
+    }
+    EXPECT_NEAR(normal[2].z, 4.0, 1e-9) << "W: 40 mm/s for 0.1 s";
+}
+
 TEST(Pipeline, TheBuiltInDefaultMappingIsTheShippedFile) {
     std::vector<std::uint8_t> bytes = readFileBytes(std::string(CURETTE_SOURCE_DIR) + "/assets/input/default_mapping.json");
     MappingConfig shipped = parseMapping(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), "file");

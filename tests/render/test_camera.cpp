@@ -60,5 +60,40 @@ TEST(Camera, CameraRayAndProjectionAgree) {
     }
 }
 
+// Each standard view shows the patient as a planner expects (3D Slicer's 3-D view buttons): where a point 10 mm
+// to the patient's right, anterior or superior of the target lands on screen (x right, y up, in NDC).
+TEST(Camera, StandardViewsShowThePatientTheWaySlicerDoes) {
+    struct Expect {
+        StandardView view;
+        glm::dvec2 right, anterior, superior;   // screen direction of +R, +A, +S (0: along the view axis)
+    };
+    const Expect expected[] = {
+        {StandardView::Anterior, {-1, 0}, {0, 0}, {0, 1}},   // facing the patient: their right on screen left
+        {StandardView::Posterior, {1, 0}, {0, 0}, {0, 1}},
+        {StandardView::Left, {0, 0}, {-1, 0}, {0, 1}},       // from the left: nose to the screen's left
+        {StandardView::Right, {0, 0}, {1, 0}, {0, 1}},
+        {StandardView::Superior, {1, 0}, {0, 1}, {0, 0}},    // from above, nose up: their right on the right
+        {StandardView::Inferior, {-1, 0}, {0, 1}, {0, 0}},
+    };
+    OrbitCamera start = obliqueCamera();
+    for (const Expect& e : expected) {
+        OrbitCamera c = viewedFrom(start, e.view);
+        EXPECT_EQ(c.target, start.target);
+        EXPECT_EQ(c.distanceMm, start.distanceMm);
+        glm::dmat4 vp = c.viewProjection({100, 100});
+        auto screen = [&](glm::dvec3 offset) {
+            glm::dvec4 p = vp * glm::dvec4(c.target + offset, 1.0), o = vp * glm::dvec4(c.target, 1.0);
+            glm::dvec2 d = glm::dvec2(p) / p.w - glm::dvec2(o) / o.w;   // an in-plane 10 mm: about 0.1
+            return glm::length(d) < 1e-2 ? glm::dvec2(0) : glm::normalize(d);
+        };
+        const glm::dvec2 got[] = {screen({10, 0, 0}), screen({0, 10, 0}), screen({0, 0, 10})};
+        const glm::dvec2 want[] = {e.right, e.anterior, e.superior};
+        for (int axis = 0; axis < 3; ++axis) {
+            EXPECT_NEAR(got[axis].x, want[axis].x, 0.05) << standardViewName(e.view) << " axis " << axis;
+            EXPECT_NEAR(got[axis].y, want[axis].y, 0.05) << standardViewName(e.view) << " axis " << axis;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace curette

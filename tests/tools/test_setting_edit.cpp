@@ -130,6 +130,16 @@ TEST(SettingEdit, MeshEditsAddShapeScaleAndRemove) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("edits[0].value"), std::string::npos) << e.what();
     }
+    // A pose typed in RAS mm and degrees: the same pose a scene entry with those keys gives.
+    s.applyEdits({{Setting::MeshPose, 1, nlohmann::json::parse(R"({"position_mm": [4, -5, 6.5], "rotation_deg": [10, -20, 30]})")}}, "<panel>");
+    EXPECT_EQ(s.meshes[0].pose.position, glm::dvec3(4, -5, 6.5));
+    glm::dvec3 degrees = clip::degreesFromOrientation(s.meshes[0].pose.orientation);
+    EXPECT_NEAR(degrees.x, 10, 1e-9);
+    EXPECT_NEAR(degrees.y, -20, 1e-9);
+    EXPECT_NEAR(degrees.z, 30, 1e-9);
+    EXPECT_EQ(s.meshes[0].pose.orientation, clip::orientationFromDegrees({10, -20, 30}));
+    EXPECT_THROW(s.applyEdits({{Setting::MeshPose, 1, nlohmann::json::parse(R"({"position": [1, 2, 3]})")}}, "<panel>"), InputError)
+        << "an unknown key is refused";
 }
 
 SessionHeader header(int version) {
