@@ -13,7 +13,9 @@ namespace curette {
 class Presenter {
 public:
     Presenter();
-    void present(GLuint image, glm::ivec2 framebufferSize, glm::vec4 background);
+    // `image` into the rectangle at `origin` (top left, pixels) of `size` in a framebuffer of `framebufferSize`,
+    // the rest of the framebuffer cleared to the background (the side bar's panels are drawn over it).
+    void present(GLuint image, glm::ivec2 origin, glm::ivec2 size, glm::ivec2 framebufferSize, glm::vec4 background);
 
 private:
     gl::Program program_;

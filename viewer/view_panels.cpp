@@ -1,5 +1,7 @@
 #include "viewer/view_panels.h"
 
+#include "viewer/view_sidebar.h"
+
 #include "io/transfer_function_file.h"
 #include "session/plan_scene.h"
 #include "scene/volume_statistics.h"
@@ -21,11 +23,19 @@ std::filesystem::path shippedPresetDirectory() { return std::filesystem::path(CU
 const char* const kPrimitiveShapes[6] = {"sphere", "box", "cylinder", "cone", "capsule", "torus"};
 
 nlohmann::json primitiveMeshJson(const std::string& shape, double s) {
-    if (shape == "box") return {{"shape", "box"}, {"size_mm", {2 * s, 2 * s, 2 * s}}};
-    if (shape == "cylinder" || shape == "cone") return {{"shape", shape}, {"radius_mm", s}, {"height_mm", 2 * s}};
-    if (shape == "capsule") return {{"shape", "capsule"}, {"radius_mm", s / 2}, {"length_mm", 2 * s}};
-    if (shape == "torus") return {{"shape", "torus"}, {"major_radius_mm", s}, {"minor_radius_mm", s / 3}};
-    return {{"shape", "sphere"}, {"radius_mm", s}};
+    if (shape == "box") return {{"shape", "box"}, {"size_mm", {s, s, s}}};
+    if (shape == "cylinder" || shape == "cone") return {{"shape", shape}, {"radius_mm", s / 2}, {"height_mm", s}};
+    if (shape == "capsule") return {{"shape", "capsule"}, {"radius_mm", s / 4}, {"length_mm", s}};
+    if (shape == "torus") return {{"shape", "torus"}, {"major_radius_mm", s / 2}, {"minor_radius_mm", s / 6}};
+    return {{"shape", "sphere"}, {"radius_mm", s / 2}};
+}
+
+const char* primitiveSizeName(const std::string& shape) {
+    if (shape == "box") return "edge (mm)";
+    if (shape == "cylinder" || shape == "cone") return "diameter = height (mm)";
+    if (shape == "capsule") return "length (mm; diameter a half)";
+    if (shape == "torus") return "outer diameter (mm)";
+    return "diameter (mm)";
 }
 
 namespace {
@@ -119,17 +129,12 @@ ViewPanels::ViewPanels(const LoadedScene& loaded, std::filesystem::path presetDi
 
 std::vector<SettingEdit> ViewPanels::draw(const InteractionState& state, const OrbitCamera& camera, const input::InputPipeline& input) {
     std::vector<SettingEdit> edits;
-    ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 8, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
-    ImGui::SetNextWindowSize(ImVec2(420, io.DisplaySize.y - 16), ImGuiCond_FirstUseEver);
-    ImGui::Begin("settings");
+    if (ImGui::CollapsingHeader("clip meshes (tools)", ImGuiTreeNodeFlags_DefaultOpen)) meshPanel(state, camera, input, edits);
     if (ImGui::CollapsingHeader("transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(state, edits);
-    if (ImGui::CollapsingHeader("shading", ImGuiTreeNodeFlags_DefaultOpen)) shadingPanel(state, edits);
-    if (ImGui::CollapsingHeader("clip meshes", ImGuiTreeNodeFlags_DefaultOpen)) meshPanel(state, camera, input, edits);
+    if (ImGui::CollapsingHeader("shading")) shadingPanel(state, edits);
     if (!state.tubes.empty() && ImGui::CollapsingHeader("tubes")) tubePanel(state, edits);
     if (ImGui::CollapsingHeader("lights")) lightPanel(state, edits);
-    if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(state, camera);
-    ImGui::End();
+    if (ImGui::CollapsingHeader("scene")) scenePanel(state, camera);
     return edits;
 }
 
@@ -273,55 +278,70 @@ void ViewPanels::shadingPanel(const InteractionState& state, std::vector<Setting
     std::string modes;
     for (int m = 0; m < static_cast<int>(ShadingMode::Count); ++m) modes += std::string(shadingModeName(static_cast<ShadingMode>(m))) + '\0';
     if (ImGui::Combo("shading", &mode, modes.c_str())) edits.push_back(edit(Setting::Shading, shadingModeName(static_cast<ShadingMode>(mode))));
+    tooltip("how the volume is lit: solid (no light), phong, lao / cao (ambient occlusion, exact under the carve), dos (directional occlusion), ismos (multidirectional)");
 
     if (usesAmbientOcclusion(state.shading)) {
         nlohmann::json ao = objectOf(state, scene, "ambient_occlusion");
         bool changed = false;
         static const char* const kRays[] = {"6", "14", "26", "54"};
         std::string rays = ao.contains("rays") ? (ao["rays"].is_string() ? ao["rays"].get<std::string>() : ao["rays"].dump()) : "26";
-        if (ImGui::BeginCombo("LAO rays", rays.c_str())) {
+        if (ImGui::BeginCombo("AO rays", rays.c_str())) {
             for (const char* r : kRays)
                 if (ImGui::Selectable(r, rays == r)) ao["rays"] = r, changed = true;
             ImGui::EndCombo();
         }
         int samples = state.lao.samples;
-        if (ImGui::SliderInt("LAO samples", &samples, 1, 64)) ao["samples"] = samples, changed = true;
+        tooltip("directions each voxel's ambient occlusion looks along");
+        if (ImGui::SliderInt("AO samples", &samples, 1, 64)) ao["samples"] = samples, changed = true;
+        tooltip("samples along each direction");
         float step = static_cast<float>(state.lao.stepMm);
-        if (ImGui::SliderFloat("LAO step (mm)", &step, 0.25f, 4.0f)) ao["step_mm"] = step, changed = true;
+        if (ImGui::SliderFloat("AO step (mm)", &step, 0.25f, 4.0f)) ao["step_mm"] = step, changed = true;
+        tooltip("distance between samples: samples x step is how far occlusion reaches");
         float scale = static_cast<float>(state.lao.ambientScale);
         if (ImGui::SliderFloat("ambient scale", &scale, 0.0f, 4.0f)) ao["ambient_scale"] = scale, changed = true;
+        tooltip("how strongly occlusion darkens");
         if (changed) edits.push_back(edit(Setting::AmbientOcclusion, ao));
     }
     if (slabPassRuns(state.shading, !state.tubes.empty())) {
         nlohmann::json dos = objectOf(state, scene, "dos");
         bool changed = false;
         float cone = static_cast<float>(state.dos.coneAngleDeg);
-        if (ImGui::SliderFloat("DOS cone (deg)", &cone, 5.0f, 85.0f)) dos["cone_angle_deg"] = cone, changed = true;
+        if (ImGui::SliderFloat("shadow cone (deg)", &cone, 5.0f, 85.0f)) dos["cone_angle_deg"] = cone, changed = true;
+        tooltip("opening angle of the light cone the directional occlusion gathers over");
         int grid = state.dos.gridSize;
-        if (ImGui::SliderInt("DOS grid", &grid, 1, 8)) dos["grid"] = grid, changed = true;
+        if (ImGui::SliderInt("shadow grid", &grid, 1, 8)) dos["grid"] = grid, changed = true;
+        tooltip("samples across the cone per side: more is smoother and slower");
         if (changed) edits.push_back(edit(Setting::Dos, dos));
     }
     if (state.shading == ShadingMode::Ismos) {
         nlohmann::json ismos = objectOf(state, scene, "ismos");
         bool changed = false;
         bool partial = state.ismos.partial;
-        if (ImGui::Checkbox("ISMOS partial occlusion", &partial)) ismos["occlusion"] = partial ? "partial" : "full", changed = true;
+        if (ImGui::Checkbox("partial occlusion", &partial)) ismos["occlusion"] = partial ? "partial" : "full", changed = true;
+        tooltip("occlusion from the layers in front only (partial) or all (full)");
         int samples = state.ismos.lightSamples;
-        if (ImGui::SliderInt("ISMOS light samples", &samples, 1, 64)) ismos["light_samples"] = samples, changed = true;
+        if (ImGui::SliderInt("light samples", &samples, 1, 64)) ismos["light_samples"] = samples, changed = true;
+        tooltip("directions sampled over each light");
         int points = state.ismos.testPoints;
-        if (ImGui::SliderInt("ISMOS test points", &points, 1, 128)) ismos["test_points"] = points, changed = true;
+        if (ImGui::SliderInt("test points", &points, 1, 128)) ismos["test_points"] = points, changed = true;
+        tooltip("points tested for occlusion per pixel");
         int layers = state.ismos.layers;
-        if (ImGui::SliderInt("ISMOS layers", &layers, 1, 4)) ismos["layers"] = layers, changed = true;
+        if (ImGui::SliderInt("layers", &layers, 1, 4)) ismos["layers"] = layers, changed = true;
+        tooltip("depth layers the image is split into");
         float ambient = static_cast<float>(state.ismos.ambient);
-        if (ImGui::SliderFloat("ISMOS ambient", &ambient, 0.0f, 1.0f)) ismos["ambient"] = ambient, changed = true;
+        if (ImGui::SliderFloat("ambient", &ambient, 0.0f, 1.0f)) ismos["ambient"] = ambient, changed = true;
+        tooltip("light that reaches everywhere");
         if (changed) edits.push_back(edit(Setting::Ismos, ismos));
     }
     nlohmann::json rc = objectOf(state, scene, "raycast");
     bool changed = false;
     float step = static_cast<float>(state.raycast.stepMm);
-    if (ImGui::SliderFloat("ray step (mm, 0: auto)", &step, 0.0f, 2.0f)) rc["step_mm"] = step, changed = true;
+    if (ImGui::SliderFloat("ray step (mm)", &step, 0.0f, 2.0f, step > 0 ? "%.2f" : "auto")) rc["step_mm"] = step, changed = true;
+    tooltip("distance between samples along each view ray; 0: automatic, from the voxel size");
     bool faces = state.raycast.cutFace.enabled;
-    if (ImGui::Checkbox("cut faces", &faces)) {
+    bool facesClicked = ImGui::Checkbox("cut faces", &faces);
+    tooltip("shade the surfaces the carve cuts like the tissue behind them");
+    if (facesClicked) {
         nlohmann::json f = rc.contains("cut_faces") && rc["cut_faces"].is_object() ? rc["cut_faces"] : nlohmann::json::object();
         f["enabled"] = faces;
         rc["cut_faces"] = f;
@@ -372,10 +392,23 @@ void ViewPanels::meshPanel(const InteractionState& state, const OrbitCamera& cam
             if (std::min(h.mesh, meshCount - 1) == static_cast<int>(index)) heldBy += (heldBy.empty() ? "" : ", ") + h.name;
         ImGui::Text("%s (id %d)%s%s", m.name.c_str(), m.id, heldBy.empty() ? "" : ", held by ", heldBy.c_str());
         float scale = static_cast<float>(m.scale.x);
-        if (ImGui::SliderFloat("scale", &scale, 0.1f, 5.0f, "%.3f", ImGuiSliderFlags_Logarithmic))
+        if (ImGui::SliderFloat("scale (x its size)", &scale, 0.1f, 5.0f, "%.3f", ImGuiSliderFlags_Logarithmic))
             edits.push_back(edit(Setting::MeshScale, scale, m.id));
+        tooltip("grows or shrinks the mesh about its origin; its shape's sizes are in its description");
+        // Position and rotation in RAS mm and degrees, as a scene file gives them: typed or dragged, an edit.
+        float position[3] = {static_cast<float>(m.pose.position.x), static_cast<float>(m.pose.position.y), static_cast<float>(m.pose.position.z)};
+        glm::dvec3 degrees = clip::degreesFromOrientation(m.pose.orientation);
+        float rotation[3] = {static_cast<float>(degrees.x), static_cast<float>(degrees.y), static_cast<float>(degrees.z)};
+        bool moved = ImGui::DragFloat3("position (RAS mm)", position, 0.1f, -1e4f, 1e4f, "%.1f");
+        tooltip("the mesh origin in scanner coordinates: R(ight), A(nterior), S(uperior), mm; drag or Ctrl+click to type");
+        bool turned = ImGui::DragFloat3("rotation (deg)", rotation, 0.5f, -360.0f, 360.0f, "%.1f");
+        tooltip("degrees about the R, A and S axes, applied in that order");
+        if (moved || turned)
+            edits.push_back(edit(Setting::MeshPose, {{"position_mm", {position[0], position[1], position[2]}},
+                                                     {"rotation_deg", {rotation[0], rotation[1], rotation[2]}}}, m.id));
         bool clips = m.clipsTubes;
         if (ImGui::Checkbox("clips tubes", &clips)) edits.push_back(edit(Setting::MeshClipsTubes, clips, m.id));
+        tooltip("the mesh also cuts the fibre tubes it passes through");
         ImGui::SameLine();
         if (ImGui::Button("shape...")) ImGui::OpenPopup("shape");
         if (ImGui::BeginPopup("shape")) {
@@ -385,11 +418,16 @@ void ViewPanels::meshPanel(const InteractionState& state, const OrbitCamera& cam
         }
         ImGui::SameLine();
         if (ImGui::Button("remove")) edits.push_back(edit(Setting::MeshRemove, nullptr, m.id));
+        tooltip("removes this mesh (Delete removes the held one)");
         ImGui::PopID();
     }
     ImGui::Combo("new shape", &addShape_, kPrimitiveShapes, 6);
-    ImGui::SliderFloat("size (mm)", &addSizeMm_, 1.0f, 60.0f);
-    if (ImGui::Button("add mesh at the view's centre") && static_cast<int>(state.meshes.size()) < clip::kMaxClipMeshes) {
+    tooltip("the shape of a mesh added below (or given to a mesh by its shape... button)");
+    ImGui::SliderFloat(primitiveSizeName(kPrimitiveShapes[addShape_]), &addSizeMm_, 1.0f, 60.0f, "%.1f");
+    tooltip("the new shape's main size; the others follow from it (see the label)");
+    bool add = ImGui::Button("add mesh at the view's centre");
+    tooltip("adds the shape at the point the camera turns around (Home: the volume's centre)");
+    if (add && static_cast<int>(state.meshes.size()) < clip::kMaxClipMeshes) {
         nlohmann::json entry = {{"mesh", primitiveMeshJson(kPrimitiveShapes[addShape_], addSizeMm_)},
                                 {"position_mm", {camera.target.x, camera.target.y, camera.target.z}}};
         edits.push_back(edit(Setting::MeshAdd, entry));
@@ -399,7 +437,9 @@ void ViewPanels::meshPanel(const InteractionState& state, const OrbitCamera& cam
 void ViewPanels::tubePanel(const InteractionState& state, std::vector<SettingEdit>& edits) {
     const Scene& scene = loaded_.scene;
     bool lines = state.tubeRendering.lines;
-    if (ImGui::Checkbox("illuminated lines", &lines)) {
+    bool linesClicked = ImGui::Checkbox("illuminated lines", &lines);
+    tooltip("draw the tracts as lit lines instead of tubes (cheaper for many streamlines)");
+    if (linesClicked) {
         nlohmann::json r = objectOf(state, scene, "tube_rendering");
         r["mode"] = lines ? "lines" : "tubes";
         edits.push_back(edit(Setting::TubeRendering, r));
@@ -412,7 +452,8 @@ void ViewPanels::tubePanel(const InteractionState& state, std::vector<SettingEdi
         bool changed = false;
         ImGui::Text("%s", t.name.c_str());
         float radius = static_cast<float>(t.settings.radiusMm);
-        if (ImGui::SliderFloat("radius (mm)", &radius, 0.05f, 3.0f)) entry["radius_mm"] = radius, changed = true;
+        if (ImGui::SliderFloat("tube radius (mm)", &radius, 0.05f, 3.0f)) entry["radius_mm"] = radius, changed = true;
+        tooltip("radius of each streamline's tube");
         int coloring = t.settings.coloring == TubeSettings::Coloring::Uniform ? 1 : t.settings.coloring == TubeSettings::Coloring::Scalar ? 2 : 0;
         const char* modes = t.settings.scalarName.empty() ? "direction\0uniform\0" : "direction\0uniform\0scalar\0";
         if (ImGui::Combo("colour", &coloring, modes)) {
@@ -464,7 +505,9 @@ void ViewPanels::lightPanel(const InteractionState& state, std::vector<SettingEd
 
 void ViewPanels::scenePanel(const InteractionState& state, const OrbitCamera& camera) {
     ImGui::InputText("scene file", scenePath_, sizeof scenePath_);
-    if (ImGui::Button("save scene")) {
+    bool save = ImGui::Button("save scene");
+    tooltip("writes the scene with its current meshes, poses, settings and camera");
+    if (save) {
         try {
             writeFileAtomically(scenePath_, planSceneJson(loaded_.scene, loaded_.scene.json.dump(), state, &camera));
             messages_.push_back(std::string("wrote the scene ") + scenePath_);

@@ -6,7 +6,7 @@
 // edits to the session step, which applies them as it applies device actions (and a recording records them).
 // The mesh panel's choice of which device holds which mesh is a hold request (input/pipeline.h) instead: it
 // is input, not a setting, and goes to the input pipeline's next step (and is recorded with that frame).
-// Call draw() between ImGui::NewFrame() and ImGui::Render(); it issues no GL call (the GL backend stays in
+// Call draw() inside a window (the side bar's Settings tab) between ImGui::NewFrame() and ImGui::Render(); it issues no GL call (the GL backend stays in
 // tools/commands/view.cpp).
 
 #include "session/interaction.h"
@@ -62,7 +62,7 @@ private:
     double maxGradient_ = 0;               // the volume's largest gradient magnitude (value units per mm)
     int draggedOpacity_ = -1, draggedGradient_ = -1, draggedColor_ = -1, selectedColor_ = -1;
     int addShape_ = 0;
-    float addSizeMm_ = 15.0f;
+    float addSizeMm_ = 30.0f;
     char tfPath_[512] = "transfer-function.json";
     char scenePath_[512] = "curette-scene.json";
     std::vector<std::string> messages_;
@@ -73,9 +73,10 @@ private:
 // The shipped presets, assets/tf of the source tree the binary was built from.
 std::filesystem::path shippedPresetDirectory();
 
-// A primitive mesh description of `shape` (sphere, box, cylinder, cone, capsule, torus) whose size is
-// `sizeMm` (radius, half edge, ...), as mesh/mesh_description.h reads it.
+// A primitive mesh description of `shape` (sphere, box, cylinder, cone, capsule, torus) whose main size is
+// `sizeMm` (what primitiveSizeName says: a diameter, an edge, a length), as mesh/mesh_description.h reads it.
 nlohmann::json primitiveMeshJson(const std::string& shape, double sizeMm);
+const char* primitiveSizeName(const std::string& shape);
 extern const char* const kPrimitiveShapes[6];
 
 }  // namespace curette

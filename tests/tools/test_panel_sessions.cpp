@@ -427,5 +427,106 @@ TEST(PanelSessions, TheViewerPlaysASessionInAWindowToTheHeadlessImage) {
     EXPECT_GT(lit, headless.size() / 4 / 10) << "the picture shows the ball, so the comparison means something";
 }
 
+// The viewer's window at 1024x768 (Xvfb): the side bar holds the panels and leaves the 3-D view more than three
+// quarters of the window, with no panel pixel in it (the window's view rectangle equals the view's screenshot
+// outside the orientation marker); once the played session has settled, the idle window draws nothing for 5 s,
+// in phong and in ismos (whose idle window used to render on).
+struct WindowRun {
+    std::string output;
+    glm::ivec4 view{0}, sidebar{0}, marker{0};   // x, y, w, h
+    std::vector<nlohmann::json> log;
+};
+
+WindowRun runWindow(const std::filesystem::path& session, const std::filesystem::path& dir, const std::string& extra) {
+    WindowRun run;
+    std::string command = "xvfb-run -a -s '-screen 0 1280x1024x24' " + std::string(CURETTE_BINARY) + " view --play " + session.string() +
+                          " --size 1024x768 --screenshot " + (dir / "view.png").string() + " --window-shot " + (dir / "window.png").string() +
+                          " --frame-log " + (dir / "frames.jsonl").string() + " " + extra + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    char buffer[4096];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
+    int status = pclose(pipe);
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0) << run.output;
+    std::size_t at = run.output.find("layout: window");
+    EXPECT_NE(at, std::string::npos) << run.output;
+    if (at == std::string::npos) return run;
+    int w, h;
+    glm::ivec4& v = run.view;
+    glm::ivec4& s = run.sidebar;
+    glm::ivec4& m = run.marker;
+    EXPECT_EQ(std::sscanf(run.output.c_str() + at, "layout: window %dx%d, view %dx%d at %d,%d, side bar %dx%d at %d,%d, marker %dx%d at %d,%d", &w, &h,
+                          &v.z, &v.w, &v.x, &v.y, &s.z, &s.w, &s.x, &s.y, &m.z, &m.w, &m.x, &m.y),
+              14)
+        << run.output;
+    EXPECT_EQ(glm::ivec2(w, h), glm::ivec2(1024, 768));
+    std::ifstream in(dir / "frames.jsonl");
+    for (std::string line; std::getline(in, line);) run.log.push_back(nlohmann::json::parse(line));
+    return run;
+}
+
+// Frames drawn after the view settled, and how long it stayed settled before exiting.
+std::pair<int, double> drawnWhileSettled(const WindowRun& run) {
+    double settled = -1, exit = -1;
+    int drawn = 0;
+    for (const nlohmann::json& e : run.log) {
+        if (e["event"] == "settled") settled = e["t"].get<double>();
+        else if (e["event"] == "exit") exit = e["t"].get<double>();
+        else if (settled >= 0) ++drawn;
+    }
+    EXPECT_GE(settled, 0) << "the view settled";
+    return {drawn, exit - settled};
+}
+
+TEST(PanelSessions, TheViewersSideBarLeavesTheViewFreeAndAnIdleWindowDrawsNothing) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    auto dir = scratch("window");
+    auto scene = writeBallScene(dir);
+    auto session = dir / "edits.jsonl";
+    recordEditSession(scene, session);
+    WindowRun run = runWindow(session, dir, "--idle-seconds 5");
+    ASSERT_GT(run.view.z, 0) << run.output;
+    EXPECT_GE(static_cast<double>(run.view.z) * run.view.w, 0.75 * 1024 * 768) << "the 3-D view keeps three quarters of the window";
+    EXPECT_EQ(run.sidebar.x, run.view.x + run.view.z) << "the side bar is beside the view";
+    Png window = readPng(dir / "window.png"), view = readPng(dir / "view.png");
+    ASSERT_EQ(glm::ivec2(view.width, view.height), glm::ivec2(run.view.z, run.view.w));
+    std::size_t differing = 0, sidebarInk = 0, viewLit = 0;
+    auto inMarker = [&](int x, int y) { return x >= run.marker.x && y >= run.marker.y && x < run.marker.x + run.marker.z && y < run.marker.y + run.marker.w; };
+    for (int y = 0; y < window.height; ++y)
+        for (int x = 0; x < window.width; ++x) {
+            const std::uint8_t* w = &window.rgba[(static_cast<std::size_t>(y) * window.width + x) * 4];
+            if (x < run.view.z && y < run.view.w) {
+                const std::uint8_t* v = &view.rgba[(static_cast<std::size_t>(y) * view.width + x) * 4];
+                viewLit += v[0] + v[1] + v[2] > 60;
+                if (!inMarker(x, y)) differing += std::abs(w[0] - v[0]) + std::abs(w[1] - v[1]) + std::abs(w[2] - v[2]) > 0;
+            } else {
+                sidebarInk += w[0] + w[1] + w[2] > 300;   // text and widgets
+            }
+        }
+    EXPECT_EQ(differing, 0u) << "no panel pixel over the 3-D view";
+    EXPECT_GT(viewLit, view.rgba.size() / 4 / 50) << "the view shows the ball, so the comparison means something";
+    EXPECT_GT(sidebarInk, 500u) << "the side bar shows its panels";
+    auto [drawn, settledFor] = drawnWhileSettled(run);
+    EXPECT_EQ(drawn, 0) << "an idle window draws nothing";
+    EXPECT_GE(settledFor, 5.0);
+
+    // The same session ending in ismos.
+    std::ifstream in(session);
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    nlohmann::json last = nlohmann::json::parse(lines.back());
+    last["edits"].push_back({{"setting", "shading"}, {"value", "ismos"}});
+    lines.back() = last.dump();
+    auto ismos = dir / "ismos.jsonl";
+    std::ofstream out(ismos);
+    for (const std::string& line : lines) out << line << "\n";
+    out.close();
+    auto ismosDir = dir / "ismos";
+    std::filesystem::create_directories(ismosDir);
+    WindowRun idle = runWindow(ismos, ismosDir, "--idle-seconds 5");
+    auto [ismosDrawn, ismosSettledFor] = drawnWhileSettled(idle);
+    EXPECT_EQ(ismosDrawn, 0) << "an idle window in ismos draws nothing";
+    EXPECT_GE(ismosSettledFor, 5.0);
+}
+
 }  // namespace
 }  // namespace curette

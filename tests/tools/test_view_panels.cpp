@@ -43,7 +43,11 @@ struct Gui {
         io.MousePos = mouse;
         io.MouseDown[0] = down;
         ImGui::NewFrame();
+        ImGui::SetNextWindowPos(ImVec2(0, 0));
+        ImGui::SetNextWindowSize(ImVec2(420, 900));
+        ImGui::Begin("settings");   // the side bar's tab in the viewer
         std::vector<SettingEdit> edits = panels.draw(state, OrbitCamera{}, input);
+        ImGui::End();
         ImGui::Render();
         return edits;
     }

@@ -20,7 +20,9 @@
 #include "session/live_input.h"
 #include "session/loaded_scene.h"
 #include "session/session_step.h"
+#include "viewer/view_layout.h"
 #include "viewer/view_panels.h"
+#include "viewer/view_sidebar.h"
 #include "viewer/viewer_driver.h"
 #include "base/error.h"
 #include "base/log.h"
@@ -39,6 +41,7 @@
 #include <csignal>
 #include <cstdio>
 #include <deque>
+#include <fstream>
 
 namespace curette::commands {
 
@@ -49,16 +52,31 @@ constexpr int kGlfwKeys[] = {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLF
                              GLFW_KEY_LEFT, GLFW_KEY_RIGHT, GLFW_KEY_PAGE_UP, GLFW_KEY_PAGE_DOWN, GLFW_KEY_TAB, GLFW_KEY_R,
                              GLFW_KEY_INSERT, GLFW_KEY_DELETE, GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5,
                              GLFW_KEY_C, GLFW_KEY_F9, GLFW_KEY_P, GLFW_KEY_F12, GLFW_KEY_6, GLFW_KEY_I, GLFW_KEY_J, GLFW_KEY_K,
-                             GLFW_KEY_L, GLFW_KEY_O};
+                             GLFW_KEY_L, GLFW_KEY_O, GLFW_KEY_LEFT_SHIFT};
 static_assert(std::size(kGlfwKeys) == static_cast<std::size_t>(input::Key::Count));
 
-// Presses latched between frames: a key pressed and released while a slow frame renders still counts.
+// Presses latched between frames: a key pressed and released while a slow frame renders still counts. The
+// window's own keys (help, side bar, views) are latched apart: they are not scene input and are not recorded.
 std::uint32_t latchedKeys = 0;
+std::vector<int> latchedWindowKeys;
+// Any event (a key, the mouse, the window resized or uncovered) since the last frame: the window is drawn again
+// for a short while after one, and not at all while nothing happens.
+bool windowEvent = true;
 void latchKey(GLFWwindow*, int key, int, int action, int) {
+    windowEvent = true;
     if (action != GLFW_PRESS) return;
     for (int k = 0; k < static_cast<int>(input::Key::Count); ++k)
         if (kGlfwKeys[k] == key) latchedKeys |= 1u << k;
+    latchedWindowKeys.push_back(key);
 }
+void noteCursor(GLFWwindow*, double, double) { windowEvent = true; }
+void noteButton(GLFWwindow*, int, int, int) { windowEvent = true; }
+void noteScroll(GLFWwindow*, double, double) { windowEvent = true; }
+void noteRefresh(GLFWwindow*) { windowEvent = true; }
+void noteSize(GLFWwindow*, int, int) { windowEvent = true; }
+
+// How long the window keeps drawing after an event (Dear ImGui's hover and fade need a few frames).
+constexpr double kRedrawAfterEventSeconds = 0.5;
 
 std::unique_ptr<input::HidBackend> openHid(bool wanted) {
     if (wanted) {
@@ -109,6 +127,26 @@ struct ViewWindow {
     int screenshots = 0;
     double previous = glfwGetTime();
     std::deque<std::string> messages{};
+    // The window's own state: not scene input, not recorded.
+    bool sidebarOpen = true, helpOpen = false, developerTimings = false;
+    OrbitCamera homeCamera{};             // Home puts the camera back here (the scene's)
+    ViewLayout layout{};
+    ViewRect markerRect{};
+    double lastEvent = -1e9;
+    std::unique_ptr<std::ofstream> frameLog{};   // --frame-log: one line per presented frame
+    double started = glfwGetTime();
+    double idleSeconds = 0;               // --play: stay this long after the last frame before the screenshot
+    double playEndedAt = -1;
+    std::string windowShot;               // --play: the whole window, panels included (--window-shot)
+    double settledAt = -1;                // when the view first settled: the exact image, the report current, nothing to do
+    bool exportRequested = false;
+    bool idle = false;                    // the last iteration had nothing to render
+
+    void message(std::string m) {
+        std::printf("%s\n", m.c_str());
+        messages.push_back(std::move(m));
+        if (messages.size() > 6) messages.pop_front();
+    }
 
     FrameDescription& frame() { return step.frame(); }
     InteractionState& state() { return step.state(); }
@@ -138,8 +176,12 @@ private:
     Polled poll();
     StepChanges applyInput(const Polled& p, InputFrame& input);
     void record(const Polled& p, const InputFrame& input);
-    void drawOverlay();
-    bool renderAndPresent(const Polled& p, bool moved);
+    std::vector<SettingEdit> drawSidebar();
+    void statusLines();
+    void viewTab();
+    void windowKeys(const Polled& p);
+    bool renderAndPresent(const Polled& p, bool moved, bool& presented);
+    void logPresent(double now, const char* event);
     void refreshReport(double now);
 };
 
@@ -155,10 +197,13 @@ ViewWindow::Polled ViewWindow::poll() {
     ImGui::NewFrame();
     ImGuiIO& io = ImGui::GetIO();
     GLFWwindow* w = window.window();
-    p.framebuffer = window.framebufferSize();
     glm::ivec2 windowPoints;
     glfwGetWindowSize(w, &windowPoints.x, &windowPoints.y);
-    double pixelsPerPoint = windowPoints.y > 0 ? static_cast<double>(p.framebuffer.y) / windowPoints.y : 1.0;
+    glm::ivec2 framebuffer = window.framebufferSize();
+    double pixelsPerPoint = windowPoints.y > 0 ? static_cast<double>(framebuffer.y) / windowPoints.y : 1.0;
+    // A window too narrow for the side bar and a view beside it shows the view alone.
+    layout = viewLayout(framebuffer, pixelsPerPoint, sidebarOpen && framebuffer.x >= 2 * kMinSidebarPoints * pixelsPerPoint);
+    p.framebuffer = layout.view.size;   // the image is rendered for the view, not the window
 
     // The camera: left drag orbits, the wheel zooms. It changes before input is applied, and the recorded
     // frame holds the camera the input was applied with.
@@ -166,19 +211,21 @@ ViewWindow::Polled ViewWindow::poll() {
     glfwGetCursorPos(w, &cursor.x, &cursor.y);
     glm::dvec2 delta = (cursor - lastCursor) * pixelsPerPoint;
     lastCursor = cursor;
-    bool left = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    bool right = !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    bool inView = layout.view.contains(cursor * pixelsPerPoint) || orbiting || dragging;
+    bool left = inView && !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    bool right = inView && !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
     // Shift + left drag turns the selected light instead (an input action, so sessions record it).
     bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
     p.cameraBefore = frame().camera;
     if (left && orbiting && !shift) frame().camera.orbit(-0.4 * delta.x / pixelsPerPoint, 0.4 * delta.y / pixelsPerPoint);
-    if (!io.WantCaptureMouse && io.MouseWheel != 0) frame().camera.zoom(std::pow(0.9, io.MouseWheel));
+    if (inView && !io.WantCaptureMouse && io.MouseWheel != 0) frame().camera.zoom(std::pow(0.9, io.MouseWheel));
 
     // Keyboard and mouse as the input pipeline sees them.
     if (!io.WantCaptureKeyboard) {
         p.keys.keys = latchedKeys;
         for (int k = 0; k < static_cast<int>(input::Key::Count); ++k)
             if (glfwGetKey(w, kGlfwKeys[k]) == GLFW_PRESS) p.keys.keys |= 1u << k;
+        if (glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS) p.keys.keys |= 1u << static_cast<int>(input::Key::Fine);
     }
     latchedKeys = 0;
     if (right && dragging) p.keys.rightDragPixels = delta;
@@ -195,7 +242,7 @@ StepChanges ViewWindow::applyInput(const Polled& p, InputFrame& input) {
     StepChanges changes;
     if (!play) {
         try {
-            changes = step.apply(input.actions, p.framebuffer.y, panels.draw(state(), frame().camera, live.pipeline()));
+            changes = step.apply(input.actions, p.framebuffer.y, drawSidebar());
         } catch (const InputError& e) {   // a panel value the scene reader refuses: said, not applied
             messages.push_back(e.what());
         }
@@ -203,6 +250,7 @@ StepChanges ViewWindow::applyInput(const Polled& p, InputFrame& input) {
         step.follow(play->frames[played], loaded.scene.file.parent_path(), play->file.string() + " line " + std::to_string(played + 2));
         ++played;
     }
+    if (play) drawSidebar();   // shown as live; a played session's edits come from its file
     for (std::string& m : panels.takeMessages()) messages.push_back(std::move(m));
     for (std::string& m : live.takeMessages()) {
         messages.push_back(std::move(m));
@@ -222,34 +270,50 @@ void ViewWindow::record(const Polled& p, const InputFrame& input) {
     state().toggleRecording = false;
 }
 
-// Overlay: timings, shading, who holds which mesh, recording, device messages, the removal report.
-void ViewWindow::drawOverlay() {
-    const InteractionState& s = state();
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
-    ImGui::Begin("curette", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
-    // Shading changes only through input (1-6, C, mapped buttons), so a session replays it from its reports.
-    ImGui::Text("frame %.1f ms | AO %.1f ms | shading %s (1-6, C) | %dx%d | stereo %s (F3)", viewer.lastFrameMs,
-                viewer.lastTimings.ambientOcclusionMs(), shadingModeName(frame().shading), renderer.outputSize().x, renderer.outputSize().y,
-                stereoModeName(viewer.stereo));
-    // What is on screen: the exact frame (CAO == LAO, full resolution) or a preview; step I's progress.
-    ImGui::TextColored(viewer.shownExact ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", viewer.shownExact ? "EXACT" : "PREVIEW");
+// The status at the top of the side bar: what is on screen, what is being computed, recording, messages.
+void ViewWindow::statusLines() {
+    ImGui::Text("shading %s (1-6, C)", shadingModeName(frame().shading));
     ImGui::SameLine();
-    if (ImGui::Checkbox("exact every frame", &exactEveryFrame)) viewer.loop.setQuality(exactEveryFrame ? ViewQuality::Exact : ViewQuality::Adaptive);
+    ImGui::TextColored(viewer.shownExact ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", viewer.shownExact ? "FULL QUALITY" : "PREVIEW");
+    tooltip("PREVIEW: a quick image while something moves; FULL QUALITY: the exact image, ambient occlusion exact under the carve");
+    const float bar = ImGui::GetContentRegionAvail().x;
     if (renderer.exactProgress() > 0) {   // the exact frame in slices (the preview stays on screen meanwhile)
-        ImGui::ProgressBar(static_cast<float>(renderer.exactProgress()), ImVec2(320, 0), "");
-        ImGui::SameLine();
-        ImGui::Text("exact frame %.0f %%", 100 * renderer.exactProgress());
+        char text[64];
+        std::snprintf(text, sizeof text, "full-quality image %.0f %%", 100 * renderer.exactProgress());
+        ImGui::ProgressBar(static_cast<float>(renderer.exactProgress()), ImVec2(bar, 0), text);
     }
     if (renderer.precomputePending(frame())) {
-        ImGui::ProgressBar(static_cast<float>(renderer.precomputeProgress()), ImVec2(320, 0), "");
-        ImGui::SameLine();
-        ImGui::Text("step I (LAO precompute) %.0f %%: shaded without AO until done", 100 * renderer.precomputeProgress());
+        char text[96];
+        std::snprintf(text, sizeof text, "occlusion of the scan %.0f %%", 100 * renderer.precomputeProgress());
+        ImGui::ProgressBar(static_cast<float>(renderer.precomputeProgress()), ImVec2(bar, 0), text);
+        tooltip("ambient occlusion of every voxel, computed once per transfer function; shaded without it until done");
     }
-    for (const FrameTimings::Entry& e : viewer.lastTimings.passes) ImGui::Text("  %-22s %8.1f ms", passInfo(e.pass).name, e.ms);
+    if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %zu frames (F9 stops)", recording->frames());
+    for (const std::string& m : messages) ImGui::TextWrapped("%s", m.c_str());
+}
+
+// Standard views, stereo, resolution, the devices and who holds which mesh, the developer's timings.
+void ViewWindow::viewTab() {
+    const InteractionState& s = state();
+    if (ImGui::Button("Home")) frame().camera = homeCamera;
+    tooltip("the scene's view (Home key)");
+    static const char* const kLetters[] = {"A", "P", "L", "R", "S", "I"};
+    for (int v = 0; v < static_cast<int>(StandardView::Count); ++v) {
+        ImGui::SameLine();
+        if (ImGui::Button(kLetters[v])) frame().camera = viewedFrom(frame().camera, static_cast<StandardView>(v));
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("view from %s", standardViewName(static_cast<StandardView>(v)));
+    }
+    ImGui::Text("stereo: %s (F3)", stereoModeName(viewer.stereo));
+    float scale = static_cast<float>(viewer.renderScale);
+    if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) viewer.renderScale = scale;
+    tooltip("the full-quality image's size as a share of the view's: lower is faster");
+    if (ImGui::Checkbox("full quality every frame", &exactEveryFrame)) viewer.loop.setQuality(exactEveryFrame ? ViewQuality::Exact : ViewQuality::Adaptive);
+    tooltip("no previews: every frame exact, however long it takes (a GPU's default)");
     auto meshLabel = [&](int index) {
-        return index >= 0 && index < static_cast<int>(s.meshes.size()) ? "mesh " + std::to_string(index) + " \"" + s.meshes[static_cast<std::size_t>(index)].name + "\""
-                                                                      : std::string("no mesh");
+        return index >= 0 && index < static_cast<int>(s.meshes.size()) ? "\"" + s.meshes[static_cast<std::size_t>(index)].name + "\"" : std::string("no mesh");
     };
+    ImGui::Separator();
+    ImGui::TextDisabled("devices");
     const input::Mapper& mapper = live.pipeline().mapper();
     for (std::size_t b = 0; b < mapper.config().bindings.size(); ++b) {
         const input::DeviceBinding& binding = mapper.config().bindings[b];
@@ -258,92 +322,169 @@ void ViewWindow::drawOverlay() {
         std::string product;
         for (const auto& d : live.devices().devices())
             if (d->info.id == device) product = d->info.product;
-        ImGui::Text("%s #%d (device %d, %s) -> %s", binding.family.c_str(), binding.index, device, product.c_str(),
-                    meshLabel(mapper.heldMesh(static_cast<int>(b))).c_str());
+        ImGui::TextWrapped("%s (%s) holds %s", binding.family.c_str(), product.c_str(), meshLabel(mapper.heldMesh(static_cast<int>(b))).c_str());
     }
-    ImGui::Text("keyboard -> %s (Tab: next)", meshLabel(live.pipeline().keyboardSelection()).c_str());
-    if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %s: %zu frames (F9 stops)", recording->path().c_str(), recording->frames());
-    for (const std::string& m : messages) ImGui::TextWrapped("%s", m.c_str());
-    if (const std::optional<plan::Report>& r = report.report()) {
-        ImGui::Separator();
-        ImGui::Text("removed %.2f +-%.2f mL%s (%.0f ms; F5 writes the plan)", r->removedMl, r->removedUncertaintyMl,
-                    report.current(renderer.clipMeshes(), s) ? "" : " (updating)", report.ms());
-        for (const plan::StructureRow& row : r->structures) {
-            if (!row.touched && !row.isProtected) continue;
-            ImVec4 colour = row.isProtected && row.touched ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
-            ImGui::TextColored(colour, "  %-24s %7.3f +-%.3f mL %5.1f %%  %s %5.1f +-%.2f mm", row.name.c_str(), row.removedMl,
-                               row.removedUncertaintyMl, 100 * row.share, row.touched ? "depth" : "margin",
-                               row.touched ? row.intrusionDepthMm : row.marginMm,
-                               row.touched ? row.intrusionUncertaintyMm : row.marginUncertaintyMm);
-        }
-        for (const plan::BundleRow& b : r->bundles) {
-            ImVec4 colour = b.isProtected && b.cut ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
-            ImGui::TextColored(colour, "  %-24s %5llu of %llu cut  %6.1f mm removed  margin %5.1f +-%.1f mm", b.name.c_str(),
-                               static_cast<unsigned long long>(b.cut), static_cast<unsigned long long>(b.streamlines), b.removedLengthMm,
-                               b.marginMm, b.marginUncertaintyMm);
-        }
-        for (const std::string& warning : r->warnings()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", warning.c_str());
+    ImGui::Text("keyboard holds %s (Tab: next)", meshLabel(live.pipeline().keyboardSelection()).c_str());
+    ImGui::Text("light %d of %zu (O: next)", s.selectedLight + 1, s.lights.size());
+    ImGui::Checkbox("developer timings", &developerTimings);
+    tooltip("the time of each pass of the frame plan (docs/architecture.md)");
+    if (developerTimings) {
+        ImGui::Text("frame %.1f ms, AO %.1f ms, %dx%d", viewer.lastFrameMs, viewer.lastTimings.ambientOcclusionMs(), renderer.outputSize().x,
+                    renderer.outputSize().y);
+        for (const FrameTimings::Entry& e : viewer.lastTimings.passes) ImGui::Text("  %-20s %8.1f ms", passInfo(e.pass).name, e.ms);
+        ImGui::Text("report %.0f ms", report.ms());
     }
-    float scale = static_cast<float>(viewer.renderScale);
-    if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f)) viewer.renderScale = scale;
-    ImGui::Text("light %d of %zu (O: next; I/J/K/L or Shift + left drag: turn it)", s.selectedLight + 1, s.lights.size());
-    ImGui::TextUnformatted("left drag: orbit  wheel: zoom  WASDQE, arrows, PgUp/PgDn, right drag: move mesh\n"
-                           "Tab: next mesh  R: reset  Ins/Del: add/remove  F9: record  P: screenshot  F3: stereo");
-    ImGui::End();
-    ImGui::Render();
 }
 
-// The viewer's iteration (shared with bench view), then the screenshot (P, F12) and the image presented. Returns
-// false after a played session's last frame, exact, is written without the overlay.
-bool ViewWindow::renderAndPresent(const Polled& p, bool moved) {
+// The side bar (viewer/view_layout.h): the status, then tabs for the plan, the tools and settings, the view.
+// Returns the settings panels' edits.
+std::vector<SettingEdit> ViewWindow::drawSidebar() {
+    std::vector<SettingEdit> edits;
+    drawHelpWindow(&helpOpen, layout.view);
+    if (layout.sidebar.area() == 0) return edits;
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(layout.sidebar.origin.x), static_cast<float>(layout.sidebar.origin.y)));
+    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(layout.sidebar.size.x), static_cast<float>(layout.sidebar.size.y)));
+    const ImGuiWindowFlags fixed = ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                   ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus;
+    ImGui::Begin("side bar", nullptr, fixed);
+    ImGui::PushItemWidth(-ImGui::GetContentRegionAvail().x * 0.45f);   // labels keep the right part of the bar
+    statusLines();
+    if (ImGui::SmallButton("help (F1)")) helpOpen = true;
+    ImGui::SameLine();
+    if (ImGui::SmallButton("fold (F2)")) sidebarOpen = false;
+    if (ImGui::BeginTabBar("tabs")) {
+        if (ImGui::BeginTabItem("Plan")) {
+            if (const std::optional<plan::Report>& r = report.report()) drawPlanTable(*r, report.current(renderer.clipMeshes(), state()));
+            else ImGui::TextDisabled("the report follows once the meshes are still");
+            if (ImGui::Button("write the plan (F5)")) exportRequested = true;
+            tooltip("the report, the removed region and the exports, into a new folder beside where curette was started");
+            drawTractLegend(state());
+            ImGui::EndTabItem();
+        }
+        if (ImGui::BeginTabItem("Tools & settings")) {
+            edits = panels.draw(state(), frame().camera, live.pipeline());
+            ImGui::EndTabItem();
+        }
+        if (ImGui::BeginTabItem("View")) {
+            viewTab();
+            ImGui::EndTabItem();
+        }
+        ImGui::EndTabBar();
+    }
+    ImGui::PopItemWidth();
+    ImGui::End();
+    return edits;
+}
+
+// The window's own keys: help, the side bar, Home.
+void ViewWindow::windowKeys(const Polled&) {
+    bool typing = ImGui::GetIO().WantCaptureKeyboard;
+    for (int key : latchedWindowKeys) {
+        if (key == GLFW_KEY_F1 || (!typing && (key == GLFW_KEY_H || key == GLFW_KEY_SLASH))) helpOpen = !helpOpen;
+        if (key == GLFW_KEY_ESCAPE) helpOpen = false;
+        if (key == GLFW_KEY_F2) sidebarOpen = !sidebarOpen;
+        if (key == GLFW_KEY_HOME && !typing) frame().camera = homeCamera;
+        if (key == GLFW_KEY_F5) exportRequested = true;
+    }
+    latchedWindowKeys.clear();
+}
+
+void ViewWindow::logPresent(double now, const char* event) {
+    if (!frameLog) return;
+    *frameLog << "{\"t\": " << now - started << ", \"event\": \"" << event << "\", \"exact\": " << (viewer.shownExact ? "true" : "false")
+              << ", \"progress\": " << renderer.exactProgress() << "}\n";
+    frameLog->flush();
+}
+
+// The viewer's iteration (shared with bench view), then the screenshot (P, F12) and the image presented into the
+// view. `presented`: whether the window is to be drawn this iteration (a new image, or an event shortly before).
+bool ViewWindow::renderAndPresent(const Polled& p, bool moved, bool& presented) {
     bool stereoKeyDown = keyDown(GLFW_KEY_F3);
     if (stereoKeyDown && !stereoKeyWasDown) viewer.stereo = nextStereoMode(viewer.stereo);
     stereoKeyWasDown = stereoKeyDown;
-    stepViewer(viewer, renderer, step, loaded.tracts, p.framebuffer, p.now, moved, background());
+    ViewerIteration it = stepViewer(viewer, renderer, step, loaded.tracts, p.framebuffer, p.now, moved, background());
+    idle = it.decision.render == FrameKind::None && it.decision.precomputeBudgetMs == 0;
     bool stereo = viewer.stereo != StereoMode::Off;
     if (state().screenshot) {
-        std::string name = "curette-screenshot-" + std::to_string(++screenshots) + ".png";
-        writePng(name, stereo ? viewer.stereoView.image() : renderer.readImage(), background());
-        std::printf("saved %s\n", name.c_str());
+        std::filesystem::path name = std::filesystem::absolute("curette-screenshot-" + std::to_string(++screenshots) + ".png");
+        try {
+            writePng(name, stereo ? viewer.stereoView.image() : renderer.readImage(), background());
+            message("saved the view to " + name.string());
+        } catch (const std::exception& e) {
+            message(std::string("could not save the screenshot: ") + e.what());
+        }
     }
-    presenter.present(stereo ? viewer.stereoView.texture() : renderer.outputTexture(), p.framebuffer, background());
-    if (play && played == play->frames.size() && viewer.shownExact) {   // the last frame, exact, without the overlay
-        writePngRgba8(playScreenshot, p.framebuffer.x, p.framebuffer.y, window.readBackBuffer());
-        std::printf("played %zu frames of %s; wrote %s (%dx%d)\n", played, play->file.c_str(), playScreenshot.c_str(), p.framebuffer.x,
-                    p.framebuffer.y);
-        return false;
+    presented = it.rendered || p.now - lastEvent < kRedrawAfterEventSeconds || (play && playEndedAt < 0);   // a played session: until its last image
+    if (!presented) return true;
+    presenter.present(stereo ? viewer.stereoView.texture() : renderer.outputTexture(), layout.view.origin, layout.view.size,
+                      window.framebufferSize(), background());
+    if (play && played == play->frames.size() && viewer.shownExact && playEndedAt < 0) {   // the last frame, exact
+        playEndedAt = p.now;
+        std::vector<std::uint8_t> whole = window.readBackBuffer();
+        glm::ivec2 fb = window.framebufferSize();
+        std::vector<std::uint8_t> view(static_cast<std::size_t>(layout.view.size.x) * layout.view.size.y * 4);
+        for (int y = 0; y < layout.view.size.y; ++y)
+            std::copy_n(whole.data() + (static_cast<std::size_t>(y + layout.view.origin.y) * fb.x + layout.view.origin.x) * 4,
+                        static_cast<std::size_t>(layout.view.size.x) * 4, view.data() + static_cast<std::size_t>(y) * layout.view.size.x * 4);
+        writePngRgba8(playScreenshot, layout.view.size.x, layout.view.size.y, view);
+        std::printf("played %zu frames of %s; wrote %s (%dx%d)\n", played, play->file.c_str(), playScreenshot.c_str(), layout.view.size.x,
+                    layout.view.size.y);
+        std::printf("layout: window %dx%d, view %dx%d at %d,%d, side bar %dx%d at %d,%d, marker %dx%d at %d,%d\n", fb.x, fb.y,
+                    layout.view.size.x, layout.view.size.y, layout.view.origin.x, layout.view.origin.y, layout.sidebar.size.x,
+                    layout.sidebar.size.y, layout.sidebar.origin.x, layout.sidebar.origin.y, markerRect.size.x, markerRect.size.y,
+                    markerRect.origin.x, markerRect.origin.y);
     }
     return true;
 }
 
-// The removal report once the meshes and the settings it reads are still; F5 writes it and the plan's exports.
+// The removal report once the meshes and the settings it reads are still; F5 (or the button) writes it and the
+// plan's exports, computing the report first when it is not there yet.
 void ViewWindow::refreshReport(double now) {
     report.refresh(reporter, renderer.clipMeshes(), state(), now);
-    bool exportKeyDown = keyDown(GLFW_KEY_F5);
-    if (exportKeyDown && !exportKeyWasDown && report.report()) {
-        messages.push_back(report.exportPlan(reporter, renderer.clipMeshes(), state(), fileNameTimestamp()));
-        std::printf("%s\n", messages.back().c_str());
-        if (messages.size() > 6) messages.pop_front();
-    }
-    exportKeyWasDown = exportKeyDown;
+    if (exportRequested) message(report.exportPlan(reporter, renderer.clipMeshes(), state(), fileNameTimestamp()));
+    exportRequested = false;
 }
 
 bool ViewWindow::iterate() {
     Polled p = poll();
+    if (windowEvent) lastEvent = p.now, windowEvent = false;
+    windowKeys(p);
     InputFrame input;
     StepChanges changes = applyInput(p, input);
     bool cameraMoving = !(frame().camera == p.cameraBefore);
     record(p, input);
-    drawOverlay();
+    markerRect = drawOrientationMarker(frame().camera, layout.view);
+    ImGui::Render();
+    bool presented = false;
     if (p.framebuffer.x > 0 && p.framebuffer.y > 0) {
-        if (!renderAndPresent(p, changes.any() || cameraMoving)) return false;
+        if (!renderAndPresent(p, changes.any() || cameraMoving, presented)) return false;
         refreshReport(p.now);
     }
     state().screenshot = false;
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    window.swapBuffers();
-    // At most 120 frames a second when idle: devices are drained each frame, and nothing spins.
-    double spare = 1.0 / 120.0 - (glfwGetTime() - p.now);
+    if (presented) {
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (playEndedAt == p.now && !windowShot.empty()) {
+            glm::ivec2 fb = window.framebufferSize();
+            writePngRgba8(windowShot, fb.x, fb.y, window.readBackBuffer());
+            std::printf("wrote the window to %s\n", windowShot.c_str());
+        }
+        window.swapBuffers();
+        logPresent(p.now, viewer.shownExact ? "exact" : "preview");
+    }
+    if (presented && !play) settledAt = -1;   // live: each settling is logged
+    if (settledAt < 0 && (!play || playEndedAt >= 0) && viewer.shownExact && report.current(renderer.clipMeshes(), state()) && idle) {
+        settledAt = p.now;
+        logPresent(p.now, "settled");
+    }
+    // A played session ends after its last image, or with --idle-seconds that long after the view settled.
+    if (playEndedAt >= 0 && (idleSeconds == 0 || (settledAt >= 0 && p.now - settledAt >= idleSeconds))) {
+        logPresent(p.now, "exit");
+        return false;
+    }
+    // At most 120 frames a second while something happens; idle, a slower poll (devices are drained each
+    // iteration) and nothing drawn.
+    double period = presented || !idle ? 1.0 / 120.0 : 1.0 / 30.0;
+    double spare = period - (glfwGetTime() - p.now);
     if (spare > 0) glfwWaitEventsTimeout(spare);
     return true;
 }
@@ -377,11 +518,25 @@ int view(const CommandLine& cl) {
                           ViewerState(loopSettings), loopSettings.quality == ViewQuality::Exact, Presenter(),
                           CarveReporter(loaded, renderer.geometry(), programVersion())};
     if (auto path = cl.value("record")) viewWindow.startRecording(*path, glfwGetTime());
+    viewWindow.homeCamera = step.frame().camera;
+    if (auto log = cl.value("frame-log")) {
+        viewWindow.frameLog = std::make_unique<std::ofstream>(*log);
+        if (!*viewWindow.frameLog) throw InputError("<command line>", "--frame-log", "a file that can be written", "\"" + *log + "\"");
+    }
+    if (auto idle = cl.value("idle-seconds")) viewWindow.idleSeconds = CommandLine::parseDouble("idle-seconds", *idle, 0, 3600);
+    viewWindow.windowShot = cl.valueOr("window-shot", "");
+    if ((cl.value("idle-seconds") || cl.value("window-shot")) && !play)
+        throw InputError("<command line>", cl.value("idle-seconds") ? "--idle-seconds" : "--window-shot", "together with --play F (the session to play)");
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;
-    glfwSetKeyCallback(window->window(), latchKey);   // ImGui chains to it
+    glfwSetKeyCallback(window->window(), latchKey);   // ImGui chains to these
+    glfwSetCursorPosCallback(window->window(), noteCursor);
+    glfwSetMouseButtonCallback(window->window(), noteButton);
+    glfwSetScrollCallback(window->window(), noteScroll);
+    glfwSetWindowRefreshCallback(window->window(), noteRefresh);
+    glfwSetFramebufferSizeCallback(window->window(), noteSize);
     ImGui_ImplGlfw_InitForOpenGL(window->window(), true);
     ImGui_ImplOpenGL3_Init("#version 450");
 
@@ -407,7 +562,10 @@ Command viewCommand() {
               {"no-devices", false, "keyboard and mouse only (do not open HID devices)"},
               {"quality", true, "exact|adaptive: previews while moving, exact when still (default: adaptive on a software renderer, exact on a GPU; --play: exact)", "exact|adaptive"},
               {"play", true, "play this recorded session in the viewer's loop instead of live input, then screenshot and exit"},
-              {"screenshot", true, "with --play: the PNG of the window after the last frame (default curette-play.png)"}}},
+              {"screenshot", true, "with --play: the PNG of the 3-D view after the last frame (default curette-play.png)"},
+              {"window-shot", true, "with --play: also the PNG of the whole window, side bar included"},
+              {"idle-seconds", true, "with --play: stay this long after the view has settled (exact, nothing to do) before exiting"},
+              {"frame-log", true, "write one JSON line per frame drawn to the window (and one when the view settles)"}}},
             &view};
 }
 
