@@ -23,6 +23,7 @@ CellGaps cellGapsTo(glm::ivec3 dims, const glm::dmat4& indexToWorld, const std::
     gaps.dims = dims;
     gaps.spacingMm = gridSpacingMm(indexToWorld);
     gaps.worldToIndex = glm::inverse(indexToWorld);
+    gaps.indexToWorld = indexToWorld;
     if (std::all_of(touch.begin(), touch.end(), [](Touch t) { return t == Touch::None; })) return gaps;
     // Corner c of the lattice is the corner at index position c - 0.5: cell v has corners v .. v + 1.
     const glm::ivec3 corners = dims + 1;
@@ -72,6 +73,24 @@ double CellGaps::distanceMm(glm::dvec3 world) const {
         if (weight > 0) sum += weight * std::sqrt(cornerDistance2[linear(base + o, corners)]);
     }
     return sum;
+}
+
+CellGaps::Bounds CellGaps::distanceBoundsMm(glm::dvec3 world) const {
+    const double infinity = std::numeric_limits<double>::infinity();
+    if (empty()) return {infinity, infinity};
+    const glm::ivec3 corners = dims + 1;
+    glm::dvec3 q = glm::clamp(glm::dvec3(worldToIndex * glm::dvec4(world, 1.0)) + 0.5, glm::dvec3(0.0), glm::dvec3(corners - 1));
+    const glm::ivec3 base = glm::min(glm::ivec3(glm::floor(q)), corners - 2);
+    Bounds b{0, infinity};
+    for (int c = 0; c < 8; ++c) {
+        const glm::ivec3 corner = base + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        const double d = std::sqrt(cornerDistance2[linear(corner, corners)]);
+        // Corner c of the lattice is the cell corner at index position c - 0.5.
+        const double away = glm::length(glm::dvec3(indexToWorld * glm::dvec4(glm::dvec3(corner) - 0.5, 1.0)) - world);
+        b.lower = std::max(b.lower, d - away);
+        b.upper = std::min(b.upper, d + away);
+    }
+    return b;
 }
 
 double marginUncertaintyMm(glm::dvec3 spacingMm) { return glm::length(spacingMm); }

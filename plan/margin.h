@@ -32,7 +32,7 @@ enum class Touch : std::uint8_t { None = 0, Part = 1, Whole = 2 };
 struct CellGaps {
     glm::ivec3 dims{0};                    // the scan grid; the corner lattice is dims + 1
     glm::dvec3 spacingMm{0.0};
-    glm::dmat4 worldToIndex{1.0};
+    glm::dmat4 worldToIndex{1.0}, indexToWorld{1.0};
     std::vector<double> cornerDistance2;   // mm^2 from each cell corner to the nearest removed cell; empty: nothing removed
     std::vector<double> cellGap2;          // mm^2 from each voxel's cell to the nearest removed cell
 
@@ -40,6 +40,12 @@ struct CellGaps {
     // The distance in mm from a world point to the removed cells: trilinear in the corner distances, exact on
     // the corners and along straight stretches of the region's faces. +infinity when nothing is removed.
     double distanceMm(glm::dvec3 world) const;
+    // Bounds on that distance by the triangle inequality from the corners of the point's cell (the distance
+    // is 1-Lipschitz): lower = max over corners of d(c) - |p - c|, never below 0; upper = min of d(c) + |p - c|.
+    struct Bounds {
+        double lower = 0, upper = 0;
+    };
+    Bounds distanceBoundsMm(glm::dvec3 world) const;
 };
 
 // `touch` marks, on the whole grid (x fastest), the touched cells.
