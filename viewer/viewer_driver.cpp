@@ -82,7 +82,7 @@ std::string ViewerReport::exportPlan(CarveReporter& reporter, clip::ClipMeshSet&
     if (!current(meshes, state)) compute(reporter, meshes, state);
     std::string name = "curette-plan-" + timestamp;
     if (exports_++ > 0) name += "-" + std::to_string(exports_);
-    std::filesystem::path dir = name;
+    std::filesystem::path dir = std::filesystem::absolute(name);
     try {
         reporter.write(dir, *report_, state, PlanExportOptions{});
         return "wrote the plan to " + dir.string();

@@ -20,6 +20,7 @@
 #include "session/live_input.h"
 #include "session/loaded_scene.h"
 #include "session/session_step.h"
+#include "viewer/clearance_readout.h"
 #include "viewer/view_layout.h"
 #include "viewer/view_panels.h"
 #include "viewer/view_sidebar.h"
@@ -120,6 +121,7 @@ struct ViewWindow {
     Presenter presenter;
     CarveReporter reporter;
     ViewerReport report{};
+    ClearanceReadout clearance{loaded};   // the selected tool's live distance to the protected structures
     std::unique_ptr<LiveRecording> recording{};
     std::size_t played = 0;           // --play: the recorded frames followed
     bool orbiting = false, dragging = false, stereoKeyWasDown = false, exportKeyWasDown = false;
@@ -137,7 +139,7 @@ struct ViewWindow {
     double started = glfwGetTime();
     double idleSeconds = 0;               // --play: stay this long after the last frame before the screenshot
     double playEndedAt = -1;
-    std::string windowShot;               // --play: the whole window, panels included (--window-shot)
+    std::string windowShot{};             // --play: the whole window, panels included (--window-shot)
     double settledAt = -1;                // when the view first settled: the exact image, the report current, nothing to do
     bool exportRequested = false;
     bool idle = false;                    // the last iteration had nothing to render
@@ -155,11 +157,11 @@ struct ViewWindow {
 
     void startRecording(const std::filesystem::path& path, double now) {
         recording = std::make_unique<LiveRecording>(path, std::filesystem::absolute(scenePath).string(), state(), live, now);
-        std::printf("recording %s\n", path.c_str());
+        message("recording the session to " + std::filesystem::absolute(path).string() + " (F9 stops)");
     }
     void stopRecording() {
         recording->finish();
-        std::printf("wrote %s (%zu frames)\n", recording->path().c_str(), recording->frames());
+        message("wrote the session " + std::filesystem::absolute(recording->path()).string() + " (" + std::to_string(recording->frames()) + " frames)");
         recording.reset();
     }
 
@@ -287,6 +289,19 @@ void ViewWindow::statusLines() {
         std::snprintf(text, sizeof text, "occlusion of the scan %.0f %%", 100 * renderer.precomputeProgress());
         ImGui::ProgressBar(static_cast<float>(renderer.precomputeProgress()), ImVec2(bar, 0), text);
         tooltip("ambient occlusion of every voxel, computed once per transfer function; shaded without it until done");
+    }
+    if (clearance.applies()) {
+        int selected = live.pipeline().keyboardSelection();
+        if (std::optional<plan::Clearance> c = clearance.of(state(), selected)) {
+            ImVec4 colour = c->mm <= 0 ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.85f, 0.85f, 0.85f, 1);
+            ImGui::TextColored(colour, "\"%s\" to protected: %s%.1f mm", state().meshes[static_cast<std::size_t>(selected)].name.c_str(),
+                               c->mm > 0 ? ">= " : "", c->mm);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("the selected tool's surface to the nearest protected structure, live: the gap lies in [%.1f, %.1f] mm.\n"
+                                  "The plan's margins (from what is removed) follow once the tools are still.", c->mm, c->mm + c->uncertaintyMm);
+        } else if (selected >= 0 && selected < static_cast<int>(state().meshes.size())) {
+            ImGui::TextDisabled("distance to protected structures: preparing");
+        }
     }
     if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %zu frames (F9 stops)", recording->frames());
     for (const std::string& m : messages) ImGui::TextWrapped("%s", m.c_str());
