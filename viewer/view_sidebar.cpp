@@ -4,6 +4,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -54,6 +55,8 @@ void tooltip(const char* text) {
 void drawPlanTable(const plan::Report& r, bool current) {
     ImGui::Text("removed %.2f +-%.2f mL%s", r.removedMl, r.removedUncertaintyMl, current ? "" : " (updating)");
     tooltip("tissue the clip meshes remove, from sub-voxel coverage; +- the partly covered voxels' share");
+    const bool anyStructure = std::any_of(r.structures.begin(), r.structures.end(), [](const plan::StructureRow& row) { return row.touched || row.isProtected; });
+    if (!anyStructure && r.bundles.empty()) return;   // no labels and no tracts: the volume alone says it
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_BordersInnerH;
     if (!ImGui::BeginTable("plan", 3, flags)) return;
     ImGui::TableSetupColumn("structure");

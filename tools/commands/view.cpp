@@ -140,9 +140,11 @@ struct ViewWindow {
     double idleSeconds = 0;               // --play: stay this long after the last frame before the screenshot
     double playEndedAt = -1;
     std::string windowShot{};             // --play: the whole window, panels included (--window-shot)
+    bool windowShotWritten = false;
     double settledAt = -1;                // when the view first settled: the exact image, the report current, nothing to do
     bool exportRequested = false;
     bool idle = false;                    // the last iteration had nothing to render
+    bool renderedBefore = false;          // the last iteration rendered: its side bar was drawn before the new image
 
     void message(std::string m) {
         std::printf("%s\n", m.c_str());
@@ -429,7 +431,10 @@ bool ViewWindow::renderAndPresent(const Polled& p, bool moved, bool& presented) 
             message(std::string("could not save the screenshot: ") + e.what());
         }
     }
-    presented = it.rendered || p.now - lastEvent < kRedrawAfterEventSeconds || (play && playEndedAt < 0);   // a played session: until its last image
+    // The side bar is laid out before the image is rendered, so an iteration after a render draws once more:
+    // the status then says what the image on screen is (FULL QUALITY, not the PREVIEW before it).
+    presented = it.rendered || renderedBefore || p.now - lastEvent < kRedrawAfterEventSeconds || (play && playEndedAt < 0);   // a played session: until its last image
+    renderedBefore = it.rendered;
     if (!presented) return true;
     presenter.present(stereo ? viewer.stereoView.texture() : renderer.outputTexture(), layout.view.origin, layout.view.size,
                       window.framebufferSize(), background());
@@ -478,10 +483,13 @@ bool ViewWindow::iterate() {
     state().screenshot = false;
     if (presented) {
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        if (playEndedAt == p.now && !windowShot.empty()) {
+        // The window as a user sees it once the played session has ended: the iteration after the last
+        // image, whose side bar describes that image.
+        if (playEndedAt >= 0 && playEndedAt < p.now && !windowShot.empty() && !windowShotWritten) {
             glm::ivec2 fb = window.framebufferSize();
             writePngRgba8(windowShot, fb.x, fb.y, window.readBackBuffer());
             std::printf("wrote the window to %s\n", windowShot.c_str());
+            windowShotWritten = true;
         }
         window.swapBuffers();
         logPresent(p.now, viewer.shownExact ? "exact" : "preview");
@@ -492,7 +500,7 @@ bool ViewWindow::iterate() {
         logPresent(p.now, "settled");
     }
     // A played session ends after its last image, or with --idle-seconds that long after the view settled.
-    if (playEndedAt >= 0 && (idleSeconds == 0 || (settledAt >= 0 && p.now - settledAt >= idleSeconds))) {
+    if (playEndedAt >= 0 && (windowShot.empty() || windowShotWritten) && (idleSeconds == 0 || (settledAt >= 0 && p.now - settledAt >= idleSeconds))) {
         logPresent(p.now, "exit");
         return false;
     }
