@@ -208,6 +208,7 @@ Scene parseScene(std::string_view text, const fs::path& path) {
         std::vector<JsonReader> list = meshes->elements(0, clip::kMaxClipMeshes);
         for (std::size_t i = 0; i < list.size(); ++i) scene.clipMeshes.push_back(readClipMesh(list[i], path.parent_path(), i));
     }
+    if (auto d = root.find("clip_mesh_display")) scene.clipMeshDisplay = readClipMeshDisplay(*d);
     if (auto tubes = root.find("tubes"))
         for (const JsonReader& t : tubes->elements(0, 64)) scene.tubes.push_back(parseTubes(t, path));
     if (auto r = root.find("tube_rendering")) {

@@ -24,6 +24,9 @@
 //   "clip_meshes": [{"name": "probe", "mesh": {see mesh/mesh_description.h}, "position_mm": [x,y,z],
 //                    "rotation_deg": [about x, about y, about z] (applied x, then y, then z),
 //                    "scale": 1.0 | [sx,sy,sz], "clips_tubes": false}]       (at most 16)
+//   "clip_mesh_display": {"show": true | false (default: off in `render` and exports, on in the viewer),
+//                         "opacity": 0.22 (the meshes' translucent fill), "outline_opacity": 0.9 (their
+//                         silhouettes and creases)}   (drawn over the image, never into it: render/clip_mesh_overlay.h)
 //   "tubes": [{"path": "AF_L.trk" | "x.tck" | "x.trk.gz" | "x.tck.gz" | "x.trx" (zip or folder), "radius_mm": 0.5, "sides": 8, "caps": true,
 //              "smoothing": "catmull-rom" | "none", "step_mm": 0.5,
 //              "color": "direction" | "scalar" | [r,g,b], "scalar": "FA", "scalar_range": [lo, hi]}],
@@ -109,6 +112,7 @@ struct Scene {
     RaycastSettings raycast;
     LaoSettings lao;
     std::vector<SceneClipMesh> clipMeshes;
+    ClipMeshDisplaySpec clipMeshDisplay;
     std::vector<SceneTubes> tubes;
     bool tubesAsLines = false;
     bool tubesBuiltOnGpu = false;            // tube rings expanded by render/passes/gpu_tube_builder.h (tubes mode)

@@ -164,6 +164,15 @@ std::shared_ptr<const clip::TriangleMesh> readMeshGeometry(const JsonReader& r, 
     return std::make_shared<const clip::TriangleMesh>(clip::meshFromJson(r, directory));
 }
 
+ClipMeshDisplaySpec readClipMeshDisplay(const JsonReader& r) {
+    ClipMeshDisplaySpec spec;
+    if (auto v = r.find("show")) spec.show = v->boolean();
+    if (auto v = r.find("opacity")) spec.display.fillOpacity = v->number(0, 1);
+    if (auto v = r.find("outline_opacity")) spec.display.outlineOpacity = v->number(0, 1);
+    r.finish();
+    return spec;
+}
+
 glm::dvec3 readMeshScale(const JsonReader& r) { return r.isNumber() ? glm::dvec3(r.number(1e-6, 1e6)) : r.vec3(1e-6, 1e6); }
 
 void readMeshPoseKeys(const JsonReader& r, clip::RigidPose& pose) {

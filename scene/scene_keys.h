@@ -8,6 +8,7 @@
 #include "base/transfer_function.h"
 #include "mesh/rigid_pose.h"
 #include "mesh/triangle_mesh.h"
+#include "render/model/clip_mesh_display.h"
 #include "render/model/frame.h"
 #include "render/model/lao_settings.h"
 #include "render/model/tube_geometry.h"
@@ -15,6 +16,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace curette {
@@ -63,6 +65,14 @@ void readTubeKeys(const JsonReader& r, SceneTubes& tubes, const std::string& whe
 SceneClipMesh readClipMesh(const JsonReader& r, const std::filesystem::path& directory, std::size_t index);
 // A clip mesh's "mesh" description (mesh/mesh_description.h).
 std::shared_ptr<const clip::TriangleMesh> readMeshGeometry(const JsonReader& r, const std::filesystem::path& directory);
+// "clip_mesh_display": whether the clip meshes are drawn over the image (`show`, absent: the command's default,
+// off in `render` and exports, on in the viewer) and how (render/model/clip_mesh_display.h).
+struct ClipMeshDisplaySpec {
+    std::optional<bool> show;
+    ClipMeshDisplay display;
+    bool operator==(const ClipMeshDisplaySpec&) const = default;
+};
+ClipMeshDisplaySpec readClipMeshDisplay(const JsonReader& r);
 // A clip mesh's "scale": a number or [sx, sy, sz].
 glm::dvec3 readMeshScale(const JsonReader& r);
 // A clip mesh entry's "position_mm" and "rotation_deg" (degrees about x, y, z: clip::orientationFromDegrees)

@@ -25,6 +25,7 @@ constexpr SettingInfo kSettings[] = {
     {Setting::MeshScale, "clip_meshes.scale", SettingTarget::Mesh, "mesh"},
     {Setting::MeshClipsTubes, "clip_meshes.clips_tubes", SettingTarget::Mesh, "mesh"},
     {Setting::MeshPose, "clip_meshes.pose", SettingTarget::Mesh, "mesh"},
+    {Setting::ClipMeshDisplay, "clip_mesh_display", SettingTarget::None, nullptr},
 };
 static_assert(rowsInEnumOrder(kSettings, &SettingInfo::setting, Setting::Count));
 
@@ -79,6 +80,7 @@ SettingValue readSettingValue(const SettingEdit& edit, const std::string& source
         case Setting::MeshScale: return readMeshScale(r);
         case Setting::MeshClipsTubes: return r.boolean();
         case Setting::MeshPose: return readMeshPose(r);
+        case Setting::ClipMeshDisplay: return readClipMeshDisplay(r);
         case Setting::Count: break;
     }
     throw std::logic_error("readSettingValue: no such setting");

@@ -23,6 +23,8 @@
 //   clip_meshes.scale       a number or [sx, sy, sz]
 //   clip_meshes.clips_tubes true | false
 //   clip_meshes.pose        {"position_mm": [x, y, z], "rotation_deg": [rx, ry, rz]} (RAS mm; typed in the panel)
+//   clip_mesh_display       {"show": true, "opacity": 0.22, "outline_opacity": 0.9}  (the whole object, as in a scene:
+//                           the meshes drawn over the image, render/clip_mesh_overlay.h; no image of the renderer's reads it)
 
 #include "scene/scene_keys.h"
 
@@ -55,6 +57,7 @@ enum class Setting {
     MeshScale,
     MeshClipsTubes,
     MeshPose,
+    ClipMeshDisplay,
     Count
 };
 
@@ -90,7 +93,7 @@ struct LightValue {
 };
 using SettingValue = std::variant<std::monostate, ShadingMode, TransferFunction, LaoSettings, RaycastSettings, DosSettings,
                                   IsmosSettings, LightValue, TubeRendering, SceneTubes, SceneClipMesh, MeshGeometry, glm::dvec3, bool,
-                                  clip::RigidPose>;
+                                  clip::RigidPose, ClipMeshDisplaySpec>;
 
 // Reads `edit.value` as its setting's scene key (InputError naming `source` and `keyPath`, e.g.
 // "line 4: edits[0].value"). glTF paths are relative to `directory`. A "tubes" value becomes the SceneTubes

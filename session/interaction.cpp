@@ -46,6 +46,7 @@ void adoptSceneSettings(const Scene& scene, InteractionState& s) {
     s.ismos = scene.ismos;
     s.tubes = scene.tubes;
     s.tubeRendering = {scene.tubesAsLines, scene.tubeShading, scene.tubesBuiltOnGpu};
+    s.clipMeshDisplay = scene.clipMeshDisplay;
     s.sceneLightKeys.clear();
     const nlohmann::json* lights = scene.json.is_object() && scene.json.contains("lights") ? &scene.json.at("lights") : nullptr;
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
@@ -296,6 +297,7 @@ void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const s
             case Setting::MeshScale: meshById().scale = std::get<glm::dvec3>(value); break;
             case Setting::MeshClipsTubes: meshById().clipsTubes = std::get<bool>(value); break;
             case Setting::MeshPose: meshById().pose = std::get<clip::RigidPose>(value); break;
+            case Setting::ClipMeshDisplay: clipMeshDisplay = std::get<ClipMeshDisplaySpec>(value); break;
             case Setting::Count: break;
         }
         if (std::string key = editedKeyName(edit); !key.empty()) editedKeys[key] = edit.value;

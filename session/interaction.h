@@ -55,6 +55,9 @@ struct InteractionState {
     IsmosSettings ismos;                 // lightShapes: one per light
     std::vector<SceneTubes> tubes;
     TubeRendering tubeRendering;
+    // How the viewer draws the clip meshes over the image (render/clip_mesh_overlay.h): presentation only, no
+    // renderer input; `show` absent is the viewer's default (shown).
+    ClipMeshDisplaySpec clipMeshDisplay;
     // Counted per edit from 0, the scene's (RendererSync::sceneSettings).
     std::uint64_t transferFunctionVersion = 0, tubesVersion = 0, tubeShadingVersion = 0;
     // The value of every key an edit has set, latest first wins, by the key's name in the scene file

@@ -384,6 +384,15 @@ void ViewPanels::meshPanel(const InteractionState& state, const OrbitCamera& cam
         ImGui::PopID();
     }
     ImGui::PopID();
+    // The meshes drawn over the image (render/clip_mesh_overlay.h): shown in the viewer unless the scene or an
+    // edit says otherwise; an edit of the scene's "clip_mesh_display", so a session records it.
+    bool show = state.clipMeshDisplay.show.value_or(true);
+    if (ImGui::Checkbox("show tools", &show)) {
+        nlohmann::json display = objectOf(state, loaded_.scene, "clip_mesh_display");
+        display["show"] = show;
+        edits.push_back(edit(Setting::ClipMeshDisplay, display));
+    }
+    tooltip("draw the clip meshes over the image: each in its own colour, outlined, the held one highlighted");
     for (std::size_t index = 0; index < state.meshes.size(); ++index) {
         const MeshState& m = state.meshes[index];
         ImGui::PushID(m.id);

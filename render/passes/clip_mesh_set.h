@@ -146,6 +146,15 @@ public:
     std::size_t gpuBytes() const;        // the map arrays
     std::size_t geometryBytes() const;   // the meshes' vertex buffers
 
+    // Mesh `index`'s vertex buffer as step II draws it: vertexCount(index) CornerVertex, three per triangle, in
+    // the scaled mesh-local frame (pose(index).matrix() places them in the world). The clip-mesh overlay
+    // (render/clip_mesh_overlay.h) draws the same buffer.
+    struct CornerVertex {
+        glm::vec3 position, normal;   // scaled mesh-local
+    };
+    GLuint vertexBuffer(int index) const { return meshes_[static_cast<std::size_t>(index)].vertices.name(); }
+    GLsizei vertexCount(int index) const { return meshes_[static_cast<std::size_t>(index)].vertexCount; }
+
 private:
     struct Mesh {
         std::shared_ptr<const TriangleMesh> geometry;
@@ -162,9 +171,6 @@ private:
         GLsizei vertexCount = 0;
         glm::dvec3 localMin{0.0}, localMax{0.0};
         double hullRadius = 0.0;   // the farthest scaled vertex from the centre of localMin..localMax
-    };
-    struct CornerVertex {
-        glm::vec3 position, normal;   // scaled mesh-local
     };
     void uploadGeometry(Mesh& mesh);
     // The ball around mesh `index`'s hull grown as a box with upper corner `boxHi` is grown across the map.

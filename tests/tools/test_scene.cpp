@@ -50,6 +50,21 @@ TEST(Scene, TubesAreBuiltOnTheCpuUnlessTheSceneAsksForTheGpu) {
     EXPECT_TRUE(loadScene(kScenes / "tracts-100k.json").tubesBuiltOnGpu);
 }
 
+TEST(Scene, ClipMeshDisplayIsTheCommandsDefaultUnlessTheSceneSaysHow) {
+    Scene plain = parse("{" + kVolume + "}");
+    EXPECT_FALSE(plain.clipMeshDisplay.show.has_value()) << "absent: off in render and exports, on in the viewer";
+    EXPECT_EQ(plain.clipMeshDisplay.display, ClipMeshDisplay{});
+    Scene shown = parse("{" + kVolume + R"(, "clip_mesh_display": {"show": true, "opacity": 0.4, "outline_opacity": 0.5}})");
+    ASSERT_TRUE(shown.clipMeshDisplay.show.has_value());
+    EXPECT_TRUE(*shown.clipMeshDisplay.show);
+    EXPECT_DOUBLE_EQ(shown.clipMeshDisplay.display.fillOpacity, 0.4);
+    EXPECT_DOUBLE_EQ(shown.clipMeshDisplay.display.outlineOpacity, 0.5);
+    EXPECT_FALSE(*parse("{" + kVolume + R"(, "clip_mesh_display": {"show": false}})").clipMeshDisplay.show);
+    expectError("{" + kVolume + R"(, "clip_mesh_display": {"opacity": 1.5}})", "clip_mesh_display.opacity");
+    expectError("{" + kVolume + R"(, "clip_mesh_display": {"show": "yes"}})", "clip_mesh_display.show");
+    expectError("{" + kVolume + R"(, "clip_mesh_display": {"colour": [1, 0, 0]}})", "clip_mesh_display.colour");
+}
+
 TEST(Scene, EveryKeyIsReadAndRelativePathsFollowTheSceneFile) {
     Scene s = parse("{" + kVolume + R"(, "camera": {"target": [1,2,3], "distance_mm": 300, "azimuth_deg": 10, "elevation_deg": -20, "fov_deg": 40},
         "shading": "lao", "lights": [{"direction": [0,0,1], "color": [1,0.5,0.5], "intensity": 2, "space": "world"}],

@@ -161,6 +161,26 @@ SessionFrame frame(std::size_t index) {
     return f;
 }
 
+// The viewer's "show tools" checkbox is an edit of "clip_mesh_display": the state then equals the scene with
+// that key, what a session header carries rebuilds it, and the scene writer keeps it.
+TEST(SettingEdit, TheClipMeshDisplayIsAnEditOfItsSceneKey) {
+    Scene plain = sceneWith("");
+    InteractionState state = InteractionState::fromScene(plain);
+    EXPECT_FALSE(state.clipMeshDisplay.show.has_value()) << "the command's default until a scene or an edit says";
+    const nlohmann::json display = nlohmann::json::parse(R"({"show": false, "opacity": 0.3})");
+    state.applyEdits({{Setting::ClipMeshDisplay, -1, display}}, "<panel>");
+    InteractionState expected = InteractionState::fromScene(sceneWith(R"("clip_mesh_display": {"show": false, "opacity": 0.3})"));
+    EXPECT_EQ(state.clipMeshDisplay, expected.clipMeshDisplay);
+    ASSERT_TRUE(state.clipMeshDisplay.show.has_value());
+    EXPECT_FALSE(*state.clipMeshDisplay.show);
+    InteractionState again = InteractionState::fromScene(plain);
+    again.applyEdits(state.settingEdits(), "<header>");
+    EXPECT_EQ(again.clipMeshDisplay, expected.clipMeshDisplay);
+    Scene written = parseScene(planSceneJson(plain, plain.json.dump(), state), "written.json");
+    EXPECT_EQ(written.clipMeshDisplay, expected.clipMeshDisplay);
+    EXPECT_THROW(state.applyEdits({{Setting::ClipMeshDisplay, -1, nlohmann::json::parse(R"({"show": 1})")}}, "<panel>"), InputError);
+}
+
 TEST(SettingEdit, EditsRoundTripThroughASession) {
     SessionHeader h = header(kSessionVersion);
     h.edits = {{Setting::AmbientOcclusion, -1, nlohmann::json::parse(R"({"samples": 7})")}};

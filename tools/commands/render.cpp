@@ -2,13 +2,16 @@
 // --plan prints the frame plan (the passes, in order, with what each reads and writes); without --out it
 // renders nothing. --stereo side-by-side|anaglyph renders an off-axis stereo pair (render/model/stereo.h);
 // --turntable N writes N frames around the scene's vertical axis into the folder --out names, and an MP4 of
-// them when ffmpeg is on PATH (tools/movie.h).
+// them when ffmpeg is on PATH (tools/movie.h). --show-meshes (or the scene's "clip_mesh_display": {"show": true})
+// draws the clip meshes over the image (render/clip_mesh_overlay.h; not in stereo): the renderer's image is
+// unchanged, the PNG gets the overlay.
 #include "tools/command_line.h"
 #include "tools/commands/commands.h"
 #include "session/loaded_scene.h"
 #include "tools/movie.h"
 #include "base/error.h"
 #include "base/progress.h"
+#include "render/clip_mesh_overlay.h"
 #include "render/renderer.h"
 #include "render/stereo_render.h"
 
@@ -19,10 +22,20 @@ namespace curette::commands {
 
 namespace {
 
-// The picture of one frame: mono, or the stereo pair composed.
-Image renderPicture(Renderer& renderer, const FrameDescription& frame, StereoMode stereo, double eyeSeparationMm, glm::vec4 background) {
+// The clip meshes drawn over the mono picture, and how.
+struct MeshOverlay {
+    explicit MeshOverlay(const ClipMeshDisplay& d) : display(d) {}
+    ClipMeshOverlay overlay;
+    ClipMeshDisplay display;
+};
+
+// The picture of one frame: mono (with the meshes over it when `meshes`), or the stereo pair composed.
+Image renderPicture(Renderer& renderer, const FrameDescription& frame, StereoMode stereo, double eyeSeparationMm, glm::vec4 background,
+                    MeshOverlay* meshes) {
     if (stereo == StereoMode::Off) {
         renderer.render(frame);
+        if (meshes)
+            return meshes->overlay.drawOver(renderer.outputTexture(), renderer.outputSize(), renderer.clipMeshes(), frame, meshes->display, -1);
         return renderer.readImage();
     }
     StereoPair pair = renderStereoPair(renderer, frame, eyeSeparationMm);
@@ -69,6 +82,13 @@ int render(const CommandLine& cl) {
         if (planOnly) return 0;
     }
     const glm::vec4 background(loaded.scene.background);
+    bool showMeshes = cl.flag("show-meshes") || loaded.scene.clipMeshDisplay.show.value_or(false);
+    if (showMeshes && stereo != StereoMode::Off) {
+        if (cl.flag("show-meshes")) throw InputError("<command line>", "--show-meshes", "a mono image (the meshes are not drawn in stereo)", "--stereo");
+        showMeshes = false;   // the scene's "show": stereo pictures have no overlay
+    }
+    std::optional<MeshOverlay> meshOverlay;
+    if (showMeshes) meshOverlay.emplace(loaded.scene.clipMeshDisplay.display);
     if (stereo != StereoMode::Off) {
         StereoRig rig = stereoRig(frame, eyeSeparationMm);
         std::printf("stereo %s: eyes %.1f mm apart, off-axis (parallel axes), zero parallax at %.1f mm, %d extra columns per eye\n",
@@ -87,7 +107,7 @@ int render(const CommandLine& cl) {
             FrameDescription f = frame;
             f.camera.azimuthDeg = turntableAzimuthDeg(frame.camera.azimuthDeg, i, *turntable);
             frames.push_back(movieFrameName(static_cast<std::size_t>(i)));
-            writePng(dir / frames.back(), renderPicture(renderer, f, stereo, eyeSeparationMm, background), background);
+            writePng(dir / frames.back(), renderPicture(renderer, f, stereo, eyeSeparationMm, background, meshOverlay ? &*meshOverlay : nullptr), background);
             progress.update(i + 1);
         }
         progress.finish();
@@ -99,7 +119,7 @@ int render(const CommandLine& cl) {
         if (encodeMovie(dir, frames, fps, mp4)) std::printf("%s: %d frames at %g fps\n", mp4.c_str(), *turntable, fps);
         else std::printf("no ffmpeg on PATH: the frames only (apt-get install ffmpeg makes %s too)\n", mp4.c_str());
     } else {
-        Image image = renderPicture(renderer, frame, stereo, eyeSeparationMm, background);
+        Image image = renderPicture(renderer, frame, stereo, eyeSeparationMm, background, meshOverlay ? &*meshOverlay : nullptr);
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         writePng(out, image, background);
         std::printf("%s: %dx%d, %s shading, %.1f ms\n", out.c_str(), image.width, image.height, shadingModeName(frame.shading), ms);
@@ -136,7 +156,8 @@ Command renderCommand() {
               {"turntable", true, "N frames turning the camera once about the vertical axis, into the --out folder"},
               {"fps", true, "with --turntable: frames per second of the MP4 (default 30)"},
               {"timings", false, "print the GPU time of every pass and the GPU memory of every resource"},
-              {"plan", false, "print the frame plan: each pass in order, what it reads and writes (without --out: only that)"}})},
+              {"plan", false, "print the frame plan: each pass in order, what it reads and writes (without --out: only that)"},
+              {"show-meshes", false, "draw the clip meshes over the image (translucent, outlined; not with --stereo): the scene's \"clip_mesh_display\" says how"}})},
             &render};
 }
 

@@ -28,6 +28,7 @@
 #include "base/error.h"
 #include "base/log.h"
 #include "input/hid/fake_backend.h"
+#include "render/clip_mesh_overlay.h"
 #include "render/presenter.h"
 #include "render/renderer.h"
 #include "render/stereo_render.h"
@@ -120,6 +121,7 @@ struct ViewWindow {
     bool exactEveryFrame;
     Presenter presenter;
     CarveReporter reporter;
+    ClipMeshOverlay meshOverlay{};    // the clip meshes over the presented image ("show tools")
     ViewerReport report{};
     ClearanceReadout clearance{loaded};   // the selected tool's live distance to the protected structures
     std::unique_ptr<LiveRecording> recording{};
@@ -454,6 +456,12 @@ bool ViewWindow::renderAndPresent(const Polled& p, bool moved, bool& presented) 
                     layout.sidebar.size.y, layout.sidebar.origin.x, layout.sidebar.origin.y, markerRect.size.x, markerRect.size.y,
                     markerRect.origin.x, markerRect.origin.y);
     }
+    // The clip meshes over the image in the view (not in stereo), the keyboard's mesh highlighted; after the played
+    // session's screenshot above, which is the renderer's image alone.
+    if (!stereo && state().clipMeshDisplay.show.value_or(true))
+        meshOverlay.draw(renderer.clipMeshes(), frame(), state().clipMeshDisplay.display,
+                         std::min(live.pipeline().keyboardSelection(), renderer.clipMeshes().count() - 1), layout.view.origin, layout.view.size,
+                         window.framebufferSize());
     return true;
 }
 
