@@ -47,6 +47,12 @@ VolumeStatistics computeStatistics(const VolumeData& volume, int bins) {
     return s;
 }
 
+GreyWindow defaultGreyWindow(const VolumeStatistics& s) {
+    if (s.percentiles[4] > s.percentiles[0]) return {s.percentiles[0], s.percentiles[4]};
+    if (s.max > s.min) return {s.min, s.max};
+    return {s.min - 0.5, s.min + 0.5};
+}
+
 double maxGradientMagnitude(const VolumeData& volume) {
     const glm::ivec3 dims = volume.dims;
     const glm::dmat3 toWorld = VolumeGeometry{dims, volume.indexToWorld}.gradientIndexToWorld() * volume.valueScale;

@@ -3,6 +3,7 @@
 // left out of all of them (VolumeData::noDataVoxels counts them).
 
 #include "base/volume.h"
+#include "render/model/slice_view.h"
 
 #include <array>
 #include <vector>
@@ -17,6 +18,11 @@ struct VolumeStatistics {
 };
 
 VolumeStatistics computeStatistics(const VolumeData& volume, int bins = 16);
+
+// The slice views' grey window (render/model/slice_view.h), one rule for the viewer and `render --slices`:
+// the 1st to the 99th percentile of the data values; min to max when those agree; value +-0.5 for a
+// constant volume.
+GreyWindow defaultGreyWindow(const VolumeStatistics& statistics);
 
 // The largest gradient magnitude (physical value per mm) over the voxels, by the ray caster's own central
 // differences (render/reference/raycast_reference.cpp at a voxel centre: the neighbours along i, j and k,

@@ -133,6 +133,11 @@ std::vector<std::uint8_t> CarveReporter::tissueInField() const {
     return plan::reportTissue(loaded_.volume, transferFunction_, settings_, labelSets_, field_.box());
 }
 
+std::vector<std::uint8_t> CarveReporter::removedRegion() const {
+    if (field_.gridDims == glm::ivec3(0)) return {};
+    return plan::removedRegionOnGrid(field_, tissueInField());   // the field's grid is the scan's
+}
+
 plan::ReportProvenance CarveReporter::provenance(const InteractionState& state) const {
     plan::ReportProvenance p;
     p.createdUtc = currentTimeIso8601();

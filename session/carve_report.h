@@ -51,6 +51,9 @@ public:
     // state's report inputs for the exports.
     plan::Report compute(clip::ClipMeshSet& clip, const InteractionState& state);
     const plan::RemovalField& lastField() const { return field_; }
+    // The removed region R of the last compute() on the scan grid (plan::removedRegionOnGrid over the tissue the
+    // report counted): 1 where removed, what removed.nii.gz holds and the slice views tint. Empty before compute().
+    std::vector<std::uint8_t> removedRegion() const;
     // Wall time of the GPU parts of the last compute(): the removal field (with the maps' update) and the
     // tract flags (computeReport's own parts are in Report::timings).
     double lastFieldMs() const { return fieldMs_; }

@@ -68,6 +68,7 @@ void ViewerReport::compute(CarveReporter& reporter, clip::ClipMeshSet& meshes, c
     auto start = Clock::now();
     reported_ = reportInputs(meshes, state);
     report_ = reporter.compute(meshes, state);
+    ++computed_;
     ms_ = msSince(start);
 }
 

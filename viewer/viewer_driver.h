@@ -68,6 +68,9 @@ public:
     const std::optional<plan::Report>& report() const { return report_; }
     bool current(const clip::ClipMeshSet& meshes, const InteractionState& state) const { return reported_ == reportInputs(meshes, state); }
     double ms() const { return ms_; }
+    // How many reports have been computed: changes exactly when the reporter's field (and so its removed region)
+    // does, which is when the slice panel must take the region again.
+    std::uint64_t computedCount() const { return computed_; }
 
 private:
     void compute(CarveReporter& reporter, clip::ClipMeshSet& meshes, const InteractionState& state);
@@ -76,6 +79,7 @@ private:
     std::optional<ReportInputs> reported_, seen_;
     double changedAt_ = -1e9, ms_ = 0;
     int exports_ = 0;
+    std::uint64_t computed_ = 0;
 };
 
 }  // namespace curette

@@ -4,7 +4,12 @@
 // --turntable N writes N frames around the scene's vertical axis into the folder --out names, and an MP4 of
 // them when ffmpeg is on PATH (tools/movie.h). --show-meshes (or the scene's "clip_mesh_display": {"show": true})
 // draws the clip meshes over the image (render/clip_mesh_overlay.h; not in stereo): the renderer's image is
-// unchanged, the PNG gets the overlay.
+// unchanged, the PNG gets the overlay. --slices DIR writes the axial, coronal and sagittal slice views
+// through --crosshair (render/model/slice_view.h, the viewer's slice panel's), with the removed region as
+// `curette report` computes it; without --out only those.
+#include "session/carve_report.h"
+#include "session/scene_slices.h"
+#include "scene/volume_statistics.h"
 #include "tools/command_line.h"
 #include "tools/commands/commands.h"
 #include "session/loaded_scene.h"
@@ -42,14 +47,58 @@ Image renderPicture(Renderer& renderer, const FrameDescription& frame, StereoMod
     return composeStereo(stereo, pair.left, pair.right, background);
 }
 
+// "x,y,z": a point in RAS mm.
+glm::dvec3 parsePoint(const std::string& option, const std::string& text) {
+    glm::dvec3 p(0.0);
+    std::size_t at = 0;
+    for (int a = 0; a < 3; ++a) {
+        std::size_t comma = text.find(',', at);
+        if ((a < 2) != (comma != std::string::npos))
+            throw InputError("<command line>", "--" + option, "three numbers x,y,z (RAS mm)", "\"" + text + "\"");
+        p[a] = CommandLine::parseDouble(option, text.substr(at, a < 2 ? comma - at : std::string::npos), -1e6, 1e6);
+        at = comma + 1;
+    }
+    return p;
+}
+
+// --slices: the three slice views of the scene's state, with the removed region of its clip meshes.
+void writeSlices(const LoadedScene& loaded, Renderer& renderer, const std::filesystem::path& dir, std::optional<glm::dvec3> crosshair) {
+    InteractionState state = InteractionState::fromScene(loaded.scene);
+    CarveReporter reporter(loaded, VolumeGeometry{loaded.volume.dims, loaded.volume.indexToWorld}, programVersion());
+    reporter.compute(renderer.clipMeshes(), state);
+    std::vector<std::uint8_t> removed = reporter.removedRegion();
+    SliceOverlays overlays = sceneSliceOverlays(loaded, state, &removed, -1);
+    glm::dvec3 at = crosshair ? *crosshair : defaultCrosshair(loaded.volume, state);
+    GreyWindow window = defaultGreyWindow(computeStatistics(loaded.volume));
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw SystemError(dir.string() + ": cannot create the output folder (" + ec.message() + ")");
+    for (SliceAxis axis : kSliceAxes) {
+        SliceImage slice = renderSlice(loaded.volume, axis, at, window, overlays);
+        std::filesystem::path file = dir / (std::string(sliceAxisName(axis)) + ".png");
+        writePng(file, slice.image, glm::vec4(0, 0, 0, 1));
+        std::printf("%s: %dx%d, %.3g mm pixels\n", file.c_str(), slice.image.width, slice.image.height, slice.plane.pixelMm);
+    }
+    std::printf("slices through the crosshair %.2f,%.2f,%.2f (RAS mm), window %.6g..%.6g\n", at.x, at.y, at.z, window.lo, window.hi);
+}
+
 int render(const CommandLine& cl) {
     if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no positional arguments for render");
     std::optional<int> turntable;
     if (auto n = cl.value("turntable")) turntable = CommandLine::parseInt("turntable", *n, 1, 100000);
-    bool planOnly = cl.flag("plan") && !cl.value("out");
-    std::string out = planOnly ? std::string() : cl.required("out");
+    std::optional<std::string> slicesDir = cl.value("slices");
+    std::optional<glm::dvec3> crosshair;
+    if (auto c = cl.value("crosshair")) {
+        if (!slicesDir) throw InputError("<command line>", "--crosshair", "together with --slices DIR");
+        crosshair = parsePoint("crosshair", *c);
+    }
+    bool planOnly = cl.flag("plan") && !cl.value("out") && !slicesDir;
+    bool slicesOnly = slicesDir && !cl.value("out");
+    std::string out = planOnly || slicesOnly ? std::string() : cl.required("out");
+    if (slicesOnly && (turntable || cl.value("stereo")))
+        throw InputError("<command line>", turntable ? "--turntable" : "--stereo", "together with --out (with --slices alone only the slices are written)");
     bool pngName = out.size() >= 4 && out.substr(out.size() - 4) == ".png";
-    if (!planOnly && !turntable && !pngName) throw InputError("<command line>", "--out", "a file name ending in .png", "\"" + out + "\"");
+    if (!planOnly && !slicesOnly && !turntable && !pngName) throw InputError("<command line>", "--out", "a file name ending in .png", "\"" + out + "\"");
     if (turntable && pngName)
         throw InputError("<command line>", "--out", "with --turntable a folder for the frames (frame_000000.png, ...), not a .png", "\"" + out + "\"");
     if (cl.value("fps") && !turntable) throw InputError("<command line>", "--fps", "together with --turntable N (the movie's frame rate)");
@@ -80,6 +129,10 @@ int render(const CommandLine& cl) {
         std::printf("frame plan: %s shading, %dx%d, %d clip meshes, %s\n%s", shadingModeName(frame.shading), frame.size.x, frame.size.y,
                     renderer.clipMeshes().count(), renderer.hasTubes() ? "tubes" : "no tubes", renderer.plan(frame).describe().c_str());
         if (planOnly) return 0;
+    }
+    if (slicesOnly) {
+        writeSlices(loaded, renderer, *slicesDir, crosshair);
+        return 0;
     }
     const glm::vec4 background(loaded.scene.background);
     bool showMeshes = cl.flag("show-meshes") || loaded.scene.clipMeshDisplay.show.value_or(false);
@@ -138,6 +191,7 @@ int render(const CommandLine& cl) {
             std::printf("  recomputed %.2f %% of %llu voxels in step V\n", 100.0 * ao->lastStats().recomputedFraction(),
                         static_cast<unsigned long long>(ao->lastStats().voxels));
     }
+    if (slicesDir) writeSlices(loaded, renderer, *slicesDir, crosshair);   // after the frame, so its timings are its own
     return 0;
 }
 
@@ -157,7 +211,9 @@ Command renderCommand() {
               {"fps", true, "with --turntable: frames per second of the MP4 (default 30)"},
               {"timings", false, "print the GPU time of every pass and the GPU memory of every resource"},
               {"plan", false, "print the frame plan: each pass in order, what it reads and writes (without --out: only that)"},
-              {"show-meshes", false, "draw the clip meshes over the image (translucent, outlined; not with --stereo): the scene's \"clip_mesh_display\" says how"}})},
+              {"show-meshes", false, "draw the clip meshes over the image (translucent, outlined; not with --stereo): the scene's \"clip_mesh_display\" says how"},
+              {"slices", true, "write axial.png, coronal.png, sagittal.png (slice views with the removed region, labels, meshes) into DIR (without --out: only those)", "DIR"},
+              {"crosshair", true, "with --slices: the point the slices pass through, RAS mm (default: the clip meshes' centre, else the volume's)", "X,Y,Z"}})},
             &render};
 }
 
