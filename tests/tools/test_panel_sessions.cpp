@@ -480,7 +480,11 @@ std::pair<int, double> drawnWhileSettled(const WindowRun& run) {
 TEST(PanelSessions, TheViewersSideBarLeavesTheViewFreeAndAnIdleWindowDrawsNothing) {
     if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
     auto dir = scratch("window");
-    auto scene = writeBallScene(dir);
+    // The tools hidden: the view's pixels are then the renderer's image alone, so any difference is a panel.
+    auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"clip_meshes": [
+    {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 44]},
+    {"name": "box", "mesh": {"shape": "box", "size_mm": [10, 10, 24]}, "position_mm": [22, 40, 24]}],
+    "clip_mesh_display": {"show": false}})"));
     auto session = dir / "edits.jsonl";
     recordEditSession(scene, session);
     WindowRun run = runWindow(session, dir, "--idle-seconds 5");

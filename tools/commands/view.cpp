@@ -21,6 +21,8 @@
 #include "session/loaded_scene.h"
 #include "session/session_step.h"
 #include "viewer/clearance_readout.h"
+#include "viewer/ruler.h"
+#include "viewer/slice_panel.h"
 #include "viewer/view_layout.h"
 #include "viewer/view_panels.h"
 #include "viewer/view_sidebar.h"
@@ -29,6 +31,8 @@
 #include "base/log.h"
 #include "input/hid/fake_backend.h"
 #include "render/clip_mesh_overlay.h"
+#include "render/image_texture.h"
+#include "render/reference/surface_pick.h"
 #include "render/presenter.h"
 #include "render/renderer.h"
 #include "render/stereo_render.h"
@@ -124,6 +128,12 @@ struct ViewWindow {
     ClipMeshOverlay meshOverlay{};    // the clip meshes over the presented image ("show tools")
     ViewerReport report{};
     ClearanceReadout clearance{loaded};   // the selected tool's live distance to the protected structures
+    SlicePanel slices{loaded, step.state()};   // axial, coronal, sagittal through the crosshair
+    std::array<ImageTexture, 3> sliceTextures{};
+    Ruler ruler{};
+    bool slicesShown = false;             // the Slices tab is open (its images are made only then)
+    bool measuring = false;               // M: clicks (Ctrl + click in the view, a click on a slice) place ruler points
+    std::optional<glm::dvec2> viewClick{};   // a Ctrl + left click in the 3-D view this iteration (framebuffer pixels)
     std::unique_ptr<LiveRecording> recording{};
     std::size_t played = 0;           // --play: the recorded frames followed
     bool orbiting = false, dragging = false, stereoKeyWasDown = false, exportKeyWasDown = false;
@@ -189,6 +199,11 @@ private:
     bool renderAndPresent(const Polled& p, bool moved, bool& presented);
     void logPresent(double now, const char* event);
     void refreshReport(double now);
+    void pickInView();
+    void placePoint(glm::dvec3 world, double uncertaintyMm);
+    void refreshSlices();
+    void slicesTab();
+    void drawRuler();
 };
 
 // Events, the camera and the keys of this frame.
@@ -222,8 +237,11 @@ ViewWindow::Polled ViewWindow::poll() {
     bool right = inView && !io.WantCaptureMouse && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
     // Shift + left drag turns the selected light instead (an input action, so sessions record it).
     bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    // Ctrl + left click picks the first visible surface under the cursor (the crosshair, the ruler) instead.
+    bool ctrl = glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+    if (left && ctrl && !orbiting) viewClick = cursor * pixelsPerPoint;
     p.cameraBefore = frame().camera;
-    if (left && orbiting && !shift) frame().camera.orbit(-0.4 * delta.x / pixelsPerPoint, 0.4 * delta.y / pixelsPerPoint);
+    if (left && orbiting && !shift && !ctrl) frame().camera.orbit(-0.4 * delta.x / pixelsPerPoint, 0.4 * delta.y / pixelsPerPoint);
     if (inView && !io.WantCaptureMouse && io.MouseWheel != 0) frame().camera.zoom(std::pow(0.9, io.MouseWheel));
 
     // Keyboard and mouse as the input pipeline sees them.
@@ -380,6 +398,12 @@ std::vector<SettingEdit> ViewWindow::drawSidebar() {
             drawTractLegend(state());
             ImGui::EndTabItem();
         }
+        slicesShown = false;
+        if (ImGui::BeginTabItem("Slices")) {
+            slicesShown = true;
+            slicesTab();
+            ImGui::EndTabItem();
+        }
         if (ImGui::BeginTabItem("Tools & settings")) {
             edits = panels.draw(state(), frame().camera, live.pipeline());
             ImGui::EndTabItem();
@@ -400,7 +424,11 @@ void ViewWindow::windowKeys(const Polled&) {
     bool typing = ImGui::GetIO().WantCaptureKeyboard;
     for (int key : latchedWindowKeys) {
         if (key == GLFW_KEY_F1 || (!typing && (key == GLFW_KEY_H || key == GLFW_KEY_SLASH))) helpOpen = !helpOpen;
-        if (key == GLFW_KEY_ESCAPE) helpOpen = false;
+        if (key == GLFW_KEY_ESCAPE) helpOpen = false, ruler.clear();
+        if (key == GLFW_KEY_M && !typing) {
+            measuring = !measuring;
+            if (!measuring) ruler.clear();
+        }
         if (key == GLFW_KEY_F2) sidebarOpen = !sidebarOpen;
         if (key == GLFW_KEY_HOME && !typing) frame().camera = homeCamera;
         if (key == GLFW_KEY_F5) exportRequested = true;
@@ -473,20 +501,107 @@ void ViewWindow::refreshReport(double now) {
     exportRequested = false;
 }
 
+// A Ctrl + click in the 3-D view: the first visible surface under the cursor (the CPU twin of the image's ray,
+// render/reference/surface_pick.h) becomes the crosshair and, when measuring, a ruler point.
+void ViewWindow::pickInView() {
+    if (!viewClick) return;
+    glm::dvec2 at = *viewClick - glm::dvec2(layout.view.origin);
+    viewClick.reset();
+    FrameDescription shown = frame();
+    shown.size = layout.view.size;
+    std::vector<plan::PosedMesh> posed;
+    for (const MeshState& m : state().meshes) posed.push_back({m.geometry, m.pose, m.scale});
+    const double stepMm = renderer.resolveStepMm(shown.raycast);
+    std::optional<glm::dvec3> hit = reference::pickFirstVisible(loaded.volume, state().transferFunction, shown, stepMm,
+                                                                glm::ivec2(glm::floor(at)), plan::insideAnyMesh(posed));
+    if (!hit) {
+        message("nothing visible under the cursor");
+        return;
+    }
+    placePoint(*hit, 0.5 * stepMm);
+}
+
+// A picked point: the slices go through it; when measuring it is also the ruler's next point.
+void ViewWindow::placePoint(glm::dvec3 world, double uncertaintyMm) {
+    slices.setCrosshair(world);
+    if (!measuring) return;
+    ruler.place({world, uncertaintyMm});
+    if (std::optional<RulerLength> l = ruler.length())
+        message("ruler: " + std::to_string(l->mm).substr(0, std::to_string(l->mm).find('.') + 2) + " mm");
+}
+
+void ViewWindow::refreshSlices() {
+    slices.takeRemovedRegion(report.computedCount(), reporter);
+    if (slices.update(state(), live.pipeline().keyboardSelection()))
+        for (SliceAxis a : kSliceAxes) sliceTextures[static_cast<std::size_t>(a)].update(slices.image(a).image);
+}
+
+// The slices tab: the three views one under another (the wheel scrolls a slice, a click moves the crosshair
+// there and, when measuring, places a ruler point), the ruler.
+void ViewWindow::slicesTab() {
+    if (ImGui::Checkbox("measure (M)", &measuring) && !measuring) ruler.clear();
+    tooltip("a ruler: Ctrl + click two points in the 3-D view (on the first visible surface) or click them on a slice");
+    if (std::optional<RulerLength> l = ruler.length()) {
+        ImGui::SameLine();
+        ImGui::Text("%.1f mm (+-%.1f)", l->mm, l->uncertaintyMm);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("from (%.1f, %.1f, %.1f) to (%.1f, %.1f, %.1f) RAS mm; each point within %.2f / %.2f mm of where it was picked",
+                              ruler.first()->world.x, ruler.first()->world.y, ruler.first()->world.z, ruler.second()->world.x,
+                              ruler.second()->world.y, ruler.second()->world.z, ruler.first()->uncertaintyMm, ruler.second()->uncertaintyMm);
+    } else if (measuring) {
+        ImGui::SameLine();
+        ImGui::TextDisabled(ruler.first() ? "pick the second point" : "pick the first point");
+    }
+    ImGui::BeginChild("slices", ImVec2(0, 0), false, ImGuiWindowFlags_NoScrollWithMouse);
+    std::optional<glm::dvec3> clicked = slices.draw({sliceTextures[0].name(), sliceTextures[1].name(), sliceTextures[2].name()},
+                                                    ImGui::GetContentRegionAvail().x);
+    ImGui::EndChild();
+    // A slice pixel is the scan's smallest spacing: the point lies within half a pixel diagonal of the click.
+    if (clicked) placePoint(*clicked, 0.5 * std::sqrt(2.0) * slices.image(SliceAxis::Axial).plane.pixelMm);
+}
+
+// The ruler in the 3-D view: its points projected with the camera of the image, the length beside the line.
+void ViewWindow::drawRuler() {
+    if (!ruler.first()) return;
+    const glm::dmat4 viewProjection = frame().camera.viewProjection(layout.view.size);
+    auto onScreen = [&](glm::dvec3 world) -> std::optional<ImVec2> {
+        glm::dvec4 clip = viewProjection * glm::dvec4(world, 1.0);
+        if (clip.w <= 0) return std::nullopt;
+        glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+        return ImVec2(static_cast<float>(layout.view.origin.x + 0.5 * (ndc.x + 1) * layout.view.size.x),
+                      static_cast<float>(layout.view.origin.y + 0.5 * (1 - ndc.y) * layout.view.size.y));
+    };
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    const ImU32 colour = IM_COL32(255, 230, 80, 255);
+    std::optional<ImVec2> a = onScreen(ruler.first()->world);
+    std::optional<ImVec2> b = ruler.second() ? onScreen(ruler.second()->world) : std::nullopt;
+    if (a) draw->AddCircleFilled(*a, 4, colour);
+    if (b) draw->AddCircleFilled(*b, 4, colour);
+    if (a && b) {
+        draw->AddLine(*a, *b, colour, 2);
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f mm", ruler.length()->mm);
+        draw->AddText(ImVec2(0.5f * (a->x + b->x) + 6, 0.5f * (a->y + b->y) - 16), colour, text);
+    }
+}
+
 bool ViewWindow::iterate() {
     Polled p = poll();
     if (windowEvent) lastEvent = p.now, windowEvent = false;
     windowKeys(p);
+    pickInView();
     InputFrame input;
     StepChanges changes = applyInput(p, input);
     bool cameraMoving = !(frame().camera == p.cameraBefore);
     record(p, input);
     markerRect = drawOrientationMarker(frame().camera, layout.view);
+    drawRuler();
     ImGui::Render();
     bool presented = false;
     if (p.framebuffer.x > 0 && p.framebuffer.y > 0) {
         if (!renderAndPresent(p, changes.any() || cameraMoving, presented)) return false;
         refreshReport(p.now);
+        if (slicesShown) refreshSlices();   // uploaded before the side bar's draw data is rendered below
     }
     state().screenshot = false;
     if (presented) {
