@@ -18,7 +18,7 @@ glm::vec3 clipMeshColor(int index) {
     return kPalette[static_cast<std::size_t>(std::max(index, 0)) % kPalette.size()];
 }
 
-double heldFillOpacity(const ClipMeshDisplay& display) { return std::max(display.fillOpacity, std::min(0.6, 2.0 * display.fillOpacity)); }
+double heldFillOpacity(const ClipMeshDisplay& display) { return std::max(display.fillOpacity, std::min(0.6, 1.3 * display.fillOpacity)); }
 
 double heldOutlineOpacity(const ClipMeshDisplay&) { return 1.0; }
 

@@ -18,8 +18,8 @@ struct ClipMeshDisplay {
 glm::vec3 clipMeshColor(int index);
 // The held mesh (the one a device or the keyboard moves): this colour, and more opaque.
 inline constexpr glm::vec3 kHeldClipMeshColor{1.0f, 0.82f, 0.1f};
-// The opacities of the held mesh, from the display's: its fill twice as opaque (up to 0.6, never
-// less than the others'), its outline opaque.
+// The opacities of the held mesh, from the display's: its fill a little more opaque (up to 0.6, never
+// less than the others'; not so much that it hides the cut it makes), its outline opaque.
 double heldFillOpacity(const ClipMeshDisplay& display);
 double heldOutlineOpacity(const ClipMeshDisplay& display);
 
