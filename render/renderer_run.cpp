@@ -110,7 +110,7 @@ double Renderer::exactProgress() const {
         if (pass == Pass::LaoRecompute && job.stepVBegun && job.stepVGroups > 0)
             within = 1.0 - double(ao_->recomputeGroupsLeft()) / job.stepVGroups;
         if (pass == Pass::RayCast && job.bands > 0) within = double(job.bandsDone) / job.bands;
-        if (pass == Pass::SlabPass && job.slab && job.slab->slices() > 0) within = 1.0 - double(job.slab->left()) / double(job.slab->slices());
+        if (pass == Pass::SlabPass && job.slab && job.slab->units() > 0) within = 1.0 - double(job.slab->left()) / double(job.slab->units());
     }
     return (double(job.next) + within) / double(job.plan.passes.size());
 }
@@ -406,8 +406,8 @@ void Renderer::runSlabPass(const PassContext& context) {
 
 bool Renderer::slabSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits) {
     SlabInputs in = slabInputs(context);
-    // A slice of the view-aligned lattice costs about the same as the next one (each covers every pixel), and one
-    // can take longer than the budget at full size on a software renderer: the probe is a single slice.
+    // Units are bands of a view-aligned slice (SlabRun); one slice at full size can take longer than the budget on
+    // a software renderer, so the probe is a single band.
     if (!run.slab) run.slab = slab_.begin(in);
     slabUsed_ = true;
     if (std::uint32_t left = static_cast<std::uint32_t>(run.slab->left()); left > 0) {

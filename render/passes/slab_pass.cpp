@@ -38,9 +38,19 @@ double SlabPass::resolveSliceDistanceMm(const DosSettings& s, const GpuVolume& v
     return s.sliceDistanceMm > 0 ? s.sliceDistanceMm : 0.5 * volume.geometry().minSpacing();
 }
 
+namespace {
+// Rows of work groups (the program's group is 8 x 8 pixels).
+int groupRowsOf(int height) { return std::max(1, (height + 7) / 8); }
+}  // namespace
+
+int SlabPass::bandsPerSlice(int height) {
+    int rows = groupRowsOf(height), perBand = std::min(kGroupRowsPerBand, rows);
+    return (rows + perBand - 1) / perBand;
+}
+
 void SlabPass::run(const SlabInputs& in) {
     SlabRun whole = begin(in);
-    advance(in, whole, whole.slices());
+    advance(in, whole, whole.units());
 }
 
 SlabRun SlabPass::begin(const SlabInputs& in) {
@@ -54,8 +64,9 @@ SlabRun SlabPass::begin(const SlabInputs& in) {
     if (lattice.widened)
         log::warn("slab pass: slice distance " + std::to_string(resolveSliceDistanceMm(settings, in.volume)) + " mm needs more than " +
                   std::to_string(maxSlices) + " slices; using " + std::to_string(lattice.distanceMm) + " mm");
-    SlabRun run{.first = lattice.first, .last = lattice.last, .next = lattice.first, .distanceMm = lattice.distanceMm, .current = 0,
-                .generation = ++generation_};
+    SlabRun run{.first = lattice.first, .last = lattice.last, .distanceMm = lattice.distanceMm,
+                .bandsPerSlice = bandsPerSlice(frame.size.y), .rowsPerBand = 8 * std::min(kGroupRowsPerBand, groupRowsOf(frame.size.y)), .next = 0,
+                .current = 0, .generation = ++generation_};
 
     // Start: an empty eye buffer, and full visibility in both occlusion channels.
     const float clearEye[4] = {0, 0, 0, 0}, clearOcclusion[2] = {1, 1};
@@ -116,15 +127,22 @@ void SlabPass::advance(const SlabInputs& in, SlabRun& run, long count) {
     double tanTheta = std::tan(glm::radians(frame.dos.coneAngleDeg));
     double pixelsPerMmAtUnitDepth = frame.camera.pixelsPerMmAtUnitDepth(frame.size.y);
     for (long end = run.next + count; run.next < end; ++run.next) {
-        double z = double(run.next) * d;
+        long k = run.first + run.next / run.bandsPerSlice;
+        int band = static_cast<int>(run.next % run.bandsPerSlice);
+        double z = double(k) * d;
         double previousDepth = std::max(z - d, 1e-3);
         p.set("sliceDepth", static_cast<float>(z));
         p.set("coneRadiusPixels", static_cast<float>(d * tanTheta * pixelsPerMmAtUnitDepth / previousDepth));
+        p.set("firstRow", band * run.rowsPerBand);
         glBindTextureUnit(binding::occlusionPrevious, occlusion_[run.current].name());
         glBindImageTexture(binding::imageOcclusionNext, occlusion_[1 - run.current].name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-        p.dispatchCovering(glm::uvec3(static_cast<unsigned>(frame.size.x), static_cast<unsigned>(frame.size.y), 1u));
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        run.current = 1 - run.current;
+        int rows = std::min(run.rowsPerBand, frame.size.y - band * run.rowsPerBand);
+        p.dispatchCovering(glm::uvec3(static_cast<unsigned>(frame.size.x), static_cast<unsigned>(rows), 1u));
+        // The next slice reads this one's occlusion around each pixel: it waits for every band.
+        if (band == run.bandsPerSlice - 1) {
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            run.current = 1 - run.current;
+        }
     }
     last_ = run.current;
 }

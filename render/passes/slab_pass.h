@@ -30,28 +30,37 @@ struct SlabInputs {
     double tubeThicknessMm = 1.0;         // the depth it absorbs that over (dos_slice.comp)
 };
 
-// Where a run of the slab pass in slices is: its lattice of slices, the next one, and which occlusion buffer
-// holds the last slice's result. The run writes the pass's buffers, so another run begun meanwhile (a preview's)
-// makes it stale: advance() refuses it, and the caller begins again (Renderer: a preview restarts the exact frame).
+// Where a run of the slab pass in slices is. Its unit is a band of rows of one view-aligned slice: a slice reads
+// the last one's occlusion around each pixel, so slices run in order, but its pixels are independent, so a
+// slice may be dispatched in bands (one slice at full size can take longer than a frame on llvmpipe). The run
+// writes the pass's buffers, so another run begun meanwhile (a preview's) makes it stale: advance() refuses
+// it, and the caller begins again (Renderer: a preview restarts the exact frame).
 struct SlabRun {
-    long first = 0, last = -1, next = 0;   // the slices k in [first, last], k * distanceMm deep along the view
+    long first = 0, last = -1;             // the slices k in [first, last], k * distanceMm deep along the view
     double distanceMm = 0;
-    int current = 0;                       // occlusion_[current] holds what the slices so far let through
+    int bandsPerSlice = 1, rowsPerBand = 0;
+    long next = 0;                         // the next unit: slice first + next / bandsPerSlice, band next % bandsPerSlice
+    int current = 0;                       // occlusion_[current] holds what the slices done let through
     std::uint64_t generation = 0;          // the begin() it belongs to
     long slices() const { return std::max(0L, last - first + 1); }
-    long left() const { return std::max(0L, last - next + 1); }
-    bool done() const { return next > last; }
+    long units() const { return slices() * bandsPerSlice; }
+    long left() const { return std::max(0L, units() - next); }
+    bool done() const { return next >= units(); }
 };
 
 class SlabPass {
 public:
     static constexpr long maxSlices = kMaxSlabSlices;
+    // A slice is dispatched in bands of this many rows of work groups (fewer when the image has fewer): a run
+    // of an image `height` rows high has bandsPerSlice(height) units a slice.
+    static constexpr int kGroupRowsPerBand = 12;
+    static int bandsPerSlice(int height);
 
     // The whole pass: begin() and every slice.
     void run(const SlabInputs& in);
     // The pass in slices, bit for bit the whole one: begin() clears the eye buffer and the occlusion (and the tubes'
-    // partial occlusion) and returns the run; advance() dispatches its next `count` slices (at most those left),
-    // each exactly as run() does, from inputs equal to begin()'s. Every call sets the program and its bindings
+    // partial occlusion) and returns the run; advance() dispatches its next `count` units (bands of a slice; at
+    // most those left), each exactly as run() does, from inputs equal to begin()'s. Every call sets the program and its bindings
     // afresh, so whatever ran between two calls (another pass, the window's own drawing) changes nothing.
     SlabRun begin(const SlabInputs& in);
     void advance(const SlabInputs& in, SlabRun& run, long count);

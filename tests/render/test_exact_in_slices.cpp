@@ -242,21 +242,27 @@ MovingSphereScene slabScene(const SlabCase& c) {
     return s;
 }
 
-// Slices of any fixed size (one per call at a zero budget) give render()'s image bit for bit, and a call runs no
-// more slices than the size. The progress rises through the pass and names it.
+// Slices of any fixed size (one per call at a zero budget; a unit is a band of rows of one view-aligned slice,
+// SlabRun) give render()'s image bit for bit, and a call runs no more units than the size: at 48 x 40 a slice is
+// one band, at 48 x 200 three. The progress rises through the pass and names it.
 TEST(ExactInSlices, TheSlabPassInSlicesOfAnySizeEqualsRender) {
-    for (const SlabCase& c : kSlabCases) {
-        SCOPED_TRACE(c.name);
+    for (const SlabCase& c : kSlabCases)
+      for (glm::ivec2 imageSize : {glm::ivec2(48, 40), glm::ivec2(48, 200)}) {
+        SCOPED_TRACE(std::string(c.name) + " at " + std::to_string(imageSize.x) + "x" + std::to_string(imageSize.y));
         MovingSphereScene whole = slabScene(c);
+        whole.frame.size = imageSize;
         whole.renderer->render(whole.frame);
         ASSERT_TRUE(whole.renderer->lastPlan().runs(Pass::SlabPass));
         const Image expected = whole.renderer->readImage();
-        const int slices = whole.renderer->slabPass().slicesLastFrame();
-        ASSERT_GT(slices, 40) << "enough slices for the sizes below to mean something";
+        const int bands = SlabPass::bandsPerSlice(imageSize.y);
+        EXPECT_EQ(bands, imageSize.y == 40 ? 1 : 3);
+        const int slices = whole.renderer->slabPass().slicesLastFrame() * bands;   // units
+        ASSERT_GT(slices, 40) << "enough units for the sizes below to mean something";
         const std::string slabActivity = passInfo(Pass::SlabPass).activity;
         for (std::uint32_t size : {1u, 7u, 64u, 100000u}) {
             SCOPED_TRACE("slices of " + std::to_string(size));
             MovingSphereScene sliced = slabScene(c);
+            sliced.frame.size = imageSize;
             const int slabIndex = passIndex(*sliced.renderer, sliced.frame, Pass::SlabPass);
             ASSERT_GE(slabIndex, 0);
             int insideSlab = 0, calls = 0;
@@ -277,7 +283,7 @@ TEST(ExactInSlices, TheSlabPassInSlicesOfAnySizeEqualsRender) {
             EXPECT_EQ(insideSlab, slicesCalls - 1 + (slabIndex > 0 ? 1 : 0)) << "each call ran " << size << " slices of " << slices;
             EXPECT_STREQ(sliced.renderer->exactProgressLabel(), "") << "nothing under way once done";
             EXPECT_TRUE(sliced.renderer->showing(sliced.frame));
-            EXPECT_EQ(sliced.renderer->slabPass().slicesLastFrame(), slices);
+            EXPECT_EQ(sliced.renderer->slabPass().slicesLastFrame() * bands, slices);
             EXPECT_TRUE(sameImage(sliced.renderer->readImage(), expected)) << "the slab pass in slices differs from render()";
         }
     }

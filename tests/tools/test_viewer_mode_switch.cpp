@@ -1,7 +1,7 @@
 // A mode switch in the viewer's iteration (viewer/viewer_driver.h: what the window and `bench view` run) never
 // leaves the window without a frame, said as work per iteration rather than time: the first frame of a scene is
 // a preview; pressing 5 (dos) previews at once without the slab pass; then each iteration runs at most one slice's
-// worth of the dos frame's slab pass and presents the preview with the progress, until the exact frame is shown,
+// worth of the dos frame's slab pass (units: bands of rows of its view-aligned slices) and presents the preview with the progress, until the exact frame is shown,
 // which is a fresh renderer's dos image. The slices' size is fixed and the budget is so small that every
 // iteration runs one slice; no time is asserted.
 #include "session/interaction.h"
@@ -69,7 +69,7 @@ TEST(ViewerDriver, ASwitchToDosPresentsEveryIterationAndNeverRunsTheWholeSlabPas
         EXPECT_FALSE(renderer.lastFrameExact());
         if (renderer.exactProgressLabel() != std::string(passInfo(Pass::SlabPass).activity)) continue;
         ++slabIterations;
-        slabSlices = renderer.slabPass().slicesLastFrame();
+        slabSlices = renderer.slabPass().slicesLastFrame() * SlabPass::bandsPerSlice(size.y);   // units: bands of slices
         // The dos frame's plan is the clip maps (none here) and the slab pass: its progress is the slices done.
         double slicesRun = (renderer.exactProgress() - progress) * double(slabSlices);
         EXPECT_LE(std::lround(slicesRun), long(kSlices)) << "iteration " << iterations << " ran more than a slice";
