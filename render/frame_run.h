@@ -8,6 +8,7 @@
 #include "render/model/frame.h"
 #include "render/model/frame_plan.h"
 #include "render/pass_bindings.h"
+#include "render/passes/slab_pass.h"
 #include "render/recast_region.h"
 #include "render/shader_pieces.h"
 
@@ -34,7 +35,8 @@ enum class PreviewAmbient {
 
 // The size of the next slice of a pass that runs in slices (step I's and step IV's bricks, step V's list
 // groups, the ray cast's bands): the measured rate times the budget left, within [1, left]; `probe` units
-// before any rate is known; `fixed` > 0 sets the size (tests).
+// before any rate is known; `fixed` > 0 sets the size (tests). The slab pass's slices are its view-aligned
+// slices (one dispatch each).
 //  - Rate::Last: the last slice's rate, and at most twice the last slice: its units may have been cheap (air at
 //    the top of the image, voxels far from the cut), so a wrong rate overruns the budget little.
 //  - Rate::Slowest: the slowest rate since restart(). Step I: bricks no visible sample reads cost a fraction
@@ -91,6 +93,7 @@ struct FrameRun {
     InputVersions ambientVersions{};   // what step IV clipped: V_AO's freshness once step V is done
     std::uint32_t stepIVBricks = 0, stepVGroups = 0;
     int bands = -1, bandsDone = 0;   // the ray cast's (-1: not begun)
+    std::optional<SlabRun> slab{};   // the slab pass's (none: not begun)
     std::optional<RecastTiles> recast{};
     std::vector<BoundResources> bound{};   // per pass run, what its programs bound (Renderer::setAuditBindings)
 };

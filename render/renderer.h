@@ -84,7 +84,9 @@ public:
     // something moves or while step I runs, at whatever size it asks.
     using PreviewAmbient = curette::PreviewAmbient;   // render/frame_run.h
     // The frame's plan without steps I, IV and V: the clip maps (the frame's own, as the exact frame would draw
-    // them) and the image passes, shading with `previewAmbient()`. It writes the output image and nothing any
+    // them) and the image passes, shading with `previewAmbient()`. A preview never runs the slab pass (seconds
+    // on a software renderer even at a preview's size): dos previews as phong, and tubes are left out of the
+    // preview (ismos keeps them: its pass 1 stops at them without the slab pass). It writes the output image and nothing any
     // exact frame reads, so the next render() is unchanged by it (Preview.NeverChangesTheExactFrame).
     void renderPreview(const FrameDescription& frame);
     PreviewAmbient previewAmbient() const;
@@ -94,18 +96,23 @@ public:
     // until then the image shown stays the last one (previews have their own image). Step IV runs in slices of
     // its bricks (AmbientOcclusion::advanceClipVoxels), step V in slices of its recompute list
     // (AmbientOcclusion::advanceRecompute), the ray cast in bands of tile rows
-    // (TileOrderPiece::dispatchBands), every other pass whole. A call for another frame, or after the scene
+    // (TileOrderPiece::dispatchBands), the slab pass in its view-aligned slices (SlabPass::advance), every
+    // other pass whole. A call for another frame, or after the scene
     // changed or a preview was drawn, starts over; a step IV or V under way is abandoned, and the next update visits
     // the bricks its step IV visited as well as its own (AmbientOcclusion::abandonUpdate), so it rewrites
     // whatever the abandoned one left stale (render() does the same). sliceUnits > 0 fixes the slice size
-    // (step IV: bricks, step V: work groups of the list, the ray cast: bands), for tests.
+    // (step IV: bricks, step V: work groups of the list, the ray cast: bands, the slab pass: slices), for tests.
     bool advanceExact(const FrameDescription& frame, double budgetMs, std::uint32_t sliceUnits = 0);
     // How far the exact frame in slices is, in [0, 1] (passes done, the sliced ones by their share done; 0 when
-    // none is under way).
+    // none is under way), and what its pass under way computes, in a planner's words (PassInfo::activity: "shadows
+    // (directional occlusion)", "full-quality image"; empty when none is under way).
     double exactProgress() const;
+    const char* exactProgressLabel() const;
     // Whether the image shown is a preview of `frame` under the current scene (showing() is for exact ones).
     bool showingPreview(const FrameDescription& frame) const;
     bool lastFrameExact() const { return shown_ && shown_->exact; }
+    // Whether any image is shown yet (none before the first frame, exact or preview, is done).
+    bool showsAnImage() const { return shown_.has_value(); }
     // Step I in slices: whether `frame` needs V_PAO and it is not for the current volume, TF and LAO settings;
     // then advancePrecompute(budget) runs slices of it (AmbientOcclusion::advancePrecompute) for about budgetMs
     // of GPU time (at least one slice; it waits for the GPU to time them, and sizes the next slice from the
@@ -115,6 +122,8 @@ public:
     // sliceBricks > 0 fixes the slice size instead (tests: slices that are neither rows nor slabs of bricks).
     double advancePrecompute(double budgetMs, std::uint32_t sliceBricks = 0);
     double precomputeProgress() const;
+    // What step I computes, in a planner's words ("occlusion of the scan"; PassInfo::activity).
+    static const char* precomputeProgressLabel() { return passInfo(Pass::LaoPrecompute).activity; }
     // A number that changes whenever step I's inputs (volume, TF and labels, LAO settings) change: the frame loop
     // holds step I back while they are being edited (viewer/view_frame_loop.h).
     std::uint64_t precomputeInputsVersion() const { return versions_.volume + versions_.transferFunction + versions_.laoSettings; }
@@ -180,12 +189,14 @@ private:
     bool stepIVSlice(FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
     bool stepVSlice(FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
     bool rayCastSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
+    bool slabSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
     void beginStepIV(FrameRun& run);
     void finishStepV(const FrameRun& run);
     // The ray cast of the context's frame: the whole image, or (bandCount >= 0) its bands [firstBand, firstBand +
     // bandCount) of tile rows; returns the image's number of bands.
     int runRayCast(const PassContext& context, bool ismosLayers, int firstBand = 0, int bandCount = -1);
     void runSlabPass(const PassContext& context);
+    SlabInputs slabInputs(const PassContext& context);
     void runComposite(const PassContext& context);
     // The pixels the exact frame `frame` with plan `plan` must cast (none: all of them): those the meshes' motion
     // since the last exact image can change, when nothing else changed (render/recast_region.h).
@@ -201,7 +212,8 @@ private:
     std::vector<BoundResources> lastPassBindings_;
     void recordBindings(FrameRun& run, Pass pass, const std::vector<GLuint>& programs) const;
     std::uint64_t previewsRendered_ = 0;
-    SliceSizer stepIVSizer_{SliceSizer::Rate::Last}, stepVSizer_{SliceSizer::Rate::Last}, rayCastSizer_{SliceSizer::Rate::Last};
+    SliceSizer stepIVSizer_{SliceSizer::Rate::Last}, stepVSizer_{SliceSizer::Rate::Last}, rayCastSizer_{SliceSizer::Rate::Last},
+        slabSizer_{SliceSizer::Rate::Last};
     SliceSizer precomputeSizers_[2] = {SliceSizer{SliceSizer::Rate::Slowest}, SliceSizer{SliceSizer::Rate::Slowest}};   // step I's phases
     void validateSize(const FrameDescription& frame) const;
     void updateOccupancy();

@@ -110,8 +110,14 @@ double Renderer::exactProgress() const {
         if (pass == Pass::LaoRecompute && job.stepVBegun && job.stepVGroups > 0)
             within = 1.0 - double(ao_->recomputeGroupsLeft()) / job.stepVGroups;
         if (pass == Pass::RayCast && job.bands > 0) within = double(job.bandsDone) / job.bands;
+        if (pass == Pass::SlabPass && job.slab && job.slab->units() > 0) within = 1.0 - double(job.slab->left()) / double(job.slab->units());
     }
     return (double(job.next) + within) / double(job.plan.passes.size());
+}
+
+const char* Renderer::exactProgressLabel() const {
+    if (!exactJob_ || exactJob_->next >= exactJob_->plan.passes.size()) return "";
+    return passInfo(exactJob_->plan.passes[exactJob_->next].pass).activity;
 }
 
 // ---- The executor ----
@@ -120,7 +126,7 @@ FrameRun Renderer::beginRun(const FrameDescription& frame, bool exact) {
     FrameRun run{.frame = frame, .shaded = frame, .exact = exact, .stamp = stampOf(frame), .previews = previewsRendered_};
     if (exact) {
         run.plan = plan(frame);
-        for (SliceSizer* sizer : {&stepIVSizer_, &stepVSizer_, &rayCastSizer_}) sizer->newRun();
+        for (SliceSizer* sizer : {&stepIVSizer_, &stepVSizer_, &rayCastSizer_, &slabSizer_}) sizer->newRun();
     } else {
         // A preview is the frame's plan without steps I, IV and V, shading with previewAmbient()'s volume, or
         // phong while V_PAO is not there. Its clip maps are the frame's own (cao wants the dilated ones), exactly as
@@ -131,6 +137,11 @@ FrameRun Renderer::beginRun(const FrameDescription& frame, bool exact) {
             inputs.precomputedCurrent = inputs.ambientCurrent = true;
             if (run.ambient == PreviewAmbient::None) run.shaded.shading = inputs.shading = ShadingMode::Phong;
         }
+        // No slab pass in a preview: it marches every view-aligned slice over every pixel, seconds at any preview
+        // size on a software renderer. dos previews as phong does; tubes (which bring the slab pass into every
+        // mode but ismos) are left out, so the image pass is the ray cast.
+        if (traits(inputs.shading).slabPass) run.shaded.shading = inputs.shading = ShadingMode::Phong;
+        if (inputs.shading != ShadingMode::Ismos) inputs.tubesInView = false;
         run.plan = planFrame(inputs);
     }
     ensureOutput(exact ? kExactImage : kPreviewImage, frame.size);
@@ -248,6 +259,7 @@ bool Renderer::runSlice(Pass pass, const PassContext& context, FrameRun& run, do
         case Pass::VoxelClipping: return stepIVSlice(run, budgetMs, sliceUnits);
         case Pass::LaoRecompute: return stepVSlice(run, budgetMs, sliceUnits);
         case Pass::RayCast: return rayCastSlice(context, run, budgetMs, sliceUnits);
+        case Pass::SlabPass: return slabSlice(context, run, budgetMs, sliceUnits);
         default: return runWhole(pass, context, run);
     }
 }
@@ -377,15 +389,34 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
     return bands;
 }
 
-void Renderer::runSlabPass(const PassContext& context) {
+SlabInputs Renderer::slabInputs(const PassContext& context) {
     // Without tubes only dos comes here (all rays advance slice by slice together); with tubes every mode.
     const FrameDescription& frame = context.frame;
     bool withTubes = context.plan.runs(Pass::TubeGBuffer);
     GLuint ambient = usesAmbientOcclusion(frame.shading) ? context.ambient : 0;
-    slab_.run(SlabInputs{frame, volume_, *tf_, clip_, SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ambient, frame.raycast.cutFace}, context.image,
-                         withTubes ? &gbuffer_ : nullptr, withTubes ? tubeShading_.geometryOpacity : 0.0, tubeShading_.thicknessMm});
+    return SlabInputs{frame, volume_, *tf_, clip_, SampleShadingPiece{frame.shading, laoSettings_.ambientScale, ambient, frame.raycast.cutFace}, context.image,
+                      withTubes ? &gbuffer_ : nullptr, withTubes ? tubeShading_.geometryOpacity : 0.0, tubeShading_.thicknessMm};
+}
+
+void Renderer::runSlabPass(const PassContext& context) {
+    slab_.run(slabInputs(context));
     slabUsed_ = true;
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+bool Renderer::slabSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits) {
+    SlabInputs in = slabInputs(context);
+    // Units are bands of a view-aligned slice (SlabRun); one slice at full size can take longer than the budget on
+    // a software renderer, so the probe is a single band.
+    if (!run.slab) run.slab = slab_.begin(in);
+    slabUsed_ = true;
+    if (std::uint32_t left = static_cast<std::uint32_t>(run.slab->left()); left > 0) {
+        std::uint32_t n = slabSizer_.next(budgetMs, left, 1, sliceUnits);
+        timedSlice(slabSizer_, n, [&](std::uint32_t units) { slab_.advance(in, *run.slab, units); });
+    }
+    if (!run.slab->done()) return false;
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    return true;
 }
 
 void Renderer::runComposite(const PassContext& context) {

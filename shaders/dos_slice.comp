@@ -28,6 +28,7 @@ uniform float coneRadiusPixels;    // d tan(theta) in pixels at the previous sli
 uniform int gridSize;              // n: the cone base is sampled on an n x n grid (points inside the disk)
 uniform float ambientRadiance;     // La: the ambient light of dos shading (seed 001); lao/cao use V_AO
 uniform float earlyTerminationAlpha;
+uniform int firstRow;              // the dispatch covers a band of rows from here (a slice in several dispatches)
 
 #ifdef HAS_TUBES
 // Tubes (seed 000): a tube shadows the volume behind it (Algorithm 3: geometry in the occlusion buffer), and
@@ -48,7 +49,7 @@ uniform float tubeThicknessMm;     // T
 #endif
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, firstRow);
     if (outsideImage(pixel)) return;
     vec3 direction = pixelRayDirection(pixel);
     float cosine = dot(direction, viewForward);

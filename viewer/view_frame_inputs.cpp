@@ -10,6 +10,7 @@ FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& l
     in.precomputePending = renderer.precomputePending(frame);
     in.precomputeInputs = renderer.precomputeInputsVersion();
     in.exactSize = frame.size;
+    in.exactImageOnScreen = !renderer.showsAnImage() || renderer.lastFrameExact();
     double stepMm = renderer.resolveStepMm(frame.raycast);
     in.shown = [&renderer, &loop, frame, stepMm](FrameKind kind, glm::ivec2 size) {
         FrameDescription f = decidedFrame(frame, kind, size, loop.settings().previewStepScale, stepMm);
@@ -21,7 +22,7 @@ FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& l
 bool renderDecidedImage(Renderer& renderer, const FrameDecision& decision, const FrameDescription& decided) {
     if (decision.render == FrameKind::Preview) renderer.renderPreview(decided);
     if (decision.render == FrameKind::Exact) {
-        if (decision.exactBudgetMs > 0) return renderer.advanceExact(decided, decision.exactBudgetMs);
+        if (decision.exactBudgetMs > 0) return renderer.advanceExact(decided, decision.exactBudgetMs, decision.exactSliceUnits);
         renderer.render(decided);
     }
     return decision.render != FrameKind::None;

@@ -61,11 +61,11 @@ FrameDecision ViewFrameLoop::decide(const FrameLoopInputs& in) {
         bool editing = in.now - lastPrecomputeEdit_ < settings_.settleSeconds;
         d.precomputeBudgetMs = editing ? 0.0 : settings_.precomputeBudgetMs;
         want(FrameKind::Preview, previewSize(in.exactSize));
-    } else if (adaptive && d.inMotion) {
+    } else if (adaptive && (d.inMotion || (in.exactImageOnScreen && !(in.shown && in.shown(FrameKind::Exact, in.exactSize))))) {
         want(FrameKind::Preview, previewSize(in.exactSize));
     } else {
         want(FrameKind::Exact, in.exactSize);
-        if (d.render == FrameKind::Exact && adaptive) d.exactBudgetMs = settings_.exactBudgetMs;
+        if (d.render == FrameKind::Exact && adaptive) d.exactBudgetMs = settings_.exactBudgetMs, d.exactSliceUnits = settings_.exactSliceUnits;
     }
     return d;
 }

@@ -15,9 +15,11 @@
 //     so a slow scene (or a loaded machine) drops resolution rather than frames; its ray step is
 //     `previewStepScale` times the exact frame's (VTK's interactive sample distance), halving its samples.
 //   - exact quality: the exact frame whenever it is not on screen (a hardware GPU's default).
-//   - adaptive quality computes the exact frame in slices of `exactBudgetMs` per frame (steps IV, V and VI
-//     are sliced: Renderer::advanceExact), showing the last preview meanwhile, so the window never freezes for it;
-//     the decision stays "exact" until the renderer shows it.
+//   - adaptive quality computes the exact frame in slices of `exactBudgetMs` per frame (steps IV, V, the slab
+//     pass and the ray cast are sliced: Renderer::advanceExact), showing the last preview meanwhile, so the window
+//     never freezes for it; the decision stays "exact" until the renderer shows it. When no preview is on screen
+//     (the first frame of a scene, or a change that was no motion after an exact frame) a preview comes first, so
+//     the slices are never drawn over the image on screen.
 //   - in both, while step I is to run, each frame runs slices of it for `precomputeBudgetMs` and shows a
 //     preview (phong: there is no AO yet) at the preview resolution (a full-size frame on llvmpipe would stall
 //     the window for seconds), so the window keeps presenting and the overlay shows the progress.
@@ -58,6 +60,8 @@ struct FrameLoopSettings {
     double exactBudgetMs = 60;         // adaptive quality: the exact frame in slices of this much per frame
                                        // (Renderer::advanceExact), so the window keeps presenting while it is
                                        // computed; exact quality renders it whole
+    std::uint32_t exactSliceUnits = 0; // > 0: the exact frame's slices have this many units each (tests; see
+                                       // Renderer::advanceExact), 0: as many as fit the budget
 };
 
 enum class FrameKind { None, Preview, Exact };
@@ -70,6 +74,7 @@ struct FrameDecision {
     double precomputeBudgetMs = 0;     // > 0: first run slices of step I for this long
     double exactBudgetMs = 0;          // exact frames: > 0 run the next slices of it for this long
                                        // (Renderer::advanceExact), 0 render it whole
+    std::uint32_t exactSliceUnits = 0;  // ... in slices of this many units (FrameLoopSettings::exactSliceUnits)
     bool inMotion = false;             // something moved within settleSeconds
 };
 
@@ -81,6 +86,9 @@ struct FrameLoopInputs {
     glm::ivec2 exactSize{1};           // the image size of the exact frame (the window times the user's scale)
     // Whether the renderer already shows this frame as `kind` at `size` (Renderer::showing, showingPreview).
     std::function<bool(FrameKind kind, glm::ivec2 size)> shown;
+    // The image on screen is the renderer's exact image, or there is none yet (the first frame of a scene): an
+    // exact frame in slices would be drawn over it slice by slice, so adaptive quality shows a preview first.
+    bool exactImageOnScreen = false;
 };
 
 // The frame a decision renders: `frame` at `size`, and for a preview with its ray step `rayStepScale` times

@@ -51,7 +51,7 @@ ViewerIteration stepViewer(ViewerState& viewer, Renderer& renderer, SessionStep&
         it.renderMs = msSince(imageStart);
         viewer.loop.rendered(d, it.renderMs);
         it.exactCompleted = d.render == FrameKind::Exact && shown;
-        it.rendered = shown || d.precomputeBudgetMs > 0;
+        it.rendered = shown || d.precomputeBudgetMs > 0 || (d.render == FrameKind::Exact && d.exactBudgetMs > 0);
         viewer.shownExact = renderer.lastFrameExact();
     }
     renderer.finish();

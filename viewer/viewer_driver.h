@@ -34,7 +34,8 @@ struct ViewerState {
 struct ViewerIteration {
     FrameDecision decision;
     bool precomputing = false;            // step I was pending when the loop decided
-    bool rendered = false;                // the image shown changed, or step I advanced
+    bool rendered = false;                // the image shown changed, or step I or an exact frame in slices advanced
+                                          // (the window presents it: the progress bar moves)
     bool exactCompleted = false;          // an exact frame was finished by it (in slices: by its last)
     double ms = 0;                        // wall time of its work: step I's slices, the render, finish
     double renderMs = 0;                  // of it, the image

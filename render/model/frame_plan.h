@@ -37,6 +37,7 @@ struct PassInfo {
     const char* implements;
     std::vector<Resource> reads, writes;   // every resource the pass may touch; planFrame keeps those in use
     bool ambientOcclusion;                 // counted as the frame's AO time
+    const char* activity;                  // what it computes, in a planner's words (the viewer's progress bar)
 };
 
 const PassInfo& passInfo(Pass pass);

@@ -12,6 +12,9 @@
 #include "render/transfer_function_texture.h"
 #include "render/passes/tube_set.h"
 
+#include <algorithm>
+#include <cstdint>
+
 namespace curette {
 
 // What one run of the slab pass reads and where it writes.
@@ -27,11 +30,40 @@ struct SlabInputs {
     double tubeThicknessMm = 1.0;         // the depth it absorbs that over (dos_slice.comp)
 };
 
+// Where a run of the slab pass in slices is. Its unit is a band of rows of one view-aligned slice: a slice reads
+// the last one's occlusion around each pixel, so slices run in order, but its pixels are independent, so a
+// slice may be dispatched in bands (one slice at full size can take longer than a frame on llvmpipe). The run
+// writes the pass's buffers, so another run begun meanwhile (a preview's) makes it stale: advance() refuses
+// it, and the caller begins again (Renderer: a preview restarts the exact frame).
+struct SlabRun {
+    long first = 0, last = -1;             // the slices k in [first, last], k * distanceMm deep along the view
+    double distanceMm = 0;
+    int bandsPerSlice = 1, rowsPerBand = 0;
+    long next = 0;                         // the next unit: slice first + next / bandsPerSlice, band next % bandsPerSlice
+    int current = 0;                       // occlusion_[current] holds what the slices done let through
+    std::uint64_t generation = 0;          // the begin() it belongs to
+    long slices() const { return std::max(0L, last - first + 1); }
+    long units() const { return slices() * bandsPerSlice; }
+    long left() const { return std::max(0L, units() - next); }
+    bool done() const { return next >= units(); }
+};
+
 class SlabPass {
 public:
     static constexpr long maxSlices = kMaxSlabSlices;
+    // A slice is dispatched in bands of this many rows of work groups (fewer when the image has fewer): a run
+    // of an image `height` rows high has bandsPerSlice(height) units a slice.
+    static constexpr int kGroupRowsPerBand = 12;
+    static int bandsPerSlice(int height);
 
+    // The whole pass: begin() and every slice.
     void run(const SlabInputs& in);
+    // The pass in slices, bit for bit the whole one: begin() clears the eye buffer and the occlusion (and the tubes'
+    // partial occlusion) and returns the run; advance() dispatches its next `count` units (bands of a slice; at
+    // most those left), each exactly as run() does, from inputs equal to begin()'s. Every call sets the program and its bindings
+    // afresh, so whatever ran between two calls (another pass, the window's own drawing) changes nothing.
+    SlabRun begin(const SlabInputs& in);
+    void advance(const SlabInputs& in, SlabRun& run, long count);
 
     double resolveSliceDistanceMm(const DosSettings& settings, const GpuVolume& volume) const;
     int slicesLastFrame() const { return slices_; }
@@ -46,12 +78,15 @@ private:
     // `clipDefines`: the clip meshes' and cut faces' (ClipMeshSet::addDefines, SampleShadingPiece::addCutFaceDefines).
     gl::Program& program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, gl::Defines clipDefines);
     void ensureBuffers(glm::ivec2 size);
+    // The program of `in` with every uniform and binding the slices share.
+    gl::Program& prepare(const SlabInputs& in, double sliceDistanceMm);
 
     gl::ComputeVariants programs_{"dos_slice.comp"};
     gl::Texture occlusion_[2];
     glm::ivec2 size_{0};
     int slices_ = 0;
     int last_ = 0;
+    std::uint64_t generation_ = 0;
     bool clampOcclusion_ = true;
 };
 

@@ -2,7 +2,8 @@
 // in slices of its recompute list and the ray cast in bands of tile rows give render()'s V_AO and image bit
 // for bit; the image shown stays the last one until the exact frame is done; and when the scene moves while a
 // step V is under way, it is abandoned, not finished, and CAO stays equal to a fresh renderer's (the exactness
-// contract).
+// contract). The slab pass (dos, and tubes in view) in its view-aligned slices gives render()'s image too, with
+// previews drawn between its slices.
 #include "tests/render/moving_sphere_scene.h"
 
 #include <gtest/gtest.h>
@@ -223,6 +224,95 @@ TEST(ExactInSlices, TubesAndIsmosInASlicedFrameEqualRender) {
         while (!sliced.renderer->advanceExact(sliced.frame, 0.0, 3)) ASSERT_LT(++calls, 200000);
         whole.renderer->render(whole.frame);
         EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "after a preview";
+    }
+}
+
+// The slab pass's scenes: dos alone (the clip maps, then the slab pass), and phong with a tube in view (G-buffer, slab pass,
+// composite: seed 000).
+struct SlabCase {
+    const char* name;
+    ShadingMode mode;
+    bool tubes;
+};
+constexpr SlabCase kSlabCases[] = {{"dos", ShadingMode::Dos, false}, {"phong with tubes", ShadingMode::Phong, true}};
+
+MovingSphereScene slabScene(const SlabCase& c) {
+    MovingSphereScene s(c.mode);
+    if (c.tubes) s.renderer->setTubes(test::straightTube(glm::dvec3(0, -2, 0), glm::dvec3(0, 0, 1), 14.0, 2.0, glm::vec4(1, 0.4, 0.2, 1)), TubeShading{});
+    return s;
+}
+
+// Slices of any fixed size (one per call at a zero budget; a unit is a band of rows of one view-aligned slice,
+// SlabRun) give render()'s image bit for bit, and a call runs no more units than the size: at 48 x 40 a slice is
+// one band, at 48 x 200 three. The progress rises through the pass and names it.
+TEST(ExactInSlices, TheSlabPassInSlicesOfAnySizeEqualsRender) {
+    for (const SlabCase& c : kSlabCases)
+      for (glm::ivec2 imageSize : {glm::ivec2(48, 40), glm::ivec2(48, 200)}) {
+        SCOPED_TRACE(std::string(c.name) + " at " + std::to_string(imageSize.x) + "x" + std::to_string(imageSize.y));
+        MovingSphereScene whole = slabScene(c);
+        whole.frame.size = imageSize;
+        whole.renderer->render(whole.frame);
+        ASSERT_TRUE(whole.renderer->lastPlan().runs(Pass::SlabPass));
+        const Image expected = whole.renderer->readImage();
+        const int bands = SlabPass::bandsPerSlice(imageSize.y);
+        EXPECT_EQ(bands, imageSize.y == 40 ? 1 : 3);
+        const int slices = whole.renderer->slabPass().slicesLastFrame() * bands;   // units
+        ASSERT_GT(slices, 40) << "enough units for the sizes below to mean something";
+        const std::string slabActivity = passInfo(Pass::SlabPass).activity;
+        for (std::uint32_t size : {1u, 7u, 64u, 100000u}) {
+            SCOPED_TRACE("slices of " + std::to_string(size));
+            MovingSphereScene sliced = slabScene(c);
+            sliced.frame.size = imageSize;
+            const int slabIndex = passIndex(*sliced.renderer, sliced.frame, Pass::SlabPass);
+            ASSERT_GE(slabIndex, 0);
+            int insideSlab = 0, calls = 0;
+            double progress = 0;
+            while (!sliced.renderer->advanceExact(sliced.frame, 0.0, size)) {
+                ASSERT_LT(++calls, 100000);
+                if (sliced.renderer->exactProgressLabel() == slabActivity) {
+                    ++insideSlab;
+                    EXPECT_GT(sliced.renderer->exactProgress(), progress) << "call " << calls;
+                }
+                EXPECT_GE(sliced.renderer->exactProgress(), progress);
+                progress = sliced.renderer->exactProgress();
+                EXPECT_FALSE(sliced.renderer->showing(sliced.frame));
+            }
+            // The calls that leave the slab pass under way: the one that ends the pass before it (the clip maps),
+            // then each slice of `size` but the last.
+            const int slicesCalls = (slices + int(size) - 1) / int(size);
+            EXPECT_EQ(insideSlab, slicesCalls - 1 + (slabIndex > 0 ? 1 : 0)) << "each call ran " << size << " slices of " << slices;
+            EXPECT_STREQ(sliced.renderer->exactProgressLabel(), "") << "nothing under way once done";
+            EXPECT_TRUE(sliced.renderer->showing(sliced.frame));
+            EXPECT_EQ(sliced.renderer->slabPass().slicesLastFrame() * bands, slices);
+            EXPECT_TRUE(sameImage(sliced.renderer->readImage(), expected)) << "the slab pass in slices differs from render()";
+        }
+    }
+}
+
+// Previews drawn between the slab pass's slices (the window keeps drawing while the exact frame is computed): a
+// preview at another size in the frame's own mode, and one in ismos, which with tubes redraws the tube G-buffer
+// the exact frame's slab pass and compositor read, at the preview's size. Either restarts the exact frame (a
+// preview is counted in the run: Renderer::exactJobCurrent), and the exact image stays render()'s bit for bit.
+TEST(ExactInSlices, PreviewsBetweenSlabSlicesLeaveTheExactImageIdentical) {
+    for (const SlabCase& c : kSlabCases) {
+        SCOPED_TRACE(c.name);
+        MovingSphereScene whole = slabScene(c), sliced = slabScene(c);
+        whole.renderer->render(whole.frame);
+        FrameDescription small = sliced.frame, ismos = sliced.frame;
+        small.size = {24, 20};
+        ismos.size = {30, 22};
+        ismos.shading = ShadingMode::Ismos;
+        int calls = 0;
+        for (const FrameDescription* preview : {&small, &ismos, &small}) {
+            for (int i = 0; i < 4; ++i) ASSERT_FALSE(sliced.renderer->advanceExact(sliced.frame, 0.0, 5)) << "the slab pass ended too soon";
+            ASSERT_EQ(sliced.renderer->exactProgressLabel(), std::string(passInfo(Pass::SlabPass).activity));
+            sliced.renderer->renderPreview(*preview);
+            if (c.tubes && preview == &ismos) {
+                ASSERT_TRUE(sliced.renderer->lastPlan().runs(Pass::TubeGBuffer)) << "the ismos preview redraws the G-buffer";
+            }
+        }
+        while (!sliced.renderer->advanceExact(sliced.frame, 0.0, 5)) ASSERT_LT(++calls, 100000);
+        EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "previews between slab slices changed the exact image";
     }
 }
 

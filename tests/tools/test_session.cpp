@@ -651,6 +651,26 @@ TEST(Replay, RecordMoveLightsReDerivesTheLightsFromTheKeys) {
     EXPECT_NE(unplug.output.find("--unplug"), std::string::npos) << unplug.output;
 }
 
+// curette record --press-shading MODE@FRAME: the mode's key pressed at that frame, as at the window (no device
+// needed): the frames before keep the scene's shading, the frame and those after have the mode. A mode that is
+// none, or no frame, is an error naming the option.
+TEST(Replay, RecordPressShadingSwitchesTheModeAtItsFrame) {
+    auto dir = scratch("record-shading");
+    auto scene = writeSmallIsmosScene(dir);
+    auto session = dir / "switch.jsonl";
+    Invocation rec = run("record --scene " + scene.string() + " --out " + session.string() + " --press-shading dos@4 --frames 8");
+    ASSERT_EQ(rec.exitCode, 0) << rec.output;
+    Session s = readSession(session, false);
+    ASSERT_EQ(s.frames.size(), 8u);
+    for (std::size_t f = 0; f < s.frames.size(); ++f)
+        EXPECT_EQ(s.frames[f].shading == ShadingMode::Dos, f >= 4) << "frame " << f << ": " << shadingModeName(s.frames[f].shading);
+    for (const char* bad : {"dos", "fancy@3", "dos@x", "dos@150"}) {   // 150 frames by default: 0-149
+        Invocation r = run("record --scene " + scene.string() + " --out " + (dir / "bad.jsonl").string() + " --press-shading " + bad);
+        EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
+        EXPECT_NE(r.output.find("press-shading"), std::string::npos) << bad << ": " << r.output;
+    }
+}
+
 TEST(Replay, TheShippedDemoReproducesItsPosesFromItsReports) {
     std::string demo = std::string(CURETTE_SOURCE_DIR) + "/assets/sessions/demo.jsonl";
     Session s = readSession(demo, false);

@@ -186,6 +186,36 @@ TEST(ViewFrameLoop, ThePreviewResolutionFollowsItsCostWithinItsBounds) {
     EXPECT_DOUBLE_EQ(run.loop.previewScale(), 0.5);
 }
 
+// An exact frame in slices writes the exact image slice by slice. When that image is what is on screen, or there
+// is none yet (a scene's first frame), adaptive quality draws a preview first so the slices are never shown half
+// done; exact quality renders whole and needs none; with a preview on screen the slices start at once.
+TEST(ViewFrameLoop, APreviewComesFirstWhenTheExactFrameWouldBeDrawnOverTheScreen) {
+    for (ViewQuality quality : {ViewQuality::Adaptive, ViewQuality::Exact}) {
+        SCOPED_TRACE(viewQualityName(quality));
+        FrameLoopSettings s;
+        s.quality = quality;
+        ViewFrameLoop loop(s);
+        FrameLoopInputs in;
+        in.now = 10;
+        in.exactSize = kWindow;
+        in.shown = [](FrameKind, glm::ivec2) { return false; };
+        in.exactImageOnScreen = true;   // nothing on screen yet, or the last exact image
+        FrameDecision d = loop.decide(in);
+        EXPECT_EQ(d.render, quality == ViewQuality::Adaptive ? FrameKind::Preview : FrameKind::Exact);
+        EXPECT_FALSE(d.inMotion);
+        in.now = 11;
+        in.exactImageOnScreen = false;   // the preview is on screen now
+        d = loop.decide(in);
+        EXPECT_EQ(d.render, FrameKind::Exact);
+        EXPECT_EQ(d.exactBudgetMs > 0, quality == ViewQuality::Adaptive);
+        // The exact frame is what is on screen: nothing to draw.
+        in.now = 12;
+        in.exactImageOnScreen = true;
+        in.shown = [](FrameKind kind, glm::ivec2) { return kind == FrameKind::Exact; };
+        EXPECT_EQ(loop.decide(in).render, FrameKind::None);
+    }
+}
+
 TEST(ViewFrameLoop, QualityNamesAndDefaults) {
     EXPECT_EQ(parseViewQuality("exact"), ViewQuality::Exact);
     EXPECT_EQ(parseViewQuality("adaptive"), ViewQuality::Adaptive);

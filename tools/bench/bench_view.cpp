@@ -7,6 +7,8 @@
 //      recorded frames the renderer cannot keep up with are skipped, as in a live viewer), until after the last
 //      motion the exact frame is on screen (the frame intervals while in motion, and the time from the last
 //      recorded motion to the exact frame).
+// Both phases report the longest the window went without a presented frame (what `view` draws to the window when
+// nothing else happens: a new image, a slice of step I or of the exact frame, with its progress).
 // --check renders the last state once more in a fresh renderer (what `curette render` gives) and compares the
 // image hashes.
 #include "tools/bench/bench_view.h"
@@ -53,6 +55,7 @@ struct LoopFrame {
     double renderMs = 0;       // of it, the render
     FrameKind kind = FrameKind::None;
     bool exactShown = false;   // the exact frame was on screen after it (an exact frame in slices: its last)
+    bool presented = false;    // the window presents after it (ViewerIteration::rendered)
     glm::ivec2 size{0};
     bool inMotion = false;
     bool precomputing = false;
@@ -62,7 +65,7 @@ struct LoopFrame {
 };
 
 nlohmann::json toJson(const LoopFrame& f) {
-    return {{"t_s", f.t}, {"ms", f.ms}, {"render_ms", f.renderMs}, {"kind", frameKindName(f.kind)}, {"exact_shown", f.exactShown}, {"size", {f.size.x, f.size.y}},
+    return {{"t_s", f.t}, {"ms", f.ms}, {"render_ms", f.renderMs}, {"kind", frameKindName(f.kind)}, {"exact_shown", f.exactShown}, {"presented", f.presented}, {"size", {f.size.x, f.size.y}},
             {"in_motion", f.inMotion}, {"precomputing", f.precomputing}, {"step1_progress", f.progress}, {"recorded_frames_applied", f.followed},
             {"pass_ms", [&] {
                  nlohmann::json passes = nlohmann::json::object();
@@ -116,6 +119,7 @@ struct Viewer {
         out.inMotion = it.decision.inMotion;
         out.precomputing = it.precomputing;
         out.exactShown = it.exactCompleted;
+        out.presented = it.rendered;
         out.renderMs = it.renderMs;
         out.ms = it.ms;
         out.progress = renderer.precomputeProgress();
@@ -125,6 +129,19 @@ struct Viewer {
         return out;
     }
 };
+
+// The longest wall time (ms) in a phase without a presented frame: from the phase's start to its first, between
+// two, and from its last to its end.
+double longestWithoutAFrame(const std::vector<LoopFrame>& frames) {
+    double longest = 0, last = 0;
+    for (const LoopFrame& f : frames) {
+        if (!f.presented) continue;
+        longest = std::max(longest, f.t - last);
+        last = f.t;
+    }
+    if (!frames.empty()) longest = std::max(longest, frames.back().t - last);
+    return 1000 * longest;
+}
 
 // Phase 1: the first frame, step I in slices, until the exact frame is shown.
 struct FirstFrame {
@@ -329,6 +346,8 @@ int benchView(const CommandLine& cl) {
     table.add({"step I frame p50", percentile(step1Frames, 50), "ms", "per iteration during step I (slices + the preview when drawn)"});
     table.add({"step I frame max", percentile(step1Frames, 100), "ms", "the longest the window waited during step I"});
     table.add({"first exact frame", firstExactMs, "ms", "loop start to the first exact frame on screen"});
+    const double firstGapMs = longestWithoutAFrame(first), playbackGapMs = longestWithoutAFrame(played);
+    table.add({"first frame: longest without a frame", firstGapMs, "ms", "the longest the window went without presenting, loop start to the first exact frame"});
     table.add({"motion frames", static_cast<double>(intervals.size()), "", "presented frames in motion during playback"});
     table.add({"motion frame p50", percentile(intervals, 50), "ms", "interval between presented frames while in motion"});
     table.add({"motion frame p90", percentile(intervals, 90), "ms", "(same)"});
@@ -349,6 +368,7 @@ int benchView(const CommandLine& cl) {
     table.add({"exact frame recast", renderer.lastRecastShare(), "", "share of the pixels its ray cast covered (the rest kept: --recast changed)"});
     table.add({"exact frame slices", static_cast<double>(exactSlices), "", "iterations that ran it (--exact-budget 0: one)"});
     table.add({"settle frame max", settleFrameMaxMs, "ms", "the longest the window waited between the last motion and the exact frame"});
+    table.add({"playback: longest without a frame", playbackGapMs, "ms", "the longest the window went without presenting during the playback"});
     table.add({"last frame exact", lastIsExact ? "yes" : "NO", "", "the image on screen at the end is the exact frame of the last state"});
     if (freshHash) table.add({"equals a fresh render", *freshHash == hash ? "yes" : "NO", "", "image hash against a fresh renderer of the last state"});
     table.print();
@@ -389,6 +409,7 @@ int benchView(const CommandLine& cl) {
         {"exact_recast_share", renderer.lastRecastShare()},
         {"exact_ao", {{"voxels", aoStats.voxels}, {"visited", aoStats.dispatched}, {"recomputed", aoStats.recomputed}}},
         {"settle_frame_max_ms", settleFrameMaxMs},
+        {"longest_without_a_frame_ms", {{"first_frame", firstGapMs}, {"playback", playbackGapMs}, {"max", std::max(firstGapMs, playbackGapMs)}}},
         {"last_frame", {{"exact", lastIsExact}, {"image_hash", hash}, {"size", {size.x, size.y}}}},
         {"tables", {table.toJson()}},
         {"first_phase_frames", firstJson},

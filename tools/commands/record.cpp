@@ -14,6 +14,7 @@
 #include "base/error.h"
 #include "input/devices/encoders.h"
 #include "input/hid/fake_backend.h"
+#include "render/model/shading_mode.h"
 
 #include <cmath>
 #include <cstdio>
@@ -122,7 +123,7 @@ int record(const CommandLine& cl) {
     int unplugFrame = cl.value("unplug") ? CommandLine::parseInt("unplug", *cl.value("unplug"), 0, frames - 1) : -1;
     bool moveLights = cl.flag("move-lights");
     std::vector<const SyntheticKind*> kinds;
-    if (!moveLights || cl.value("synthetic")) {   // with --move-lights, devices are optional
+    if (cl.value("synthetic")) {   // with --move-lights or --press-shading, devices are optional
         std::string list = cl.required("synthetic");
         std::size_t start = 0;
         while (start <= list.size()) {
@@ -137,6 +138,18 @@ int record(const CommandLine& cl) {
         }
     }
     if (unplugFrame >= 0 && kinds.empty()) throw InputError("<command line>", "--unplug", "together with --synthetic (a device to unplug)");
+    // --press-shading MODE@FRAME: the key of MODE (1-6) pressed at FRAME, as at the window (a scripted mode switch).
+    std::optional<std::pair<int, input::Key>> shadingPress;
+    if (auto press = cl.value("press-shading")) {
+        std::size_t at = press->find('@');
+        std::optional<ShadingMode> mode = parseShadingMode(press->substr(0, std::min(at, press->size())));
+        if (at == std::string::npos || !mode)
+            throw InputError("<command line>", "--press-shading", "MODE@FRAME, MODE one of " + shadingModeList(), "\"" + *press + "\"");
+        int frame = CommandLine::parseInt("press-shading", press->substr(at + 1), 0, frames - 1);
+        input::Key key = *mode == ShadingMode::Ismos ? input::Key::Digit6 : static_cast<input::Key>(static_cast<int>(input::Key::Digit1) + static_cast<int>(*mode));
+        shadingPress = std::make_pair(frame, key);
+    }
+    if (!moveLights && !shadingPress && !cl.value("synthetic")) (void)cl.required("synthetic");
     input::MappingConfig mapping = cl.value("mapping") ? input::loadMapping(*cl.value("mapping")) : input::defaultMapping();
 
     LoadedScene loaded = loadSceneWithVolume(scenePath);
@@ -193,6 +206,7 @@ int record(const CommandLine& cl) {
             }
         double frameDt = f == 0 ? 0.0 : dt;
         input::KeyboardMouseState keys = moveLights ? scriptedLightKeys(f, frames, lightPhase) : input::KeyboardMouseState{};
+        if (shadingPress && f == shadingPress->first) keys.keys |= 1u << static_cast<int>(shadingPress->second);
         InputFrame inputFrame = input.step(now, keys, frameDt, static_cast<int>(state.meshes.size()));
         step.apply(inputFrame.actions, size.y);
         state.toggleRecording = state.screenshot = false;   // nothing to toggle or capture headless
@@ -210,7 +224,7 @@ Command recordCommand() {
     return {{"record", "--scene S --out F.jsonl --synthetic DEVICES", "record a session headless from scripted devices",
              {{"scene", true, "scene file (JSON)"},
               {"out", true, "session file to write (.jsonl)"},
-              {"synthetic", true, "comma-separated devices: " + kindList() + " (optional with --move-lights)"},
+              {"synthetic", true, "comma-separated devices: " + kindList() + " (optional with --move-lights or --press-shading)"},
               {"frames", true, "frames to record (default 150)"},
               {"fps", true, "frames per second of session time (default 30)"},
               {"report-hz", true, "reports per second per device (default 125)"},
@@ -218,7 +232,8 @@ Command recordCommand() {
               {"mapping", true, "mapping JSON (default: the shipped assets/input/default_mapping.json)"},
               {"size", true, "image size WxH recorded for the frames (default: the scene's)", "WxH"},
               {"unplug", true, "FRAME: unplug the last device there and plug it back one second later"},
-              {"move-lights", false, "also turn the lights with scripted keys (I/J/K/L, O) and Shift + left drags"}}},
+              {"move-lights", false, "also turn the lights with scripted keys (I/J/K/L, O) and Shift + left drags"},
+              {"press-shading", true, "MODE@FRAME: press the key of shading MODE (1-6) at FRAME, as at the window", "MODE@FRAME"}}},
             &record};
 }
 

@@ -1,0 +1,98 @@
+// A mode switch in the viewer's iteration (viewer/viewer_driver.h: what the window and `bench view` run) never
+// leaves the window without a frame, said as work per iteration rather than time: the first frame of a scene is
+// a preview; pressing 5 (dos) previews at once without the slab pass; then each iteration runs at most one slice's
+// worth of the dos frame's slab pass (units: bands of rows of its view-aligned slices) and presents the preview with the progress, until the exact frame is shown,
+// which is a fresh renderer's dos image. The slices' size is fixed and the budget is so small that every
+// iteration runs one slice; no time is asserted.
+#include "session/interaction.h"
+#include "session/loaded_scene.h"
+#include "session/session_step.h"
+#include "viewer/viewer_driver.h"
+#include "render/renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace curette {
+namespace {
+
+const std::string kSource = CURETTE_SOURCE_DIR;
+
+TEST(ViewerDriver, ASwitchToDosPresentsEveryIterationAndNeverRunsTheWholeSlabPass) {
+    LoadedScene loaded = loadSceneWithVolume(kSource + "/assets/scenes/head.json");
+    auto context = gl::createHeadlessContext();
+    Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, renderer);
+    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+    ASSERT_EQ(step.state().shading, ShadingMode::Phong);
+    FrameLoopSettings settings;
+    settings.quality = ViewQuality::Adaptive;
+    settings.exactBudgetMs = 1e-6;    // one slice an iteration
+    constexpr std::uint32_t kSlices = 40;
+    settings.exactSliceUnits = kSlices;
+    ViewerState viewer(settings);
+    const glm::ivec2 size{64, 48};
+    const glm::vec4 background(loaded.scene.background);
+    double now = 0;
+    auto iterate = [&](bool moved) {
+        now += 1.0;   // a second an iteration: a motion has settled by the next one
+        return stepViewer(viewer, renderer, step, loaded.tracts, size, now, moved, background);
+    };
+
+    // The first frame of the scene: a preview before any slice of the exact frame.
+    ViewerIteration first = iterate(false);
+    EXPECT_EQ(first.decision.render, FrameKind::Preview) << "the first frame of a scene presents a preview first";
+    EXPECT_TRUE(first.rendered);
+    for (int i = 0; i < 1000 && !viewer.shownExact; ++i) ASSERT_TRUE(iterate(false).rendered);
+    ASSERT_TRUE(viewer.shownExact);
+
+    // 5: dos.
+    step.state().shading = ShadingMode::Dos;
+    ViewerIteration switched = iterate(true);
+    EXPECT_EQ(switched.decision.render, FrameKind::Preview);
+    EXPECT_TRUE(switched.rendered);
+    EXPECT_FALSE(renderer.lastPlan().runs(Pass::SlabPass)) << "the preview of dos runs no slab pass";
+
+    int iterations = 0, slabIterations = 0;
+    long slabSlices = 0;
+    double progress = 0;
+    bool done = false;
+    while (!done) {
+        ASSERT_LT(++iterations, 100000);
+        ViewerIteration it = iterate(false);
+        ASSERT_EQ(it.decision.render, FrameKind::Exact);
+        EXPECT_TRUE(it.rendered) << "iteration " << iterations << " presented nothing";
+        done = it.exactCompleted;
+        if (done) break;
+        EXPECT_FALSE(viewer.shownExact) << "the preview stays on screen while the exact frame is computed";
+        EXPECT_FALSE(renderer.lastFrameExact());
+        if (renderer.exactProgressLabel() != std::string(passInfo(Pass::SlabPass).activity)) continue;
+        ++slabIterations;
+        slabSlices = renderer.slabPass().slicesLastFrame() * SlabPass::bandsPerSlice(size.y);   // units: bands of slices
+        // The dos frame's plan is the clip maps (none here) and the slab pass: its progress is the slices done.
+        double slicesRun = (renderer.exactProgress() - progress) * double(slabSlices);
+        EXPECT_LE(std::lround(slicesRun), long(kSlices)) << "iteration " << iterations << " ran more than a slice";
+        progress = renderer.exactProgress();
+    }
+    ASSERT_GT(slabSlices, long(2 * kSlices)) << "the slab pass must be longer than a few slices for the test to mean something";
+    EXPECT_EQ(slabIterations, (slabSlices + kSlices - 1) / kSlices - 1) << "one slice an iteration, the last one finishing the frame";
+    EXPECT_TRUE(viewer.shownExact);
+    EXPECT_TRUE(renderer.lastPlan().runs(Pass::SlabPass));
+
+    // The exact frame is what a fresh renderer gives for the dos frame.
+    Image shown = renderer.readImage();
+    Renderer fresh(*context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, fresh);
+    FrameDescription frame = viewerFrame(viewer, step, size);
+    ASSERT_EQ(frame.shading, ShadingMode::Dos);
+    fresh.render(frame);
+    Image expected = fresh.readImage();
+    ASSERT_EQ(shown.pixels.size(), expected.pixels.size());
+    EXPECT_TRUE(std::equal(shown.pixels.begin(), shown.pixels.end(), expected.pixels.begin(),
+                           [](const glm::vec4& a, const glm::vec4& b) { return a == b; }))
+        << "the exact frame in slices differs from a fresh render";
+}
+
+}  // namespace
+}  // namespace curette
