@@ -211,7 +211,9 @@ void ViewPanels::transferFunctionPanel(const InteractionState& state, std::vecto
         auto& p = changed.color[static_cast<std::size_t>(selectedColor_)];
         float rgb[3] = {static_cast<float>(p.rgb.r), static_cast<float>(p.rgb.g), static_cast<float>(p.rgb.b)};
         ImGui::Text("colour point %d at %.4g", selectedColor_, p.value);
-        if (ImGui::ColorEdit3("colour", rgb)) {
+        bool picked = ImGui::ColorEdit3("colour", rgb);
+        tooltip("the colour the transfer function gives at this value (colours between points are blended)");
+        if (picked) {
             p.rgb = glm::clamp(glm::dvec3(rgb[0], rgb[1], rgb[2]), 0.0, 1.0);
             dirty = true;
         }
@@ -223,7 +225,9 @@ void ViewPanels::transferFunctionPanel(const InteractionState& state, std::vecto
     // a flat 1 to shape from.
     bool gradientOn = !changed.gradientOpacity.empty();
     const double gradientHi = std::max({maxGradient_, gradientOn ? changed.gradientOpacity.back().value : 0.0, 1e-6});
-    if (ImGui::Checkbox("gradient opacity", &gradientOn)) {
+    bool gradientClicked = ImGui::Checkbox("gradient opacity", &gradientOn);
+    tooltip("scale the opacity by how sharply the value changes: shows boundaries, hides flat regions");
+    if (gradientClicked) {
         changed.gradientOpacity.clear();
         if (gradientOn) changed.gradientOpacity = {{0.0, 1.0}, {gradientHi, 1.0}};
         draggedGradient_ = -1;
@@ -252,8 +256,12 @@ void ViewPanels::transferFunctionPanel(const InteractionState& state, std::vecto
             }
         ImGui::EndCombo();
     }
+    tooltip("a shipped transfer function (assets/tf): CT bone, soft tissue, MRI ...");
     ImGui::InputText("TF file", tfPath_, sizeof tfPath_);
-    if (ImGui::Button("load TF")) {
+    tooltip("a transfer function file: curette JSON or 3D Slicer .vp (by its extension)");
+    bool load = ImGui::Button("load TF");
+    tooltip("replace the transfer function by the file's");
+    if (load) {
         try {
             edits.push_back(edit(Setting::TransferFunction, tfJson(io::readTransferFunction(tfPath_))));
             messages_.push_back(std::string("loaded ") + tfPath_);
@@ -262,10 +270,12 @@ void ViewPanels::transferFunctionPanel(const InteractionState& state, std::vecto
         }
     }
     ImGui::SameLine();
-    if (ImGui::Button("save TF (.json or .vp)")) {
+    bool save = ImGui::Button("save TF (.json or .vp)");
+    tooltip("write the transfer function on screen to the file named above");
+    if (save) {
         try {
             io::writeTransferFunction(tfPath_, tf);
-            messages_.push_back(std::string("wrote ") + tfPath_);
+            messages_.push_back("wrote the transfer function to " + std::filesystem::absolute(tfPath_).string());
         } catch (const std::exception& e) {
             messages_.push_back(e.what());
         }
@@ -519,7 +529,7 @@ void ViewPanels::scenePanel(const InteractionState& state, const OrbitCamera& ca
     if (save) {
         try {
             writeFileAtomically(scenePath_, planSceneJson(loaded_.scene, loaded_.scene.json.dump(), state, &camera));
-            messages_.push_back(std::string("wrote the scene ") + scenePath_);
+            messages_.push_back("wrote the scene to " + std::filesystem::absolute(scenePath_).string());
         } catch (const std::exception& e) {
             messages_.push_back(std::string("could not write the scene: ") + e.what());
         }

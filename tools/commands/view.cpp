@@ -301,14 +301,14 @@ void ViewWindow::statusLines() {
     ImGui::TextColored(viewer.shownExact ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", viewer.shownExact ? "FULL QUALITY" : "PREVIEW");
     tooltip("PREVIEW: a quick image while something moves; FULL QUALITY: the exact image, ambient occlusion exact under the carve");
     const float bar = ImGui::GetContentRegionAvail().x;
-    if (renderer.exactProgress() > 0) {   // the exact frame in slices (the preview stays on screen meanwhile)
-        char text[64];
-        std::snprintf(text, sizeof text, "full-quality image %.0f %%", 100 * renderer.exactProgress());
+    if (*renderer.exactProgressLabel()) {   // the exact frame in slices (the preview stays on screen meanwhile)
+        char text[96];
+        std::snprintf(text, sizeof text, "%s %.0f %%", renderer.exactProgressLabel(), 100 * renderer.exactProgress());
         ImGui::ProgressBar(static_cast<float>(renderer.exactProgress()), ImVec2(bar, 0), text);
     }
     if (renderer.precomputePending(frame())) {
         char text[96];
-        std::snprintf(text, sizeof text, "occlusion of the scan %.0f %%", 100 * renderer.precomputeProgress());
+        std::snprintf(text, sizeof text, "%s %.0f %%", Renderer::precomputeProgressLabel(), 100 * renderer.precomputeProgress());
         ImGui::ProgressBar(static_cast<float>(renderer.precomputeProgress()), ImVec2(bar, 0), text);
         tooltip("ambient occlusion of every voxel, computed once per transfer function; shaded without it until done");
     }
@@ -439,7 +439,7 @@ void ViewWindow::windowKeys(const Polled&) {
 void ViewWindow::logPresent(double now, const char* event) {
     if (!frameLog) return;
     *frameLog << "{\"t\": " << now - started << ", \"event\": \"" << event << "\", \"exact\": " << (viewer.shownExact ? "true" : "false")
-              << ", \"progress\": " << renderer.exactProgress() << "}\n";
+              << ", \"progress\": " << renderer.exactProgress() << ", \"work\": \"" << renderer.exactProgressLabel() << "\"}\n";
     frameLog->flush();
 }
 
