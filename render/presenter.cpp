@@ -5,12 +5,16 @@ namespace curette {
 Presenter::Presenter()
     : program_(gl::Program::graphics("present.vert", "present.frag")), emptyVertexArray_(gl::createVertexArray()) {}
 
-void Presenter::present(GLuint image, glm::ivec2 origin, glm::ivec2 size, glm::ivec2 framebufferSize, glm::vec4 background) {
+void Presenter::clear(glm::ivec2 framebufferSize, glm::vec4 background) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, framebufferSize.x, framebufferSize.y);
     glDisable(GL_SCISSOR_TEST);
     glClearColor(background.r * background.a, background.g * background.a, background.b * background.a, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
+}
+
+void Presenter::present(GLuint image, glm::ivec2 origin, glm::ivec2 size, glm::ivec2 framebufferSize, glm::vec4 background) {
+    clear(framebufferSize, background);
     glViewport(origin.x, framebufferSize.y - origin.y - size.y, size.x, size.y);   // GL's origin is bottom left
     glDisable(GL_DEPTH_TEST);
     glBindTextureUnit(0, image);

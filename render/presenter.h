@@ -16,6 +16,9 @@ public:
     // `image` into the rectangle at `origin` (top left, pixels) of `size` in a framebuffer of `framebufferSize`,
     // the rest of the framebuffer cleared to the background (the side bar's panels are drawn over it).
     void present(GLuint image, glm::ivec2 origin, glm::ivec2 size, glm::ivec2 framebufferSize, glm::vec4 background);
+    // The whole framebuffer in the background colour (the window before its first image: the side bar says what
+    // is being prepared).
+    void clear(glm::ivec2 framebufferSize, glm::vec4 background);
 
 private:
     gl::Program program_;

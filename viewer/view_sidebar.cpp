@@ -62,9 +62,9 @@ void drawPlanTable(const plan::Report& r, bool current) {
     if (!anyStructure && r.bundles.empty()) return;   // no labels and no tracts: the volume alone says it
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_BordersInnerH;
     if (!ImGui::BeginTable("plan", 3, flags)) return;
-    ImGui::TableSetupColumn("structure");
-    ImGui::TableSetupColumn("mL");
-    ImGui::TableSetupColumn("mm");
+    ImGui::TableSetupColumn("structure", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("mL", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("mm", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableHeadersRow();
     for (const plan::StructureRow& row : r.structures) {
         if (!row.touched && !row.isProtected) continue;
@@ -95,7 +95,9 @@ void drawPlanTable(const plan::Report& r, bool current) {
         ImGui::Text("%s", mm(b.marginMm).c_str());
     }
     ImGui::EndTable();
-    for (const std::string& warning : r.warnings()) ImGui::TextColored(kRed, "%s", warning.c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, kRed);
+    for (const std::string& warning : r.warnings()) ImGui::TextWrapped("%s", warning.c_str());
+    ImGui::PopStyleColor();
     ImGui::TextDisabled("mm: margin, or 'in' depth");
     tooltip("mm: the distance from the carve to the structure; 'in': how deep the carve reaches into it");
 }
@@ -111,29 +113,41 @@ void drawTractLegend(const InteractionState& state) {
             ImGui::SameLine();
             ImGui::Text("%s%s", t.name.c_str(), t.protectedBundle ? " (protected)" : "");
         } else {
-            ImGui::BulletText("%s: %s%s", t.name.c_str(), t.settings.coloring == TubeSettings::Coloring::Scalar ? "by its scalar" : "by direction",
-                              t.protectedBundle ? " (protected)" : "");
+            ImGui::Bullet();
+            ImGui::TextWrapped("%s: %s%s", t.name.c_str(), t.settings.coloring == TubeSettings::Coloring::Scalar ? "by its scalar" : "by direction",
+                               t.protectedBundle ? " (protected)" : "");
             direction |= t.settings.coloring == TubeSettings::Coloring::Direction;
         }
     }
-    if (direction) ImGui::TextDisabled("direction: red left-right, green front-back, blue up-down");
+    if (direction) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped("direction: red left-right, green front-back, blue up-down");
+        ImGui::PopStyleColor();
+    }
 }
 
 void drawHelpWindow(bool* open, ViewRect view) {
     if (!*open) return;
+    // Within the 3-D view whatever its size: a fixed width, the descriptions wrapped.
+    const float width = std::min(720.0f, static_cast<float>(view.size.x) - 24.0f);
     ImGui::SetNextWindowPos(ImVec2(view.origin.x + 0.5f * view.size.x, view.origin.y + 0.5f * view.size.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, static_cast<float>(view.size.y) - 24.0f));
     if (ImGui::Begin("help (F1, H, ? or Esc closes)", open, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
         if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
+            ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, 0.32f * width);
+            ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch);
             for (const KeyHelp& k : kKeys) {
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();
-                ImGui::TextUnformatted(k.keys);
+                ImGui::TextWrapped("%s", k.keys);
                 ImGui::TableNextColumn();
-                ImGui::TextUnformatted(k.what);
+                ImGui::TextWrapped("%s", k.what);
             }
             ImGui::EndTable();
         }
-        ImGui::TextDisabled("PREVIEW: a quick image while something moves; FULL QUALITY: the exact image, once still.");
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped("PREVIEW: a quick image while something moves; FULL QUALITY: the exact image, once still.");
+        ImGui::PopStyleColor();
     }
     ImGui::End();
 }

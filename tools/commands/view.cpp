@@ -156,7 +156,8 @@ struct ViewWindow {
     double settledAt = -1;                // when the view first settled: the exact image, the report current, nothing to do
     bool exportRequested = false;
     bool idle = false;                    // the last iteration had nothing to render
-    bool renderedBefore = false;          // the last iteration rendered: its side bar was drawn before the new image
+    bool renderedBefore = false;
+    bool welcomed = false;                // the window was drawn once before the first image was rendered          // the last iteration rendered: its side bar was drawn before the new image
 
     void message(std::string m) {
         std::printf("%s\n", m.c_str());
@@ -296,19 +297,23 @@ void ViewWindow::record(const Polled& p, const InputFrame& input) {
 
 // The status at the top of the side bar: what is on screen, what is being computed, recording, messages.
 void ViewWindow::statusLines() {
-    ImGui::Text("shading %s (1-6, C)", shadingModeName(frame().shading));
+    if (!welcomed) ImGui::TextWrapped("preparing the first image: shaders, the clip maps and the labels");
+    ImGui::Text("%s", shadingModeName(frame().shading));
+    tooltip("the shading mode: keys 1-6 choose one, C the next");
     ImGui::SameLine();
     ImGui::TextColored(viewer.shownExact ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", viewer.shownExact ? "FULL QUALITY" : "PREVIEW");
     tooltip("PREVIEW: a quick image while something moves; FULL QUALITY: the exact image, ambient occlusion exact under the carve");
     const float bar = ImGui::GetContentRegionAvail().x;
     if (*renderer.exactProgressLabel()) {   // the exact frame in slices (the preview stays on screen meanwhile)
-        char text[96];
-        std::snprintf(text, sizeof text, "%s %.0f %%", renderer.exactProgressLabel(), 100 * renderer.exactProgress());
+        ImGui::TextWrapped("computing: %s", renderer.exactProgressLabel());
+        char text[32];
+        std::snprintf(text, sizeof text, "%.0f %%", 100 * renderer.exactProgress());
         ImGui::ProgressBar(static_cast<float>(renderer.exactProgress()), ImVec2(bar, 0), text);
     }
     if (renderer.precomputePending(frame())) {
-        char text[96];
-        std::snprintf(text, sizeof text, "%s %.0f %%", Renderer::precomputeProgressLabel(), 100 * renderer.precomputeProgress());
+        ImGui::TextWrapped("computing: %s", Renderer::precomputeProgressLabel());
+        char text[32];
+        std::snprintf(text, sizeof text, "%.0f %%", 100 * renderer.precomputeProgress());
         ImGui::ProgressBar(static_cast<float>(renderer.precomputeProgress()), ImVec2(bar, 0), text);
         tooltip("ambient occlusion of every voxel, computed once per transfer function; shaded without it until done");
     }
@@ -597,6 +602,14 @@ bool ViewWindow::iterate() {
     markerRect = drawOrientationMarker(frame().camera, layout.view);
     drawRuler();
     ImGui::Render();
+    if (!welcomed) {   // the first image of a scene takes seconds here: the window and the side bar come first
+        presenter.clear(window.framebufferSize(), background());
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        window.swapBuffers();
+        logPresent(p.now, "preparing");
+        welcomed = true;
+        return true;
+    }
     bool presented = false;
     if (p.framebuffer.x > 0 && p.framebuffer.y > 0) {
         if (!renderAndPresent(p, changes.any() || cameraMoving, presented)) return false;
