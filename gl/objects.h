@@ -56,6 +56,16 @@ using Query = Object<QueryTraits>;
 
 inline Buffer createBuffer() { GLuint n = 0; glCreateBuffers(1, &n); return Buffer(n); }
 inline Texture createTexture(GLenum target) { GLuint n = 0; glCreateTextures(target, 1, &n); return Texture(n); }
+// A 2-D texture of one level, sampled without filtering (a per-pixel buffer a pass writes and reads), labelled
+// for GL debuggers.
+inline Texture createPixelBuffer2D(GLenum format, int width, int height, const char* label) {
+    Texture t = createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(t.name(), 1, format, width, height);
+    glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glObjectLabel(GL_TEXTURE, t.name(), -1, label);
+    return t;
+}
 inline Framebuffer createFramebuffer() { GLuint n = 0; glCreateFramebuffers(1, &n); return Framebuffer(n); }
 inline Renderbuffer createRenderbuffer() { GLuint n = 0; glCreateRenderbuffers(1, &n); return Renderbuffer(n); }
 inline VertexArray createVertexArray() { GLuint n = 0; glCreateVertexArrays(1, &n); return VertexArray(n); }

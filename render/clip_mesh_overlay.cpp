@@ -27,14 +27,7 @@ ClipMeshOverlay::~ClipMeshOverlay() = default;
 
 void ClipMeshOverlay::ensureBuffer(glm::ivec2 size) {
     if (size == bufferSize_ && framebuffer_) return;
-    auto makeTexture = [&](GLenum format, const char* label) {
-        gl::Texture t = gl::createTexture(GL_TEXTURE_2D);
-        glTextureStorage2D(t.name(), 1, format, size.x, size.y);
-        glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glObjectLabel(GL_TEXTURE, t.name(), -1, label);
-        return t;
-    };
+    auto makeTexture = [&](GLenum format, const char* label) { return gl::createPixelBuffer2D(format, size.x, size.y, label); };
     fill_ = makeTexture(GL_RGBA16F, "clip-mesh overlay fill");
     normalSlot_ = makeTexture(GL_RGBA16F, "clip-mesh overlay normal and mesh");
     outline_ = makeTexture(GL_RGBA8, "clip-mesh overlay outline colour");

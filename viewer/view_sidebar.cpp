@@ -55,6 +55,12 @@ void tooltip(const char* text) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
 }
 
+void note(const char* text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("%s", text);
+    ImGui::PopStyleColor();
+}
+
 void drawPlanTable(const plan::Report& r, bool current) {
     ImGui::Text("removed %.2f +-%.2f mL%s", r.removedMl, r.removedUncertaintyMl, current ? "" : " (updating)");
     tooltip("tissue the clip meshes remove, from sub-voxel coverage; +- the partly covered voxels' share");
@@ -98,7 +104,7 @@ void drawPlanTable(const plan::Report& r, bool current) {
     ImGui::PushStyleColor(ImGuiCol_Text, kRed);
     for (const std::string& warning : r.warnings()) ImGui::TextWrapped("%s", warning.c_str());
     ImGui::PopStyleColor();
-    ImGui::TextDisabled("mm: margin, or 'in' depth");
+    note("mm: margin, or 'in' depth");
     tooltip("mm: the distance from the carve to the structure; 'in': how deep the carve reaches into it");
 }
 
@@ -119,11 +125,7 @@ void drawTractLegend(const InteractionState& state) {
             direction |= t.settings.coloring == TubeSettings::Coloring::Direction;
         }
     }
-    if (direction) {
-        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-        ImGui::TextWrapped("direction: red left-right, green front-back, blue up-down");
-        ImGui::PopStyleColor();
-    }
+    if (direction) note("direction: red left-right, green front-back, blue up-down");
 }
 
 void drawHelpWindow(bool* open, ViewRect view) {
@@ -145,9 +147,7 @@ void drawHelpWindow(bool* open, ViewRect view) {
             }
             ImGui::EndTable();
         }
-        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-        ImGui::TextWrapped("PREVIEW: a quick image while something moves; FULL QUALITY: the exact image, once still.");
-        ImGui::PopStyleColor();
+        note("PREVIEW: a quick image while something moves; FULL QUALITY: the exact image, once still.");
     }
     ImGui::End();
 }

@@ -25,5 +25,7 @@ ViewRect drawOrientationMarker(const OrbitCamera& camera, ViewRect view);
 
 // A tooltip for the last widget (every panel control has one).
 void tooltip(const char* text);
+// A note in the disabled colour, wrapped at the side bar's width.
+void note(const char* text);
 
 }  // namespace curette

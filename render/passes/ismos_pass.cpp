@@ -12,14 +12,7 @@ bool usesExact(const IsmosSettings& s) { return s.partial && !s.fit; }
 bool usesFit(const IsmosSettings& s) { return s.partial && s.fit; }
 int layerCount(const IsmosSettings& s) { return std::clamp(s.layers, 1, 4); }
 
-gl::Texture image2D(GLenum format, glm::ivec2 size, const char* label) {
-    gl::Texture t = gl::createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(t.name(), 1, format, size.x, size.y);
-    glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glObjectLabel(GL_TEXTURE, t.name(), -1, label);
-    return t;
-}
+gl::Texture image2D(GLenum format, glm::ivec2 size, const char* label) { return gl::createPixelBuffer2D(format, size.x, size.y, label); }
 }  // namespace
 
 void IsmosPass::addLayerDefines(gl::Defines& defines, const IsmosSettings& s) {

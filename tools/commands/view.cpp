@@ -76,7 +76,16 @@ void latchKey(GLFWwindow*, int key, int, int action, int) {
     latchedWindowKeys.push_back(key);
 }
 void noteCursor(GLFWwindow*, double, double) { windowEvent = true; }
-void noteButton(GLFWwindow*, int, int, int) { windowEvent = true; }
+// Ctrl + left presses, latched like the keys: a click pressed and released between two polls still counts.
+std::vector<glm::dvec2> latchedCtrlClicks;
+void noteButton(GLFWwindow* w, int button, int action, int mods) {
+    windowEvent = true;
+    if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS && (mods & GLFW_MOD_CONTROL)) {
+        glm::dvec2 at;
+        glfwGetCursorPos(w, &at.x, &at.y);
+        latchedCtrlClicks.push_back(at);
+    }
+}
 void noteScroll(GLFWwindow*, double, double) { windowEvent = true; }
 void noteRefresh(GLFWwindow*) { windowEvent = true; }
 void noteSize(GLFWwindow*, int, int) { windowEvent = true; }
@@ -240,7 +249,9 @@ ViewWindow::Polled ViewWindow::poll() {
     bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
     // Ctrl + left click picks the first visible surface under the cursor (the crosshair, the ruler) instead.
     bool ctrl = glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
-    if (left && ctrl && !orbiting) viewClick = cursor * pixelsPerPoint;
+    for (glm::dvec2 at : latchedCtrlClicks)
+        if (layout.view.contains(at * pixelsPerPoint) && !io.WantCaptureMouse) viewClick = at * pixelsPerPoint;
+    latchedCtrlClicks.clear();
     p.cameraBefore = frame().camera;
     if (left && orbiting && !shift && !ctrl) frame().camera.orbit(-0.4 * delta.x / pixelsPerPoint, 0.4 * delta.y / pixelsPerPoint);
     if (inView && !io.WantCaptureMouse && io.MouseWheel != 0) frame().camera.zoom(std::pow(0.9, io.MouseWheel));
@@ -327,7 +338,7 @@ void ViewWindow::statusLines() {
                 ImGui::SetTooltip("the selected tool's surface to the nearest protected structure, live: the gap lies in [%.1f, %.1f] mm.\n"
                                   "The plan's margins (from what is removed) follow once the tools are still.", c->mm, c->mm + c->uncertaintyMm);
         } else if (selected >= 0 && selected < static_cast<int>(state().meshes.size())) {
-            ImGui::TextDisabled("distance to protected structures: preparing");
+            note("distance to protected structures: preparing");
         }
     }
     if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %zu frames (F9 stops)", recording->frames());
@@ -397,7 +408,7 @@ std::vector<SettingEdit> ViewWindow::drawSidebar() {
     if (ImGui::BeginTabBar("tabs")) {
         if (ImGui::BeginTabItem("Plan")) {
             if (const std::optional<plan::Report>& r = report.report()) drawPlanTable(*r, report.current(renderer.clipMeshes(), state()));
-            else ImGui::TextDisabled("the report follows once the meshes are still");
+            else note("the report follows once the tools are still");
             if (ImGui::Button("write the plan (F5)")) exportRequested = true;
             tooltip("the report, the removed region and the exports, into a new folder beside where curette was started");
             drawTractLegend(state());
