@@ -61,6 +61,15 @@ struct PreparedMesh {
 
 }  // namespace
 
+std::vector<glm::dvec3> PosedMesh::worldVertices() const {
+    std::vector<glm::dvec3> world;
+    if (!geometry) return world;
+    const glm::dmat4 toWorld = pose.matrix();
+    world.reserve(geometry->positions.size());
+    for (const glm::vec3& p : geometry->positions) world.emplace_back(toWorld * glm::dvec4(scale * glm::dvec3(p), 1.0));
+    return world;
+}
+
 InsideTest insideAnyMesh(std::vector<PosedMesh> meshes) {
     std::vector<PreparedMesh> prepared;
     for (const PosedMesh& m : meshes) {

@@ -70,6 +70,8 @@ struct PosedMesh {
     std::shared_ptr<const clip::TriangleMesh> geometry;
     clip::RigidPose pose;
     glm::dvec3 scale{1.0};
+    // The mesh's vertices in world RAS mm, in the order of geometry->positions (empty without geometry).
+    std::vector<glm::dvec3> worldVertices() const;
 };
 
 // The union of the posed meshes: inside when clip::containsPoint(mesh, local) for any of them, with

@@ -1,7 +1,5 @@
 #include "plan/tool_clearance.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -24,10 +22,7 @@ ToolClearance::ToolClearance(glm::ivec3 dims, const glm::dmat4& indexToWorld, co
 
 std::optional<Clearance> ToolClearance::of(const PosedMesh& tool) const {
     if (empty() || !tool.geometry) return std::nullopt;
-    const glm::dmat4 toWorld = tool.pose.matrix() * glm::scale(glm::dmat4(1.0), tool.scale);
-    std::vector<glm::dvec3> world;
-    world.reserve(tool.geometry->positions.size());
-    for (const glm::vec3& p : tool.geometry->positions) world.emplace_back(toWorld * glm::dvec4(glm::dvec3(p), 1.0));
+    const std::vector<glm::dvec3> world = tool.worldVertices();
     double lower = std::numeric_limits<double>::infinity(), upper = lower;
     Clearance c;
     // Each triangle on a barycentric grid of n steps per edge: every point of it lies within a sub-triangle's

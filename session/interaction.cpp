@@ -168,6 +168,12 @@ std::vector<SessionMesh> InteractionState::sessionPoses() const {
     return out;
 }
 
+std::vector<plan::PosedMesh> InteractionState::posedMeshes() const {
+    std::vector<plan::PosedMesh> out;
+    for (const MeshState& m : meshes) out.push_back({m.geometry, m.pose, m.scale});
+    return out;
+}
+
 std::vector<SessionLight> InteractionState::sessionLights() const {
     std::vector<SessionLight> out;
     for (const Light& l : lights) out.push_back({l.direction, l.cameraSpace});

@@ -10,6 +10,7 @@
 #include "mesh/limits.h"
 #include "mesh/rigid_pose.h"
 #include "mesh/triangle_mesh.h"
+#include "plan/removal_field.h"
 #include "input/actions.h"
 #include "render/model/camera.h"
 #include "render/model/frame.h"
@@ -83,6 +84,7 @@ struct InteractionState {
                                              const std::filesystem::path& sceneDirectory, const std::string& source);
     std::vector<SessionMeshStart> sessionMeshes() const;   // for a session header
     std::vector<SessionMesh> sessionPoses() const;         // for a session frame
+    std::vector<plan::PosedMesh> posedMeshes() const;      // for the CPU clip test, picks and slices
     std::vector<SessionLight> sessionLights() const;       // for a session header
     std::vector<glm::dvec3> lightDirections() const;       // for a session frame
     int indexOf(int meshId) const;  // -1 when absent

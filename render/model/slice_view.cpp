@@ -1,6 +1,7 @@
 #include "render/model/slice_view.h"
 
 #include "plan/distance_transform.h"
+#include "render/model/volume_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -99,9 +100,7 @@ SlicePlane slicePlane(glm::ivec3 dims, const glm::dmat4& indexToWorld, SliceAxis
     plane.normal = axes.normal;
     double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     double hi[2] = {-lo[0], -lo[1]};
-    for (int c = 0; c < 8; ++c) {   // the voxels' outer corners
-        glm::dvec3 index(c & 1 ? dims.x - 0.5 : -0.5, c & 2 ? dims.y - 0.5 : -0.5, c & 4 ? dims.z - 0.5 : -0.5);
-        glm::dvec3 world = glm::dvec3(indexToWorld * glm::dvec4(index, 1.0));
+    for (const glm::dvec3& world : VolumeGeometry{dims, indexToWorld}.worldCorners()) {   // the voxels' outer corners
         double u = glm::dot(world, axes.right), v = glm::dot(world, axes.down);
         lo[0] = std::min(lo[0], u), hi[0] = std::max(hi[0], u);
         lo[1] = std::min(lo[1], v), hi[1] = std::max(hi[1], v);
@@ -135,10 +134,6 @@ double sampleTrilinear(const VolumeData& volume, const glm::dmat4& worldToIndex,
 
 }  // namespace
 
-double sampleWorldTrilinear(const VolumeData& volume, glm::dvec3 world) {
-    return sampleTrilinear(volume, glm::inverse(volume.indexToWorld), world);
-}
-
 std::optional<glm::ivec3> nearestVoxel(glm::ivec3 dims, const glm::dmat4& worldToIndex, glm::dvec3 world) {
     glm::dvec3 index = glm::dvec3(worldToIndex * glm::dvec4(world, 1.0));
     glm::ivec3 v(glm::floor(index + 0.5));
@@ -165,13 +160,9 @@ SliceLabelSet sliceLabelSet(const LabelMap& onScanGrid, const LabelTable& table,
 std::vector<std::pair<glm::dvec3, glm::dvec3>> meshCrossSection(const plan::PosedMesh& mesh, const SlicePlane& plane) {
     std::vector<std::pair<glm::dvec3, glm::dvec3>> segments;
     if (!mesh.geometry) return segments;
-    const glm::dmat4 toWorld = mesh.pose.matrix();
-    std::vector<glm::dvec3> world(mesh.geometry->positions.size());
+    const std::vector<glm::dvec3> world = mesh.worldVertices();
     std::vector<double> offset(world.size());
-    for (std::size_t i = 0; i < world.size(); ++i) {
-        world[i] = glm::dvec3(toWorld * glm::dvec4(mesh.scale * glm::dvec3(mesh.geometry->positions[i]), 1.0));
-        offset[i] = plane.offsetMm(world[i]);
-    }
+    for (std::size_t i = 0; i < world.size(); ++i) offset[i] = plane.offsetMm(world[i]);
     // A vertex exactly on the plane counts as above it, so each crossing triangle has exactly two crossing edges.
     for (const glm::uvec3& t : mesh.geometry->triangles) {
         glm::dvec3 points[2];

@@ -66,9 +66,6 @@ struct SlicePlane {
 // grid's smallest spacing (plan::gridSpacingMm).
 SlicePlane slicePlane(glm::ivec3 dims, const glm::dmat4& indexToWorld, SliceAxis axis, glm::dvec3 crosshair);
 
-// The physical value at a world point, trilinear over the voxel centres (clamped to the edge voxels
-// within half a voxel of the grid); NaN outside the grid or when a voxel with weight has no data.
-double sampleWorldTrilinear(const VolumeData& volume, glm::dvec3 world);
 
 // A label set as the slices outline it: the labels on the scan grid and, by id, the outline colour
 // (alpha 1: outlined, 0: not).

@@ -81,8 +81,7 @@ int benchReport(const CommandLine& cl) {
     std::printf("removed %.3f mL, %zu structure rows, %zu warnings\n", report.removedMl, report.structures.size(), report.warnings().size());
 
     // The oracle on the last poses.
-    std::vector<plan::PosedMesh> posed;
-    for (const MeshState& m : state.meshes) posed.push_back({m.geometry, m.pose, m.scale});
+    std::vector<plan::PosedMesh> posed = state.posedMeshes();
     plan::InsideTest inside = plan::insideAnyMesh(posed);
     const plan::RemovalField& field = reporter.lastField();
     int samples = field.samplesPerVoxel;

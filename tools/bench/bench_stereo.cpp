@@ -71,8 +71,7 @@ int benchStereo(const CommandLine& cl) {
 
     // The clip region as the scene poses it (the CPU twin of the renderer's clip test).
     InteractionState state = InteractionState::fromScene(loaded.scene);
-    std::vector<plan::PosedMesh> posed;
-    for (const MeshState& m : state.meshes) posed.push_back({m.geometry, m.pose, m.scale});
+    std::vector<plan::PosedMesh> posed = state.posedMeshes();
     SurfaceScene scene{loaded.volume, loaded.scene.transferFunction, posed.empty() ? plan::InsideTest() : plan::insideAnyMesh(posed), stepMm};
 
     const VolumeData& v = loaded.volume;

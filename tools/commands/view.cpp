@@ -525,11 +525,9 @@ void ViewWindow::pickInView() {
     viewClick.reset();
     FrameDescription shown = frame();
     shown.size = layout.view.size;
-    std::vector<plan::PosedMesh> posed;
-    for (const MeshState& m : state().meshes) posed.push_back({m.geometry, m.pose, m.scale});
     const double stepMm = renderer.resolveStepMm(shown.raycast);
     std::optional<glm::dvec3> hit = reference::pickFirstVisible(loaded.volume, state().transferFunction, shown, stepMm,
-                                                                glm::ivec2(glm::floor(at)), plan::insideAnyMesh(posed));
+                                                                glm::ivec2(glm::floor(at)), plan::insideAnyMesh(state().posedMeshes()));
     if (!hit) {
         message("nothing visible under the cursor");
         return;
@@ -542,8 +540,11 @@ void ViewWindow::placePoint(glm::dvec3 world, double uncertaintyMm) {
     slices.setCrosshair(world);
     if (!measuring) return;
     ruler.place({world, uncertaintyMm});
-    if (std::optional<RulerLength> l = ruler.length())
-        message("ruler: " + std::to_string(l->mm).substr(0, std::to_string(l->mm).find('.') + 2) + " mm");
+    if (std::optional<RulerLength> l = ruler.length()) {
+        char text[64];
+        std::snprintf(text, sizeof text, "ruler: %.1f mm (+-%.1f)", l->mm, l->uncertaintyMm);
+        message(text);
+    }
 }
 
 void ViewWindow::refreshSlices() {
