@@ -94,6 +94,7 @@ TriangleMesh makeSphere(double radius, int subdivisions) {
     for (const glm::dvec3& v : p) m.positions.emplace_back(glm::vec3(v * radius));
     m.triangles = std::move(f);
     orientOutward(m);
+    m.solid = SolidShape{SolidShape::Kind::Sphere, radius};
     return m;
 }
 
@@ -107,6 +108,7 @@ TriangleMesh makeBox(glm::dvec3 size) {
     const std::uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : quads) m.triangles.emplace_back(q[0], q[1], q[2]), m.triangles.emplace_back(q[0], q[2], q[3]);
     orientOutward(m);
+    m.solid = SolidShape{SolidShape::Kind::Box, 0, 0, size};
     return m;
 }
 
@@ -114,7 +116,9 @@ TriangleMesh makeCylinder(double radius, double height, int segments) {
     requirePositive(radius, "cylinder", "radius_mm");
     requirePositive(height, "cylinder", "height_mm");
     requireSegments(segments, 3, "cylinder", "resolution");
-    return revolve({{0, -height / 2}, {radius, -height / 2}, {radius, height / 2}, {0, height / 2}}, segments, "<cylinder>");
+    TriangleMesh m = revolve({{0, -height / 2}, {radius, -height / 2}, {radius, height / 2}, {0, height / 2}}, segments, "<cylinder>");
+    m.solid = SolidShape{SolidShape::Kind::Cylinder, radius, height};
+    return m;
 }
 
 TriangleMesh makeCone(double radius, double height, int segments) {
@@ -141,7 +145,9 @@ TriangleMesh makeCapsule(double radius, double length, int segments) {
     }
     profile.front().x = profile.back().x = 0.0;
     if (length == 0.0) profile.erase(profile.begin() + quarter + 1);  // a sphere: no duplicate equator
-    return revolve(profile, segments, "<capsule>");
+    TriangleMesh m = revolve(profile, segments, "<capsule>");
+    m.solid = SolidShape{SolidShape::Kind::Capsule, radius, length};
+    return m;
 }
 
 TriangleMesh makeTorus(double major, double minor, int majorSegments, int minorSegments) {

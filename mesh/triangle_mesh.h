@@ -3,7 +3,11 @@
 // meshes must be closed (CAO section 3.1: the inside is where the depth intervals say, so there must be an
 // inside); validateClosed checks it.
 
+#include "mesh/solid_shape.h"
+
 #include <glm/glm.hpp>
+
+#include <optional>
 
 #include <string>
 #include <vector>
@@ -14,6 +18,7 @@ struct TriangleMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec3> triangles;
     std::string source;  // file or primitive description, for messages
+    std::optional<SolidShape> solid;   // the analytic solid a primitive approximates (a drill burr removes it)
 
     glm::dvec3 boundsMin() const;
     glm::dvec3 boundsMax() const;

@@ -1,0 +1,82 @@
+#include "plan/drill_sweep.h"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace curette::plan {
+
+namespace {
+
+double distanceToSegment(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
+    glm::dvec3 ab = b - a;
+    double len2 = glm::dot(ab, ab);
+    double t = len2 > 0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (a + t * ab));
+}
+
+}  // namespace
+
+DrillSweep::DrillSweep(const DrillTool& tool, const clip::RigidPose& from, const clip::RigidPose& to, double rotationToleranceMm)
+    : tool_(tool) {
+    boundingRadiusMm_ = glm::length(tool.shape.halfExtent() * glm::abs(tool.scale));
+    // Sub-steps: a turn by angle a moves a point at distance rho from the centre by at most a * rho.
+    glm::dquat q0 = glm::normalize(from.orientation), q1 = glm::normalize(to.orientation);
+    if (glm::dot(q0, q1) < 0) q1 = -q1;
+    double angle = 2.0 * std::acos(std::clamp(std::abs(glm::dot(q0, q1)), 0.0, 1.0));
+    int n = std::max(1, static_cast<int>(std::ceil(angle * boundingRadiusMm_ / std::max(rotationToleranceMm, 1e-6))));
+    n = std::min(n, 4096);
+    auto poseAt = [&](double s) {
+        clip::RigidPose p;
+        p.position = glm::mix(from.position, to.position, s);
+        p.orientation = n == 1 ? q0 : glm::normalize(glm::slerp(q0, q1, s));
+        return p;
+    };
+    auto addStep = [&](const clip::RigidPose& start, glm::dvec3 end) {
+        Step step;
+        glm::dmat4 unscale = glm::scale(glm::dmat4(1.0), 1.0 / tool.scale);
+        step.worldToLocal = unscale * start.inverseMatrix();
+        glm::dvec3 d = end - start.position;
+        step.localMotion = glm::dvec3(step.worldToLocal * glm::dvec4(d, 0.0));
+        step.worldFrom = start.position;
+        step.worldTo = end;
+        steps_.push_back(step);
+    };
+    for (int k = 0; k < n; ++k) addStep(poseAt(double(k) / n), poseAt(double(k + 1) / n).position);
+    if (n > 1) addStep(clip::RigidPose{to.position, q1}, to.position);   // the end pose itself, at its own orientation
+    glm::dvec3 lo = glm::min(from.position, to.position), hi = glm::max(from.position, to.position);
+    boundsMin_ = lo - glm::dvec3(boundingRadiusMm_);
+    boundsMax_ = hi + glm::dvec3(boundingRadiusMm_);
+}
+
+bool DrillSweep::insideStep(const Step& step, glm::dvec3 world) const {
+    if (distanceToSegment(world, step.worldFrom, step.worldTo) > boundingRadiusMm_) return false;
+    glm::dvec3 q = glm::dvec3(step.worldToLocal * glm::dvec4(world, 1.0));
+    auto f = [&](double t) { return tool_.shape.signedDistance(q - t * step.localMotion); };
+    if (f(0.0) <= 0.0 || f(1.0) <= 0.0) return true;
+    if (glm::dot(step.localMotion, step.localMotion) == 0.0) return false;
+    // Golden-section search for the minimum of a convex function on [0, 1]; stop as soon as it is <= 0.
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    double a = 0.0, b = 1.0;
+    double c = b - g * (b - a), d = a + g * (b - a);
+    double fc = f(c), fd = f(d);
+    for (int i = 0; i < 60 && fc > 0.0 && fd > 0.0; ++i) {
+        if (fc < fd) {
+            b = d, d = c, fd = fc;
+            c = b - g * (b - a), fc = f(c);
+        } else {
+            a = c, c = d, fc = fd;
+            d = a + g * (b - a), fd = f(d);
+        }
+    }
+    return fc <= 0.0 || fd <= 0.0;
+}
+
+bool DrillSweep::contains(glm::dvec3 world) const {
+    for (const Step& step : steps_)
+        if (insideStep(step, world)) return true;
+    return false;
+}
+
+}  // namespace curette::plan

@@ -1,0 +1,166 @@
+#include "plan/removal_volume.h"
+
+#include "base/error.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace curette::plan {
+
+std::uint8_t drilledByteFromBits(int bits) {
+    constexpr int cells = kRemovalCellsPerAxis * kRemovalCellsPerAxis * kRemovalCellsPerAxis;
+    return static_cast<std::uint8_t>((bits * 255 + cells / 2) / cells);
+}
+
+RemovalVolume::RemovalVolume(glm::ivec3 dims, const glm::dmat4& indexToWorld)
+    : dims_(dims), indexToWorld_(indexToWorld), worldToIndex_(glm::inverse(indexToWorld)) {
+    if (glm::any(glm::lessThan(dims, glm::ivec3(1)))) throw InputError("<removal>", "dims", "a grid of at least one voxel", "");
+    bricks_ = (dims + kRemovalBrickSize - 1) / kRemovalBrickSize;
+    brickVersion_.assign(static_cast<std::size_t>(bricks_.x) * bricks_.y * bricks_.z, 0);
+}
+
+std::uint32_t RemovalVolume::brickNumber(glm::ivec3 b) const {
+    return static_cast<std::uint32_t>((b.z * bricks_.y + b.y) * bricks_.x + b.x);
+}
+
+glm::ivec3 RemovalVolume::brickOrigin(std::uint32_t brick) const {
+    int n = static_cast<int>(brick);
+    return glm::ivec3(n % bricks_.x, (n / bricks_.x) % bricks_.y, n / (bricks_.x * bricks_.y)) * kRemovalBrickSize;
+}
+
+namespace {
+int voxelInBrick(glm::ivec3 local) { return (local.z * kRemovalBrickSize + local.y) * kRemovalBrickSize + local.x; }
+}  // namespace
+
+std::uint64_t RemovalVolume::mask(glm::ivec3 v) const {
+    if (glm::any(glm::lessThan(v, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(v, dims_))) return 0;
+    auto it = masks_.find(brickNumber(v / kRemovalBrickSize));
+    return it == masks_.end() ? 0 : it->second[static_cast<std::size_t>(voxelInBrick(v % kRemovalBrickSize))];
+}
+
+BrickMasks RemovalVolume::brickMasks(std::uint32_t brick) const {
+    auto it = masks_.find(brick);
+    return it == masks_.end() ? BrickMasks{} : it->second;
+}
+
+void RemovalVolume::setBrick(std::uint32_t brick, const BrickMasks& masks) {
+    BrickMasks old = brickMasks(brick);
+    if (old == masks) return;
+    for (std::size_t i = 0; i < masks.size(); ++i) {
+        drilledVoxels_ -= old[i] != 0;
+        drilledVoxels_ += masks[i] != 0;
+    }
+    if (std::all_of(masks.begin(), masks.end(), [](std::uint64_t m) { return m == 0; })) masks_.erase(brick);
+    else masks_[brick] = masks;
+    brickVersion_[brick] = ++version_;
+}
+
+void RemovalVolume::setBricks(const BrickMaskMap& masks) {
+    for (const auto& [brick, m] : masks) {
+        if (brick >= brickVersion_.size()) throw InputError("<removal>", "brick", "a brick of the grid", std::to_string(brick));
+        setBrick(brick, m);
+    }
+}
+
+void RemovalVolume::clear() {
+    std::vector<std::uint32_t> held;
+    for (const auto& entry : masks_) held.push_back(entry.first);
+    for (std::uint32_t b : held) setBrick(b, BrickMasks{});
+}
+
+VoxelBox RemovalVolume::voxelBoxAround(glm::dvec3 worldMin, glm::dvec3 worldMax) const {
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (int c = 0; c < 8; ++c) {
+        glm::dvec3 w((c & 1) ? worldMax.x : worldMin.x, (c & 2) ? worldMax.y : worldMin.y, (c & 4) ? worldMax.z : worldMin.z);
+        glm::dvec3 i = glm::dvec3(worldToIndex_ * glm::dvec4(w, 1.0));
+        lo = glm::min(lo, i), hi = glm::max(hi, i);
+    }
+    glm::ivec3 first = glm::max(glm::ivec3(glm::floor(lo)) - 1, glm::ivec3(0));
+    glm::ivec3 last = glm::min(glm::ivec3(glm::ceil(hi)) + 1, dims_ - 1);
+    VoxelBox box;
+    box.origin = first;
+    box.size = glm::max(last - first + 1, glm::ivec3(0));
+    return box;
+}
+
+std::size_t RemovalVolume::apply(const InsideTest& inside, VoxelBox box, bool erase, BrickMaskMap* before) {
+    glm::ivec3 first = glm::max(box.origin, glm::ivec3(0));
+    glm::ivec3 last = glm::min(box.origin + box.size, dims_) - 1;
+    if (glm::any(glm::lessThan(last, first))) return 0;
+    std::size_t changed = 0;
+    constexpr int n = kRemovalCellsPerAxis;
+    glm::ivec3 firstBrick = first / kRemovalBrickSize, lastBrick = last / kRemovalBrickSize;
+    for (int bz = firstBrick.z; bz <= lastBrick.z; ++bz)
+        for (int by = firstBrick.y; by <= lastBrick.y; ++by)
+            for (int bx = firstBrick.x; bx <= lastBrick.x; ++bx) {
+                std::uint32_t brick = brickNumber({bx, by, bz});
+                BrickMasks masks = brickMasks(brick);
+                BrickMasks original = masks;
+                glm::ivec3 origin = glm::ivec3(bx, by, bz) * kRemovalBrickSize;
+                glm::ivec3 lo = glm::max(first, origin), hi = glm::min(last, origin + kRemovalBrickSize - 1);
+                for (int z = lo.z; z <= hi.z; ++z)
+                    for (int y = lo.y; y <= hi.y; ++y)
+                        for (int x = lo.x; x <= hi.x; ++x) {
+                            std::uint64_t& m = masks[static_cast<std::size_t>(voxelInBrick(glm::ivec3(x, y, z) - origin))];
+                            // Nothing to do where every sub-cell already is what this stroke would make it.
+                            if (erase ? m == 0 : m == ~std::uint64_t(0)) continue;
+                            std::uint64_t covered = 0;
+                            for (int k = 0; k < n; ++k)
+                                for (int j = 0; j < n; ++j)
+                                    for (int i = 0; i < n; ++i) {
+                                        glm::dvec3 index = glm::dvec3(x, y, z) + (glm::dvec3(i, j, k) + 0.5) / double(n) - 0.5;
+                                        if (inside(glm::dvec3(indexToWorld_ * glm::dvec4(index, 1.0))))
+                                            covered |= std::uint64_t(1) << ((k * n + j) * n + i);
+                                    }
+                            std::uint64_t next = erase ? (m & ~covered) : (m | covered);
+                            if (next != m) ++changed, m = next;
+                        }
+                if (masks != original) {
+                    if (before && !before->count(brick)) (*before)[brick] = original;
+                    setBrick(brick, masks);
+                }
+            }
+    return changed;
+}
+
+double RemovalVolume::drilledVolumeMm3() const {
+    double voxelMm3 = std::abs(glm::determinant(glm::dmat3(indexToWorld_)));
+    double sum = 0;
+    for (const auto& [brick, masks] : masks_)
+        for (std::uint64_t m : masks) sum += drilledByteFromBits(std::popcount(m)) / 255.0;
+    return sum * voxelMm3;
+}
+
+VoxelBox RemovalVolume::drilledBox() const {
+    if (masks_.empty()) return {};
+    glm::ivec3 lo(INT32_MAX), hi(INT32_MIN);
+    for (const auto& entry : masks_) {
+        glm::ivec3 o = brickOrigin(entry.first);
+        lo = glm::min(lo, o), hi = glm::max(hi, o + kRemovalBrickSize);
+    }
+    hi = glm::min(hi, dims_);
+    return {lo, hi - lo};
+}
+
+std::array<std::uint8_t, kRemovalBrickVoxels> RemovalVolume::brickBytes(std::uint32_t brick) const {
+    std::array<std::uint8_t, kRemovalBrickVoxels> bytes{};
+    auto it = masks_.find(brick);
+    if (it == masks_.end()) return bytes;
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = drilledByteFromBits(std::popcount(it->second[i]));
+    return bytes;
+}
+
+std::vector<std::uint32_t> RemovalVolume::bricksChangedSince(std::uint64_t version) const {
+    std::vector<std::uint32_t> out;
+    if (version >= version_) return out;
+    for (std::uint32_t b = 0; b < brickVersion_.size(); ++b)
+        if (brickVersion_[b] > version) out.push_back(b);
+    return out;
+}
+
+std::size_t RemovalVolume::storedBytes() const {
+    return masks_.size() * (sizeof(BrickMasks) + sizeof(std::uint32_t)) + brickVersion_.size() * sizeof(std::uint64_t);
+}
+
+}  // namespace curette::plan

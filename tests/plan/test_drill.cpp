@@ -1,0 +1,179 @@
+// Drilling on the CPU: the swept volume of a moving burr against analytic shapes (a sphere's straight stroke
+// is a capsule), strokes split into frames against one stroke (no ridges), a rotating burr against a densely
+// sampled union, erase, and undo/redo restoring the sub-voxel masks exactly.
+#include "mesh/primitives.h"
+#include "mesh/triangle_mesh.h"
+#include "plan/drill_history.h"
+#include "plan/drill_sweep.h"
+#include "plan/removal_volume.h"
+#include "plan_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <random>
+
+namespace curette::plan {
+namespace {
+
+using namespace testing;
+
+clip::SolidShape sphere(double r) { return clip::SolidShape{clip::SolidShape::Kind::Sphere, r}; }
+
+// Drills `tool` from pose a to pose b into `removal`.
+std::size_t drill(RemovalVolume& removal, const DrillTool& tool, const clip::RigidPose& a, const clip::RigidPose& b,
+                  bool erase = false, BrickMaskMap* before = nullptr) {
+    DrillSweep sweep(tool, a, b);
+    return removal.apply([&](glm::dvec3 w) { return sweep.contains(w); },
+                         removal.voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), erase, before);
+}
+
+clip::RigidPose at(glm::dvec3 p, glm::dquat q = glm::dquat(1, 0, 0, 0)) { return clip::RigidPose{p, q}; }
+
+TEST(SolidShape, SignedDistanceAgreesWithThePrimitiveMeshes) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-9.0, 9.0);
+    const std::vector<clip::TriangleMesh> meshes = {clip::makeSphere(5.0, 5), clip::makeBox({8, 6, 10}),
+                                                    clip::makeCylinder(4.0, 12.0, 256), clip::makeCapsule(3.0, 8.0, 256)};
+    for (const clip::TriangleMesh& mesh : meshes) {
+        ASSERT_TRUE(mesh.solid) << mesh.source;
+        int checked = 0;
+        for (int i = 0; i < 400; ++i) {
+            glm::dvec3 p(u(rng), u(rng), u(rng));
+            double d = mesh.solid->signedDistance(p);
+            if (std::abs(d) < 0.05) continue;   // the mesh is a polygonal approximation of the solid
+            EXPECT_EQ(d < 0, clip::containsPoint(mesh, p)) << mesh.source << " at " << p.x << "," << p.y << "," << p.z;
+            ++checked;
+        }
+        EXPECT_GT(checked, 300);
+    }
+    EXPECT_FALSE(clip::makeCone(3, 5).solid);
+    EXPECT_FALSE(clip::makeTorus(5, 2).solid);
+}
+
+// A straight stroke of a sphere in one frame removes its capsule: pi r^2 L + 4/3 pi r^3, within 1 %.
+TEST(Drill, AStraightStrokeOfASphereIsItsCapsule) {
+    for (glm::dvec3 spacing : {glm::dvec3(1.0), glm::dvec3(0.7, 0.8, 1.5)}) {
+        glm::ivec3 dims = dimsFor(spacing, 24.0);
+        RemovalVolume removal(dims, gridAffine(spacing, dims));
+        const double r = 2.0, length = 30.0;
+        glm::dvec3 a(-12.3, -4.1, 2.2), b = a + length * glm::normalize(glm::dvec3(0.8, 0.3, 0.5));
+        drill(removal, {sphere(r)}, at(a), at(b));
+        double analytic = kPi * r * r * length + 4.0 / 3.0 * kPi * r * r * r;
+        RecordProperty("capsule_ratio", std::to_string(removal.drilledVolumeMm3() / analytic));
+        EXPECT_NEAR(removal.drilledVolumeMm3() / analytic, 1.0, 0.01) << "spacing " << spacing.x << "," << spacing.y << "," << spacing.z;
+    }
+}
+
+// Frames are not samples: the stroke split into 7 frames removes what it removes in one (the union of the
+// pieces of a straight sweep is the whole sweep), while the burr's poses alone at the frame times would not.
+TEST(Drill, AStrokeSplitIntoFramesLeavesNoRidges) {
+    glm::ivec3 dims = dimsFor(glm::dvec3(1.0), 20.0);
+    glm::dmat4 affine = gridAffine(glm::dvec3(1.0), dims);
+    RemovalVolume whole(dims, affine), framed(dims, affine), sampled(dims, affine);
+    DrillTool tool{sphere(2.0)};
+    glm::dvec3 a(-14, 1.3, -0.4), b(14, -2.1, 3.7);
+    drill(whole, tool, at(a), at(b));
+    for (int f = 0; f < 7; ++f) {
+        clip::RigidPose p0 = at(glm::mix(a, b, f / 7.0)), p1 = at(glm::mix(a, b, (f + 1) / 7.0));
+        drill(framed, tool, p0, p1);
+        drill(sampled, tool, p1, p1);   // only where the burr is at the frame
+    }
+    EXPECT_NEAR(framed.drilledVolumeMm3(), whole.drilledVolumeMm3(), 1e-3 * whole.drilledVolumeMm3());
+    EXPECT_LT(sampled.drilledVolumeMm3(), 0.9 * whole.drilledVolumeMm3()) << "poses at frame times leave gaps";
+}
+
+// A cylinder turning 60 degrees about an axis through its centre: the sweep against the union of 301 poses
+// along the turn; the sub-steps keep every point within the rotation tolerance, so the volumes agree to the
+// shell that tolerance leaves (surface area times 0.125 mm, here under 1 %).
+TEST(Drill, ARotatingBurrSweepsItsTurn) {
+    glm::ivec3 dims = dimsFor(glm::dvec3(0.5), 8.0);
+    glm::dmat4 affine = gridAffine(glm::dvec3(0.5), dims);
+    RemovalVolume swept(dims, affine), dense(dims, affine);
+    DrillTool tool{clip::SolidShape{clip::SolidShape::Kind::Cylinder, 1.5, 8.0}};
+    glm::dquat q0(1, 0, 0, 0), q1 = glm::angleAxis(glm::radians(60.0), glm::dvec3(1, 0, 0));
+    glm::dvec3 p0(0.3, -0.2, 0.1), p1(1.9, 0.4, -0.6);
+    drill(swept, tool, at(p0, q0), at(p1, q1));
+    EXPECT_GT(DrillSweep(tool, at(p0, q0), at(p1, q1)).substeps(), 10);
+    for (int i = 0; i <= 300; ++i) {
+        double s = i / 300.0;
+        clip::RigidPose p = at(glm::mix(p0, p1, s), glm::slerp(q0, q1, s));
+        drill(dense, tool, p, p);
+    }
+    RecordProperty("rotating_ratio", std::to_string(swept.drilledVolumeMm3() / dense.drilledVolumeMm3()));
+    EXPECT_NEAR(swept.drilledVolumeMm3() / dense.drilledVolumeMm3(), 1.0, 0.01);
+}
+
+TEST(Drill, EraseRestoresWhatTheStrokeRemoved) {
+    glm::ivec3 dims = dimsFor(glm::dvec3(1.0), 12.0);
+    RemovalVolume removal(dims, gridAffine(glm::dvec3(1.0), dims));
+    drill(removal, {sphere(2.0)}, at({-5, 0, 0}), at({5, 0, 0}));
+    double full = removal.drilledVolumeMm3();
+    drill(removal, {sphere(3.0)}, at({0, 0, 0}), at({0, 0, 0}), true);
+    EXPECT_LT(removal.drilledVolumeMm3(), full - 50.0);
+    drill(removal, {sphere(3.0)}, at({-8, 0, 0}), at({8, 0, 0}), true);
+    EXPECT_TRUE(removal.empty());
+    EXPECT_EQ(removal.drilledVolumeMm3(), 0.0);
+}
+
+// Undo and redo give back the exact sub-voxel masks, a new stroke drops the redo steps, and the budget
+// forgets the oldest steps, never the removal.
+TEST(DrillHistory, UndoAndRedoRestoreTheMasksExactly) {
+    glm::ivec3 dims = dimsFor(glm::dvec3(1.0), 16.0);
+    glm::dmat4 affine = gridAffine(glm::dvec3(1.0), dims);
+    RemovalVolume removal(dims, affine);
+    DrillHistory history;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-10.0, 10.0);
+    std::vector<std::vector<std::uint64_t>> states;
+    auto snapshot = [&] {
+        std::vector<std::uint64_t> s;
+        for (int z = 0; z < dims.z; ++z)
+            for (int y = 0; y < dims.y; ++y)
+                for (int x = 0; x < dims.x; ++x) s.push_back(removal.mask({x, y, z}));
+        return s;
+    };
+    states.push_back(snapshot());
+    for (int stroke = 0; stroke < 4; ++stroke) {
+        history.beginStroke();
+        glm::dvec3 p(u(rng), u(rng), u(rng));
+        for (int frame = 0; frame < 3; ++frame) {
+            glm::dvec3 q = p + glm::dvec3(u(rng), u(rng), u(rng)) * 0.3;
+            drill(removal, {sphere(1.5 + stroke * 0.5)}, at(p), at(q), stroke == 3, history.before());
+            p = q;
+        }
+        history.endStroke(removal);
+        EXPECT_GT(history.lastStrokeBytes(), 0u);
+        states.push_back(snapshot());
+    }
+    ASSERT_EQ(history.undoSteps(), 4u);
+    for (int i = 3; i >= 0; --i) {
+        ASSERT_TRUE(history.undo(removal));
+        EXPECT_EQ(snapshot(), states[static_cast<std::size_t>(i)]) << "after undoing stroke " << i;
+    }
+    EXPECT_FALSE(history.undo(removal));
+    EXPECT_TRUE(removal.empty());
+    ASSERT_TRUE(history.redo(removal));
+    ASSERT_TRUE(history.redo(removal));
+    EXPECT_EQ(snapshot(), states[2]);
+    history.beginStroke();
+    drill(removal, {sphere(2.0)}, at({0, 0, 0}), at({1, 0, 0}), false, history.before());
+    history.endStroke(removal);
+    EXPECT_EQ(history.redoSteps(), 0u) << "a new stroke drops what could be redone";
+
+    DrillHistory small(1);   // a budget below one step: only the newest is kept
+    RemovalVolume other(dims, affine);
+    for (int i = 0; i < 3; ++i) {
+        small.beginStroke();
+        drill(other, {sphere(2.0)}, at({-8.0 + 6 * i, 0, 0}), at({-7.0 + 6 * i, 0, 0}), false, small.before());
+        small.endStroke(other);
+    }
+    EXPECT_EQ(small.undoSteps(), 1u);
+    double kept = other.drilledVolumeMm3();
+    ASSERT_TRUE(small.undo(other));
+    EXPECT_GT(other.drilledVolumeMm3(), 0.5 * kept) << "forgotten steps stay drilled";
+}
+
+}  // namespace
+}  // namespace curette::plan
