@@ -38,6 +38,8 @@ Lookup sampler(unsigned unit) {
         case b::labelField:
         case b::labelOpacity:
         case b::labelStyles: return {R::LabelVolume};
+        case b::drilledFraction:
+        case b::drillNearBricks: return {R::DrilledRemoval};
         case b::ismosLayerFront:
         case b::ismosLayerAlpha: return {R::IsmosLayers};
         case b::ismosLayerBack: return {R::IsmosLayerBacks};

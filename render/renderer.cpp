@@ -42,6 +42,7 @@ void Renderer::setLaoSettings(const LaoSettings& settings) {
 void Renderer::setTransferFunction(const TransferFunction& tf) {
     tf_ = std::make_unique<TransferFunctionTexture>(tf, volume_.valueScale(), volume_.valueOffset(), volume_.hasNoData());
     tf_->attachLabels(labels_.get());
+    tf_->attachRemoval(removalTexture_.get());
     ++versions_.transferFunction;  // V_PAO and V_AO depend on the TF (the reference implementation's bug 4)
     updateOccupancy();
 }
@@ -110,7 +111,31 @@ void Renderer::updateSeenBricks() {
 
 std::unique_ptr<AmbientOcclusion> Renderer::makeAmbientOcclusion() {
     if (!seenBricks_) updateSeenBricks();
-    return std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &seenBricks_);
+    auto ao = std::make_unique<AmbientOcclusion>(volume_, laoSettings_, &seenBricks_);
+    if (removalTexture_) ao->setRemoval(removal_.get(), removalTexture_.get());
+    return ao;
+}
+
+void Renderer::setRemoval(std::shared_ptr<const plan::RemovalVolume> removal) {
+    if (removal == removal_) return;
+    if (removal && removal->dims() != volume_.geometry().dims)
+        throw std::logic_error("Renderer::setRemoval: the removal is not on the scan grid");
+    removal_ = std::move(removal);
+    removalTexture_.reset();
+    tf_->attachRemoval(nullptr);
+    if (ao_) ao_->setRemoval(nullptr, nullptr);
+    syncRemoval();
+}
+
+void Renderer::syncRemoval() {
+    if (!removal_) return;
+    if (!removalTexture_) {
+        if (removal_->empty()) return;   // never drilled: no texture, no shader variant
+        removalTexture_ = std::make_unique<RemovalTexture>(volume_.geometry().dims, volume_.geometry().indexToWorld);
+    }
+    removalTexture_->update(*removal_, AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()));
+    tf_->attachRemoval(removalTexture_.get());
+    if (ao_) ao_->setRemoval(removal_.get(), removalTexture_.get());
 }
 
 void Renderer::ensureOutput(int index, glm::ivec2 size) {
@@ -149,6 +174,7 @@ void Renderer::clearTubes() {
 InputVersions Renderer::currentVersions() const {
     InputVersions v = versions_;
     v.clipMeshes = clip_.version();
+    v.removal = removal_ ? removal_->version() : 0;
     return v;
 }
 
@@ -183,6 +209,7 @@ PlanInputs Renderer::planInputs(const FrameDescription& frame) const {
     in.clipMeshes = clip_.count();
     in.clipMapsCurrent = clip_.mapsCurrent(dilatedMapsWanted(frame.shading));
     in.labels = labels_ != nullptr;
+    in.drilled = removalTexture_ != nullptr || (removal_ && !removal_->empty());
     in.tubes = tubes_ != nullptr;
     in.tubesInView = tubesInView(frame);
     in.precomputedCurrent = ao_ && freshness_.precomputedCurrent(now);
@@ -268,6 +295,7 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
         list.push_back({Resource::PreviewImage,
                         static_cast<std::size_t>(images_[kPreviewImage].size.x) * static_cast<std::size_t>(images_[kPreviewImage].size.y) * 16u, {}});
     if (labels_) list.push_back({Resource::LabelVolume, labels_->gpuBytes(), {}});
+    if (removalTexture_) list.push_back({Resource::DrilledRemoval, removalTexture_->gpuBytes(), {}});
     if (seenBricks_)
         list.push_back({Resource::SeenBricks, static_cast<std::size_t>(seen.x) * static_cast<std::size_t>(seen.y) * static_cast<std::size_t>(seen.z), {}});
     if (clip_.count() > 0) {

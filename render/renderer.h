@@ -39,6 +39,12 @@ public:
     void setLabels(std::unique_ptr<LabelOverlay> labels);
     void setLabelStyles(const std::vector<glm::vec4>& styles);
     const LabelOverlay* labels() const { return labels_.get(); }
+    // The drill's accumulated removal (plan/removal_volume.h; null: none): classification keeps (1 - drilled
+    // fraction) of each sample, step IV of each voxel. An input of V_o and V_AO (a change reruns IV and V over
+    // the bricks it reaches), not of V_PAO. The renderer reads it at each frame's start; it must stay alive.
+    // A scene compiles the drill into its shaders from the first frame the removal is not empty.
+    void setRemoval(std::shared_ptr<const plan::RemovalVolume> removal);
+    const plan::RemovalVolume* removal() const { return removal_.get(); }
     // LAO settings for lao/cao shading; a change recomputes V_PAO on the next AO frame.
     void setLaoSettings(const LaoSettings& settings);
     const LaoSettings& laoSettings() const { return laoSettings_; }
@@ -225,6 +231,9 @@ private:
     GpuVolume volume_;
     std::unique_ptr<TransferFunctionTexture> tf_;
     std::unique_ptr<LabelOverlay> labels_;
+    std::shared_ptr<const plan::RemovalVolume> removal_;
+    std::unique_ptr<RemovalTexture> removalTexture_;   // made at the first frame with a non-empty removal
+    void syncRemoval();   // brings the texture to the removal's version (Renderer::beginRun)
     clip::ClipMeshSet clip_;
     LaoSettings laoSettings_;
     std::unique_ptr<AmbientOcclusion> ao_;

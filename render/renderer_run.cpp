@@ -123,6 +123,7 @@ const char* Renderer::exactProgressLabel() const {
 // ---- The executor ----
 
 FrameRun Renderer::beginRun(const FrameDescription& frame, bool exact) {
+    syncRemoval();
     FrameRun run{.frame = frame, .shaded = frame, .exact = exact, .stamp = stampOf(frame), .previews = previewsRendered_};
     if (exact) {
         run.plan = plan(frame);

@@ -92,6 +92,7 @@ float TransferFunctionTexture::maxOpacity(float texelLo, float texelHi) const {
 void TransferFunctionTexture::addDefines(gl::Defines& defines) const {
     if (useGradientOpacity_) defines.emplace_back("GRADIENT_OPACITY", "1");
     if (labels_) labels_->addDefines(defines);
+    if (removal_) removal_->addDefines(defines);
 }
 
 void TransferFunctionTexture::apply(gl::Program& p) const {
@@ -101,6 +102,7 @@ void TransferFunctionTexture::apply(gl::Program& p) const {
     glBindTextureUnit(binding::transferFunction, texture_.name());
     glBindTextureUnit(binding::gradientOpacity, gradientTexture_.name());
     if (labels_) labels_->apply(p);
+    if (removal_) removal_->apply(p);
 }
 
 }  // namespace curette

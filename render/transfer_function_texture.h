@@ -17,6 +17,7 @@
 #include "gl/program.h"
 #include "base/transfer_function.h"
 #include "render/label_overlay.h"
+#include "render/removal_texture.h"
 
 #include <vector>
 
@@ -51,6 +52,8 @@ public:
     void addDefines(gl::Defines& defines) const;
     void apply(gl::Program& program) const;
     void attachLabels(const LabelOverlay* labels) { labels_ = labels; }
+    // The drilled removal (shaders/drill_removal.glsl) comes along the same way.
+    void attachRemoval(const RemovalTexture* removal) { removal_ = removal; }
 
     // Largest opacity the linearly filtered table returns for texel values in [lo, hi] (with one table
     // texel of margin for rounding of the coordinate on the GPU).
@@ -66,6 +69,7 @@ private:
     int lead_ = 0;
     TransferFunction::Material material_;
     const LabelOverlay* labels_ = nullptr;
+    const RemovalTexture* removal_ = nullptr;
 };
 
 }  // namespace curette

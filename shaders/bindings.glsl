@@ -25,6 +25,8 @@
 #define BINDING_CLIP_NORMALS 22        // sampler2DArray rg16_snorm: per depth-map pixel the mesh-local surface normal (octahedral)
 #define BINDING_LABEL_FIELD 23         // sampler3D rgba8: the shown labels' smoothed (rgb * shown, shown) on the scan grid
 #define BINDING_LABEL_OPACITY 24       // sampler3D r8: ... and their smoothed opacity * shown
+#define BINDING_DRILLED_FRACTION 25    // sampler3D r8: per voxel the drilled fraction (plan/removal_volume.h)
+#define BINDING_DRILL_NEAR_BRICKS 26   // usampler3D r8ui: per 4^3 brick 1 within the dilation radius of a drilled voxel
 
 #define IMAGE_OUTPUT 0              // image2D: the rendered RGBA
 #define IMAGE_OPACITY 1             // image3D r16: V_o written by step IV

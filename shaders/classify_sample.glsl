@@ -32,7 +32,7 @@ VolumeSample classifyOpacity(vec3 tex) {
 #endif
     s.albedo = classified.rgb;
     s.gradient = useGradientOpacity ? gradientWorld(tex) : vec3(0.0);
-    s.alphaUnit = classified.a;
+    s.alphaUnit = classified.a * drillRetainedAt(tex);
     if (useGradientOpacity) s.alphaUnit *= gradientOpacityFactor(length(s.gradient));
     return s;
 }

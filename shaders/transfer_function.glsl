@@ -2,6 +2,7 @@
 // opacity of a segment is then corrected for its length (render/transfer_function.h).
 #include "bindings.glsl"
 #include "labels.glsl"
+#include "drill_removal.glsl"
 
 layout(binding = BINDING_TRANSFER_FUNCTION) uniform sampler1D transferFunction;
 layout(binding = BINDING_GRADIENT_OPACITY) uniform sampler1D gradientOpacity;

@@ -19,6 +19,7 @@ uniform ivec3 volumeSize;
 uniform bool testDilation;
 uniform mat3 gradientToWorld;      // index gradient -> world gradient (value per mm)
 uniform float sampleReachMm;       // the farthest any of a voxel's clip samples lies from its centre
+uniform bool applyDrill;           // the drilled removal scales V_o (off in step I: V_PAO is the undrilled LAO)
 
 // TF_o of Algorithm 2: the opacity per unit length of the voxel's own value (no interpolation), with the
 // gradient-opacity factor from central differences when the TF has one (one-sided next to no data).
@@ -68,19 +69,24 @@ void main() {
     int samples = 9 + antiAliasingSamples;
     int visible = samples - (sampled != 0u ? insideSampleCount(centre, sampled) : 0);
     float unclipped = voxelOpacity(v);
-    float opacity = unclipped;
+    // The drilled removal keeps (1 - drilled fraction) of the voxel (plan/removal_volume.h); with the meshes'
+    // visible fraction it multiplies: removed = 1 - (1 - meshes)(1 - drilled).
+    float retained = applyDrill ? drillRetainedAtVoxel(v) : 1.0;
+    float opacity = unclipped * retained;
     if (visible == 0) {
         opacity = 0.0;
     } else if (visible < samples) {
         opacity *= float(visible) / float(samples);  // line 10: scaled by the visible fraction
     }
-    // Whether V_o here may differ from step I's (unclipped) value: step V recomputes LAO only within reach
-    // of such voxels (visit_bricks.glsl).
-    if (visible < samples && unclipped > 0.0) markOpacityChanged();
-    // b: the centre lies in a dilated shape (with testDilation), i.e. some mesh is left in `meshes`.
-    uint category = visible == 0 ? CATEGORY_CLIPPED
-                    : (testDilation && meshes == 0u) ? CATEGORY_UNAFFECTED
-                                                     : CATEGORY_AFFECTED;
+    // Whether V_o here may differ from step I's (unclipped, undrilled) value: step V recomputes LAO only within
+    // reach of such voxels (visit_bricks.glsl).
+    if ((visible < samples || retained < 1.0) && unclipped > 0.0) markOpacityChanged();
+    // b: the centre lies in a dilated shape (with testDilation), i.e. some mesh is left in `meshes`, or a
+    // drilled voxel lies within the dilation radius (its brick's flag).
+    bool nearDrill = applyDrill && nearDrilledVoxel(v);
+    uint category = (visible == 0 || retained == 0.0) ? CATEGORY_CLIPPED
+                    : (testDilation && meshes == 0u && !nearDrill) ? CATEGORY_UNAFFECTED
+                                                                   : CATEGORY_AFFECTED;
     imageStore(clippedOpacityOut, v, vec4(opacity));
     imageStore(maskOut, v, uvec4(category));
 }

@@ -12,22 +12,22 @@ const PassInfo kPasses[] = {
     {Pass::ClipMaps, "II-III clip maps", "CAO steps II-III: depth peeling, 2-D Minkowski dilation", {R::ClipMeshGeometry}, {R::ClipMaps}, false, "where the tools cut"},
     // Phase 1 is step IV's kernel without meshes (V_o, V_m); phase 2 the LAO of every voxel.
     {Pass::LaoPrecompute, "I LAO precompute", "CAO step I: LAO of every voxel, eq. 2-3",
-     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::ClipMaps, R::LaoDirections, R::SeenBricks, R::VisitedBricks},
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::ClipMaps, R::LaoDirections, R::SeenBricks, R::VisitedBricks},
      {R::ClippedOpacity, R::CategoryMask, R::PrecomputedAo, R::RecomputeList}, true, "occlusion of the scan"},
     {Pass::VoxelClipping, "IV voxel clipping", "CAO step IV: anti-aliased shadow-test clipping, Algorithm 2",
-     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::ClipMaps, R::VisitedBricks},
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::ClipMaps, R::VisitedBricks},
      {R::ClippedOpacity, R::CategoryMask, R::VisitedBricks}, true, "the carve"},
     {Pass::LaoRecompute, "V LAO recompute", "CAO step V: LAO of category-b voxels",
      {R::ClippedOpacity, R::CategoryMask, R::PrecomputedAo, R::LaoDirections, R::SeenBricks, R::VisitedBricks}, {R::RecomputeList, R::Ambient}, true, "occlusion under the carve"},
     {Pass::TubeGBuffer, "tubes G-buffer", "DOS+geometry section 3.1.1", {R::TubeGeometry, R::ClipMaps}, {R::GBuffer}, false, "fiber tubes"},
     {Pass::RayCast, "VI ray casting", "CAO step VI: ray casting with shadow-test clipping",
-     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::Occupancy, R::ClipMaps, R::Ambient}, {R::OutputImage}, false, "full-quality image"},
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::Occupancy, R::ClipMaps, R::Ambient}, {R::OutputImage}, false, "full-quality image"},
     {Pass::SlabPass, "slab pass", "DOS Algorithms 1, 3; DOS+geometry Algorithms 2-4",
-     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::ClipMaps, R::Ambient, R::GBuffer},
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::ClipMaps, R::Ambient, R::GBuffer},
      {R::OcclusionBuffers, R::GBuffer, R::OutputImage}, false, "shadows (directional occlusion)"},
     {Pass::Composite, "composite + vicinity", "DOS+geometry Algorithms 5-6", {R::GBuffer, R::OutputImage}, {R::OutputImage}, false, "shading the tubes"},
     {Pass::IsmosRayCast, "ISMOS 1 ray casting + layers", "ISMOS sec. 3.5-3.6: colour, 4 depth layers, transmittance fit",
-     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::Occupancy, R::ClipMaps, R::GBuffer},
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::Occupancy, R::ClipMaps, R::GBuffer},
      {R::OutputImage, R::IsmosLayers, R::IsmosLayerBacks, R::IsmosFit}, false, "full-quality image and its depth layers"},
     {Pass::IsmosOcclusion, "ISMOS 2 occlusion", "ISMOS sec. 3.3-3.7: full/partial occlusion, eq. 1-5, 13-16",
      {R::IsmosLayers, R::IsmosLayerBacks, R::IsmosFit, R::IsmosLightSamples, R::OutputImage}, {R::OutputImage}, true, "shadows (multidirectional occlusion)"},
@@ -65,6 +65,7 @@ FramePlan planFrame(const PlanInputs& in) {
             case R::SeenBricks:
             case R::LaoDirections: return mode.ambientOcclusion;
             case R::LabelVolume: return in.labels;
+            case R::DrilledRemoval: return in.drilled;
             case R::TubeGeometry:
             case R::GBuffer: return tubes;
             case R::IsmosLayers:

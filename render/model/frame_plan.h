@@ -48,6 +48,7 @@ std::span<const PassInfo> allPasses();
 struct InputVersions {
     std::uint64_t volume = 1, transferFunction = 1, laoSettings = 1;
     std::uint64_t clipMeshes = 1;   // clip::ClipMeshSet::version(): poses, scales, meshes added or removed
+    std::uint64_t removal = 0;      // plan::RemovalVolume::version() of the drilled removal: an input of V_o and V_AO, not V_PAO
     bool operator==(const InputVersions&) const = default;
 };
 
@@ -76,6 +77,7 @@ struct PlanInputs {
     int clipMeshes = 0;
     bool clipMapsCurrent = true;   // every mesh's maps (and the dilated ones if the mode needs them) drawn
     bool labels = false;           // the scene has a label volume
+    bool drilled = false;          // ... and a drilled removal (plan/removal_volume.h)
     bool tubes = false;            // the scene has tubes ...
     bool tubesInView = false;      // ... and they may cover a pixel of this frame
     bool precomputedCurrent = false;

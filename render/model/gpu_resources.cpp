@@ -12,6 +12,7 @@ constexpr ResourceInfo kResources[] = {
     {Resource::Occupancy, "occupancy bricks", "R8 3D", "per 8^3 brick: 0 where a sample may be non-transparent, else the Chebyshev distance (bricks) to the nearest such brick"},
     {Resource::SeenBricks, "seen bricks", "R8 3D", "per 4^3 brick: 0 where a sample may be non-transparent; steps I and V cast LAO rays only there"},
     {Resource::LabelVolume, "label volume", "R16UI 3D + RGBA32F 1D", "labels.glsl: label ids on the scan grid, a style per id"},
+    {Resource::DrilledRemoval, "drilled removal", "R8 3D + R8UI 3D", "drill_removal.glsl: drilled fraction per voxel; per 4^3 brick, within the dilation radius of a drilled voxel"},
     {Resource::ClipMeshGeometry, "clip mesh geometry", "vertex + index buffers", "every clip mesh, scaled, in its local frame"},
     {Resource::ClipMaps, "clip maps (depth + dilated arrays)", "R32F 2D arrays", "steps II-III: Z and D maps of every mesh"},
     {Resource::ClippedOpacity, "V_o (clipped opacity)", "R16 3D", "step IV: opacity after anti-aliased clipping"},

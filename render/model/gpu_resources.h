@@ -16,6 +16,7 @@ enum class Resource {
     Occupancy,         // empty-space-skipping bricks
     SeenBricks,        // the bricks whose voxels' LAO a visible sample can read (steps I and V)
     LabelVolume,       // label ids on the scan grid and their styles (scenes with labels only)
+    DrilledRemoval,    // the drill's removal: drilled fraction per voxel, near-drill flags per brick (once drilled)
     ClipMeshGeometry,  // clip-mesh vertex and index buffers
     ClipMaps,          // steps II-III: depth maps and dilated maps of every mesh
     ClippedOpacity,    // V_o

@@ -150,6 +150,10 @@ void AmbientOcclusion::markLaoBricks() {
     for (std::size_t b = 0; b < changed.size() && b < stillBricks_.visited.size(); ++b)
         if (stillBricks_.visited[b] && !(lastVisit_ && lastVisit_->visited[b]))
             changed[b] = clippedBricksKnown_ ? clippedBricks_[b] : std::uint8_t(1);
+    // Drilled bricks this update does not visit: their V_o is the drilled one, not step I's.
+    if (removal_)
+        for (std::size_t b = 0; b < changed.size(); ++b)
+            if (removalTexture_->drilledBricks()[b] && !(lastVisit_ && lastVisit_->visited[b])) changed[b] = 1;
     // The visited bricks: what step IV just found, kept for the updates that will leave them.
     for (std::uint32_t entry : list)
         changed[entry & kVisitBrickNumber] = clippedBricks_[entry & kVisitBrickNumber] = (entry & kVisitOpacityChanged) ? 1 : 0;
@@ -184,7 +188,7 @@ void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
 }
 
 void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
-                                        std::uint32_t firstSlot, std::uint32_t slots) {
+                                        bool applyDrill, std::uint32_t firstSlot, std::uint32_t slots) {
     gl::Defines defines;
     tf.addDefines(defines);
     NoDataPiece{volume_}.addDefines(defines);
@@ -196,6 +200,7 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     p.set("volumeSize", g.dims);
     p.set("antiAliasingSamples", settings_.antiAliasingSamples);
     p.set("testDilation", testDilation ? 1 : 0);
+    p.set("applyDrill", applyDrill ? 1 : 0);
     p.set("gradientToWorld", glm::mat3(g.gradientIndexToWorld() * volume_.valueScale()));
     if (clip) clip->apply(p);
     else p.set("clipMeshCount", 0);
@@ -365,7 +370,7 @@ std::uint32_t AmbientOcclusion::advancePrecompute(const TransferFunctionTexture&
     std::uint32_t first = slicedBricks_ - std::uint32_t(phase) * total;
     ran = std::min(bricks, total - first);
     uploadVisitRange(first, ran);
-    if (phase == 0) runVoxelClipping(tf, nullptr, false, 0, visitCount_);
+    if (phase == 0) runVoxelClipping(tf, nullptr, false, false, 0, visitCount_);
     else runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
     slicedBricks_ += ran;
     return ran;
@@ -379,7 +384,7 @@ void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip:
 std::uint32_t AmbientOcclusion::advanceClipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, std::uint32_t bricks) {
     std::uint32_t n = std::min(bricks, visitCount_ - clipSlotsDone_);
     if (n == 0) return 0;
-    runVoxelClipping(tf, &clip, clipDilation_, clipSlotsDone_, n);
+    runVoxelClipping(tf, &clip, clipDilation_, applyDrill_, clipSlotsDone_, n);
     clipSlotsDone_ += n;
     return n;
 }
@@ -415,6 +420,18 @@ std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, S
     if (partial && !sameSet)
         for (const MeshBricks& m : lastUpdate_->meshes) visit.unite(m.bricks);
     if (partial && carried_) visit.unite(*carried_);
+    // The drill's changes since the last update: V_o changes in their bricks and LAO within the dilation radius.
+    if (removal_) {
+        if (partial && removal_->version() != removalApplied_) {
+            std::vector<std::uint8_t> changed(removalTexture_->drilledBricks().size(), 0);
+            for (std::uint32_t b : removal_->bricksChangedSince(removalApplied_)) changed[b] = 1;
+            BrickSet drilled = BrickSet::none(dims);
+            drilled.visited = removalTexture_->dilateBricks(changed, dilationRadiusMm());
+            visit.unite(drilled);
+        }
+        removalApplied_ = removal_->version();
+    }
+    applyDrill_ = removal_ != nullptr;
     carried_.reset();
     lastUpdate_ = std::move(now);
     lastVisit_ = visit;
@@ -483,6 +500,20 @@ std::vector<std::uint16_t> AmbientOcclusion::readOpacity() const {
 }
 std::vector<std::uint8_t> AmbientOcclusion::readMask() const {
     return readTexture<std::uint8_t>(mask_.name(), volume_.geometry().dims, GL_RED_INTEGER, GL_UNSIGNED_BYTE);
+}
+
+void AmbientOcclusion::setRemoval(const plan::RemovalVolume* removal, const RemovalTexture* texture) {
+    if ((removal == nullptr) != (texture == nullptr)) throw std::logic_error("AmbientOcclusion::setRemoval: a removal and its texture");
+    if (removal && visitBrickGrid(volume_.geometry().dims) != texture->brickGrid())
+        throw std::logic_error("AmbientOcclusion::setRemoval: bricks differ from the visited bricks");
+    if (removal == removal_ && texture == removalTexture_) return;
+    // V_o holds no drilling where no update applied one: a removal attached for the first time is visited where it
+    // drilled (every brick changed after version 0). Another removal, or none after one, differs from V_o anywhere
+    // the old one drilled: the next update visits every brick.
+    if (removal_) lastUpdate_.reset();
+    removal_ = removal;
+    removalTexture_ = texture;
+    removalApplied_ = 0;
 }
 
 }  // namespace curette

@@ -27,7 +27,9 @@
 #include "render/model/lao_settings.h"
 #include "render/mesh_voxel_box.h"
 #include "render/model/shading_mode.h"
+#include "render/removal_texture.h"
 #include "render/transfer_function_texture.h"
+#include "plan/removal_volume.h"
 
 #include <optional>
 #include <vector>
@@ -110,6 +112,13 @@ public:
     std::uint32_t beginRecompute(const TransferFunctionTexture& tf);
     std::uint32_t advanceRecompute(std::uint32_t groups);
     std::uint32_t recomputeGroupsLeft() const { return recomputeGroups_ - recomputeGroupsDone_; }
+    // The drill's accumulated removal (plan/removal_volume.h), an input of V_o and V_AO but not of V_PAO (step I
+    // leaves it out). A CAO update also visits the bricks within the dilation radius of every brick the removal
+    // changed since the last update (their V_o and the LAO around them change), and counts the drilled bricks
+    // it does not visit as changed V_o (markLaoBricks); step IV makes voxels near a drilled one category b.
+    // Both must outlive this object; null: no drilling.
+    void setRemoval(const plan::RemovalVolume* removal, const RemovalTexture* texture);
+
     // The update under way (step IV begun, in slices or whole, and step V not finished) will not be finished: the
     // viewer moved on during the exact frame in slices. The next update visits every brick this one visited as
     // well as its own meshes' bricks, so V_o, V_m and V_AO come out as if this update had finished
@@ -136,8 +145,8 @@ private:
     void setVisitUniforms(gl::Program& program) const;
     void setDecisionUniforms(gl::Program& program) const;
     // Step IV over the slots [firstSlot, firstSlot + slots) of the uploaded list.
-    void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation, std::uint32_t firstSlot,
-                          std::uint32_t slots);
+    void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation, bool applyDrill,
+                          std::uint32_t firstSlot, std::uint32_t slots);
     void runLao(GLuint target, bool compacted, float opacityExponent);
     // Binds lao.comp's resources and uniforms to the variant for `opacityExponent`, and returns it.
     gl::Program& bindLao(GLuint target, float opacityExponent);
@@ -165,6 +174,10 @@ private:
     bool clipDilation_ = false;         // step IV tests the dilated maps (cao)
     bool laoFlagsPending_ = false;   // a CAO list without its "LAO can change" flags yet: markLaoBricks before step V
     LaoReachBricks laoReach_;
+    const plan::RemovalVolume* removal_ = nullptr;
+    const RemovalTexture* removalTexture_ = nullptr;
+    std::uint64_t removalApplied_ = 0;   // the removal's version the last update's V_o holds
+    bool applyDrill_ = false;            // the voxel clipping under way scales V_o by the drilled removal
     // The last update's meshes and the bricks each reached (render/mesh_voxel_box.h). Outside the bricks of a mesh
     // V_o, V_m and V_AO hold what they would without it, and where it reached they hold what its state then
     // made them; so the next CAO update visits the bricks of the meshes that changed since (their old and new

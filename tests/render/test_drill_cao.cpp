@@ -1,0 +1,150 @@
+// Drilling and the CAO contract: with a removal accumulated stroke by stroke (plan/removal_volume.h), undone
+// and redone, and a live mesh moving as well, CAO gives V_AO and images bit-identical to full LAO in a second
+// renderer that never runs CAO, after every stroke step; and CAO visits only part of the volume to do it.
+#include "mesh/primitives.h"
+#include "plan/drill_history.h"
+#include "plan/drill_sweep.h"
+#include "render/renderer.h"
+#include "tests/render/gl_test_support.h"
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+namespace curette {
+namespace {
+
+using test::glContext;
+
+double blobs(glm::dvec3 p) {
+    const glm::dvec4 centres[] = {{-5, -3, 2, 6}, {6, 4, -3, 5}, {1, -7, -5, 4}, {0, 6, 6, 5}};
+    double v = 0;
+    for (const glm::dvec4& c : centres) v += 240.0 * std::exp(-glm::dot(p - glm::dvec3(c), p - glm::dvec3(c)) / (2 * c.w * c.w));
+    return std::min(v, 255.0);
+}
+
+struct DrillScene {
+    VolumeData volume;
+    std::unique_ptr<Renderer> renderer;
+    FrameDescription frame;
+    explicit DrillScene(glm::ivec3 dims) {
+        volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, blobs);
+        renderer = std::make_unique<Renderer>(glContext(), volume, test::rampTransferFunction(30, 180, 0.3));
+        LaoSettings lao;
+        parseLaoPattern("14", lao.directions);
+        lao.samples = 4;   // reach 3 mm: most updates visit a box inside the 40^3 volume
+        lao.stepMm = 1.0;
+        lao.antiAliasingSamples = 16;
+        renderer->setLaoSettings(lao);
+        frame.camera.fit(glm::dvec3(0), 0.9 * glm::length(glm::dvec3(dims)) / 2);
+        frame.camera.azimuthDeg = 30;
+        frame.camera.elevationDeg = 20;
+        frame.size = {48, 48};
+    }
+    struct Result {
+        std::vector<std::uint16_t> ambient;
+        Image image;
+    };
+    Result render(ShadingMode mode) {
+        frame.shading = mode;
+        renderer->render(frame);
+        const AmbientOcclusion* ao = usesAmbientOcclusion(mode) ? renderer->ambientOcclusion() : nullptr;
+        return {ao ? ao->readAmbient() : std::vector<std::uint16_t>{}, renderer->readImage()};
+    }
+};
+
+void expectBitIdentical(const DrillScene::Result& lao, const DrillScene::Result& cao, const std::string& what) {
+    ASSERT_EQ(lao.ambient.size(), cao.ambient.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < lao.ambient.size(); ++i) differing += lao.ambient[i] != cao.ambient[i];
+    EXPECT_EQ(differing, 0u) << what << ": V_AO differs in " << differing << " voxels";
+    EXPECT_EQ(0, std::memcmp(lao.image.pixels.data(), cao.image.pixels.data(), lao.image.pixels.size() * sizeof(glm::vec4)))
+        << what << ": images differ";
+}
+
+TEST(DrillCao, EqualsFullLaoAfterEveryStrokeStepWithUndoAndRedo) {
+    glContext();
+    const glm::ivec3 dims(40);
+    DrillScene cao(dims), lao(dims);
+    auto removal = std::make_shared<plan::RemovalVolume>(dims, test::centredAffine(dims));
+    cao.renderer->setRemoval(removal);
+    lao.renderer->setRemoval(removal);
+    auto sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(4.0, 3));
+    for (Renderer* r : {cao.renderer.get(), lao.renderer.get()}) r->clipMeshes().add(sphere, glm::dvec3(1.0), {}, "live sphere");
+    auto setLivePose = [&](const clip::RigidPose& p) {
+        for (Renderer* r : {cao.renderer.get(), lao.renderer.get()}) r->clipMeshes().setPose(0, p);
+    };
+    setLivePose(clip::RigidPose{glm::dvec3(30, 0, 0), {}});   // outside at first
+    cao.render(ShadingMode::Cao);
+
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    plan::DrillHistory history;
+    int compared = 0, partial = 0, undos = 0, redos = 0;
+    auto compare = [&](const std::string& what) {
+        DrillScene::Result c = cao.render(ShadingMode::Cao), l = lao.render(ShadingMode::Lao);
+        const AmbientOcclusionStats& stats = cao.renderer->ambientOcclusion()->lastStats();
+        partial += stats.dispatched < stats.voxels;
+        ++compared;
+        expectBitIdentical(l, c, what);
+    };
+    for (int stroke = 0; stroke < 10 && !HasFailure(); ++stroke) {
+        bool erase = stroke % 4 == 3;
+        plan::DrillTool tool{clip::SolidShape{stroke % 3 == 2 ? clip::SolidShape::Kind::Cylinder : clip::SolidShape::Kind::Sphere,
+                                              erase ? 3.5 : 1.5 + 0.5 * (stroke % 3), 4.0}};
+        clip::RigidPose pose{12.0 * glm::dvec3(u(random), u(random), u(random)),
+                             glm::angleAxis(3.0 * u(random), glm::normalize(glm::dvec3(u(random), u(random), u(random)) + 1e-9))};
+        history.beginStroke();
+        for (int step = 0; step < 3 && !HasFailure(); ++step) {
+            clip::RigidPose next = pose;
+            next.position += 4.0 * glm::dvec3(u(random), u(random), u(random));
+            next.orientation = glm::normalize(pose.orientation * glm::angleAxis(0.3 * u(random), glm::dvec3(1, 0, 0)));
+            plan::DrillSweep sweep(tool, pose, next);
+            removal->apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal->voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()),
+                           erase, history.before());
+            pose = next;
+            if (step == 1) setLivePose(clip::RigidPose{10.0 * glm::dvec3(u(random), u(random), u(random)), {}});
+            compare("stroke " + std::to_string(stroke) + " step " + std::to_string(step));
+        }
+        history.endStroke(*removal);
+        if (stroke % 3 == 2) {
+            ASSERT_TRUE(history.undo(*removal));
+            ++undos;
+            compare("undo after stroke " + std::to_string(stroke));
+            if (stroke % 2 == 0) {
+                ASSERT_TRUE(history.redo(*removal));
+                ++redos;
+                compare("redo after stroke " + std::to_string(stroke));
+            }
+        }
+    }
+    EXPECT_GT(undos, 1);
+    EXPECT_GT(redos, 0);
+    EXPECT_GT(partial, compared / 2) << "most CAO updates must visit less than the volume for the test to mean something";
+    EXPECT_FALSE(removal->empty());
+}
+
+// The drilled removal changes the image: a stroke through the blobs opens them in every mode.
+TEST(DrillCao, ADrilledStrokeChangesTheImageInEveryMode) {
+    glContext();
+    const glm::ivec3 dims(40);
+    DrillScene scene(dims);
+    auto removal = std::make_shared<plan::RemovalVolume>(dims, test::centredAffine(dims));
+    scene.renderer->setRemoval(removal);
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong, ShadingMode::Cao, ShadingMode::Dos}) {
+        removal->clear();
+        Image before = scene.render(mode).image;
+        plan::DrillSweep sweep({clip::SolidShape{clip::SolidShape::Kind::Sphere, 4.0}}, clip::RigidPose{glm::dvec3(-15, -3, 2), {}},
+                               clip::RigidPose{glm::dvec3(15, 4, -3), {}});
+        removal->apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal->voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), false);
+        Image after = scene.render(mode).image;
+        std::size_t changed = 0;
+        for (std::size_t i = 0; i < before.pixels.size(); ++i) changed += before.pixels[i] != after.pixels[i];
+        EXPECT_GT(changed, before.pixels.size() / 20) << shadingModeName(mode);
+    }
+}
+
+}  // namespace
+}  // namespace curette
