@@ -101,7 +101,12 @@ DicomSegmentationVolume readDicomSegmentation(const fs::path& path) {
     double step = between > 0 ? between : 0;
     for (std::size_t n = 1; n < depths.size() && between <= 0; ++n) step = step == 0 ? depths[n] - depths[n - 1] : std::min(step, depths[n] - depths[n - 1]);
     if (step <= 0) step = 1.0;   // a single slice
-    const int slices = int(std::lround((depths.back() - depths.front()) / step)) + 1;
+    const double span = (depths.back() - depths.front()) / step;
+    // The frames' positions decide the grid's depth: a few frames far apart at a tiny spacing must not ask
+    // for gigabytes.
+    if (!(span < 65535.0) || double(rows) * double(columns) * (span + 1.0) > double(1u << 31))
+        throw InputError(file, "PlanePositionSequence/SpacingBetweenSlices", "frames spanning at most 2^31 voxels on the slice lattice");
+    const int slices = int(std::lround(span)) + 1;
     const FrameAt& lowest = *std::min_element(placed.begin(), placed.end(),
                                               [&](const FrameAt& a, const FrameAt& b) { return glm::dot(a.position, normal) < glm::dot(b.position, normal); });
 
