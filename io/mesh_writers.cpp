@@ -1,6 +1,7 @@
 #include "io/mesh_writers.h"
 
 #include "base/atomic_file.h"
+#include "base/base64.h"
 #include "base/error.h"
 
 #include <nlohmann/json.hpp>
@@ -68,25 +69,6 @@ glm::dvec3 areaNormal(const clip::TriangleMesh& mesh, const glm::uvec3& t) {
 glm::vec3 unitOr(glm::dvec3 v, glm::vec3 fallback) {
     double length = glm::length(v);
     return length > 0 && std::isfinite(length) ? glm::vec3(v / length) : fallback;
-}
-
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-    static const char alphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((bytes.size() + 2) / 3 * 4);
-    std::size_t i = 0;
-    for (; i + 2 < bytes.size(); i += 3) {
-        std::uint32_t v = (std::uint32_t{bytes[i]} << 16) | (std::uint32_t{bytes[i + 1]} << 8) | bytes[i + 2];
-        out += alphabet[(v >> 18) & 63], out += alphabet[(v >> 12) & 63], out += alphabet[(v >> 6) & 63], out += alphabet[v & 63];
-    }
-    if (i + 1 == bytes.size()) {
-        std::uint32_t v = std::uint32_t{bytes[i]} << 16;
-        out += alphabet[(v >> 18) & 63], out += alphabet[(v >> 12) & 63], out += "==";
-    } else if (i + 2 == bytes.size()) {
-        std::uint32_t v = (std::uint32_t{bytes[i]} << 16) | (std::uint32_t{bytes[i + 1]} << 8);
-        out += alphabet[(v >> 18) & 63], out += alphabet[(v >> 12) & 63], out += alphabet[(v >> 6) & 63], out += '=';
-    }
-    return out;
 }
 
 }  // namespace

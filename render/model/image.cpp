@@ -40,7 +40,7 @@ void writePng(const std::filesystem::path& path, const Image& image, glm::vec4 b
     writePngRgba8(path, image.width, image.height, toRgba8(image, background));
 }
 
-void writePngRgba8(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba) {
+std::vector<std::uint8_t> encodePng(int width, int height, const std::vector<std::uint8_t>& rgba) {
     std::vector<std::uint8_t> encoded;
     auto sink = [](void* context, void* data, int size) {
         auto* bytes = static_cast<std::vector<std::uint8_t>*>(context);
@@ -48,7 +48,17 @@ void writePngRgba8(const std::filesystem::path& path, int width, int height, con
         bytes->insert(bytes->end(), begin, begin + size);
     };
     if (!stbi_write_png_to_func(sink, &encoded, width, height, 4, rgba.data(), width * 4))
-        throw SystemError(path.string() + ": PNG encoding failed");
+        throw SystemError("PNG encoding of a " + std::to_string(width) + "x" + std::to_string(height) + " image failed");
+    return encoded;
+}
+
+void writePngRgba8(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba) {
+    std::vector<std::uint8_t> encoded;
+    try {
+        encoded = encodePng(width, height, rgba);
+    } catch (const SystemError& e) {
+        throw SystemError(path.string() + ": " + e.what());
+    }
     writeFileAtomically(path, encoded);
 }
 

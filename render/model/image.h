@@ -25,6 +25,9 @@ std::vector<std::uint8_t> toRgba8(const Image& image, glm::vec4 background);
 // Writes a PNG atomically; throws SystemError naming the path when it cannot.
 void writePng(const std::filesystem::path& path, const Image& image, glm::vec4 background);
 
+// 8-bit RGBA (row 0 at the top) as PNG bytes; throws SystemError when stb cannot encode it.
+std::vector<std::uint8_t> encodePng(int width, int height, const std::vector<std::uint8_t>& rgba8);
+
 // Writes 8-bit RGBA (row 0 at the top) as a PNG, atomically.
 void writePngRgba8(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba8);
 

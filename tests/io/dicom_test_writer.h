@@ -36,6 +36,7 @@ struct DicomImageSpec {
     std::string sopClassUid = "1.2.840.10008.5.1.4.1.1.2";  // CT Image Storage
     std::string sopInstanceUid;                              // "": a new UID
     std::string studyUid, seriesUid;                         // required
+    std::string frameOfReferenceUid;                         // "": absent
     std::string seriesNumber = "1", seriesDescription = "synthetic", modality = "CT";
     std::string patientName = "Anonymous", patientId = "0", patientBirthDate, accessionNumber;
     std::string imageType = "ORIGINAL\\PRIMARY\\AXIAL";
@@ -138,6 +139,7 @@ inline void writeDicom(const std::filesystem::path& path, const DicomImageSpec& 
     putText(ds, 0x0020, 0x000e, gdcm::VR::UI, spec.seriesUid);
     putText(ds, 0x0020, 0x0011, gdcm::VR::IS, spec.seriesNumber);
     putText(ds, 0x0020, 0x0013, gdcm::VR::IS, std::to_string(spec.instanceNumber));
+    if (!spec.frameOfReferenceUid.empty()) putText(ds, 0x0020, 0x0052, gdcm::VR::UI, spec.frameOfReferenceUid);
     const std::string orientation = decimals(spec.orientation.data(), 6);
     const double spacing[2] = {spec.pixelSpacing[0], spec.pixelSpacing[1]};
     if (!enhanced) {

@@ -2,6 +2,7 @@
 #include "tools/command_line.h"
 #include "tools/commands/commands.h"
 #include "io/dicom.h"
+#include "io/dicom_plan_reader.h"
 #include "io/volume_file.h"
 #include "scene/volume_statistics.h"
 #include "base/error.h"
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 namespace curette::commands {
 
@@ -43,6 +45,41 @@ VolumeData listAndReadDicom(const std::string& path, const io::VolumeReadOptions
     std::printf("opens        %s: %s\n", series[choice.index].label().c_str(), choice.reason.c_str());
     std::fflush(stdout);  // the table stays above an error line about the series that opens
     return io::readDicomSeries(series[choice.index], path, choice, options.showIdentifiers);
+}
+
+// A DICOM Segmentation (its segments, then it as a label volume: ids are segment numbers) or an RT Structure
+// Set (its ROIs); no patient identifier is read. Empty for any other file, and after an RT Structure Set.
+std::optional<VolumeData> describeDicomPlanObject(const std::string& path, bool& described) {
+    described = false;
+    if (!std::filesystem::is_regular_file(path)) return std::nullopt;
+    std::string sopClass = io::dicomSopClassOf(path);
+    if (sopClass == io::kRtStructureSetStorage) {
+        std::vector<io::DicomRoiSummary> rois = io::readRtStructRois(path);
+        std::printf("file         %s\n", path.c_str());
+        std::printf("DICOM RTSTRUCT  %zu ROIs\n", rois.size());
+        std::printf("  %-6s %-32s %-12s %-14s %-13s %8s %8s %8s\n", "number", "name", "type", "algorithm", "colour", "contours", "points", "slices");
+        for (const io::DicomRoiSummary& r : rois) {
+            std::string colour = std::to_string(r.color.r) + " " + std::to_string(r.color.g) + " " + std::to_string(r.color.b);
+            std::printf("  %-6d %-32s %-12s %-14s %-13s %8zu %8zu %8zu\n", r.number, r.name.c_str(), r.interpretedType.c_str(),
+                        r.generationAlgorithm.c_str(), colour.c_str(), r.contours, r.points, r.slices);
+        }
+        described = true;
+        return std::nullopt;
+    }
+    if (sopClass != io::kSegmentationStorage) return std::nullopt;
+    io::DicomSegmentationVolume seg = io::readDicomSegmentation(path);
+    std::printf("DICOM SEG    %zu segments, %zu frames, series \"%s\"\n", seg.segments.size(), seg.frames, seg.seriesDescription.c_str());
+    std::printf("  %-7s %-32s %-14s %-15s %7s %10s\n", "segment", "label", "algorithm", "colour (sRGB)", "frames", "voxels");
+    for (const io::DicomSegmentSummary& s : seg.segments) {
+        char colour[32];
+        std::snprintf(colour, sizeof colour, "%.2f %.2f %.2f", s.color.r, s.color.g, s.color.b);
+        std::printf("  %-7d %-32s %-14s %-15s %7zu %10llu\n", s.number, s.label.c_str(), s.algorithmType.c_str(), colour, s.frames,
+                    static_cast<unsigned long long>(s.voxels));
+    }
+    std::printf("label volume each voxel the lowest segment number covering it (0: none)\n");
+    described = true;
+    return buildVolume(path, seg.labels.dims, ScalarType::UInt16, reinterpret_cast<const std::uint8_t*>(seg.labels.ids.data()), false, 1.0, 0.0,
+                       seg.labels.indexToWorld);
 }
 
 // --gl: the EGL platforms and devices found, and the context a headless command would use (--gpu).
@@ -132,7 +169,10 @@ int info(const CommandLine& cl) {
     }
     const std::string& path = cl.positional()[0];
     const bool dicom = options.format == io::VolumeFormat::Auto && std::filesystem::exists(path) && io::looksLikeDicom(path);
-    VolumeData volume = dicom ? listAndReadDicom(path, options) : io::readVolume(path, options);
+    bool planObject = false;
+    std::optional<VolumeData> segmentation = dicom ? describeDicomPlanObject(path, planObject) : std::nullopt;
+    if (planObject && !segmentation) return 0;   // an RT Structure Set: its ROIs are all there is
+    VolumeData volume = segmentation ? std::move(*segmentation) : dicom ? listAndReadDicom(path, options) : io::readVolume(path, options);
     VolumeGeometry g{volume.dims, volume.indexToWorld};
     VolumeStatistics s = computeStatistics(volume);
 

@@ -2,6 +2,12 @@
 // tract bundle, with margins to what must be spared, and the plan's exports (session/carve_report.h lists the
 // files). The summary goes to the terminal; report.json is the machine-readable form.
 #include "session/carve_report.h"
+#include "session/dicom_plan_export.h"
+#include "session/live_input.h"
+#include "session/report_figures.h"
+#include "tools/page_pdf.h"
+#include "base/atomic_file.h"
+#include "plan/report_page.h"
 #include "tools/command_line.h"
 #include "tools/commands/commands.h"
 #include "session/loaded_scene.h"
@@ -19,6 +25,9 @@ int report(const CommandLine& cl) {
     if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no positional arguments for report");
     std::filesystem::path out = cl.required("out");
     if (cl.value("frame") && !cl.value("session")) throw InputError("<command line>", "--frame", "together with --session");
+    if (cl.flag("anonymize") && !cl.flag("dicom")) throw InputError("<command line>", "--anonymize", "together with --dicom");
+    if (cl.flag("dicom") && cl.flag("no-exports")) throw InputError("<command line>", "--dicom", "without --no-exports");
+    if (cl.flag("pdf") && !cl.flag("html")) throw InputError("<command line>", "--pdf", "together with --html");
     std::optional<Session> session;
     std::filesystem::path scenePath;
     if (auto s = cl.value("session")) {
@@ -55,7 +64,25 @@ int report(const CommandLine& cl) {
     options.meshSpace = cl.flag("lps") ? io::MeshSpace::Lps : io::MeshSpace::Ras;
     options.exports = !cl.flag("no-exports");
     reporter.write(out, report, state, options);
-    std::printf("curette report: %s\n%s", where.c_str(), carveSummary(report).c_str());
+    std::string dicom, page;
+    std::vector<std::uint8_t> removed;
+    if (cl.flag("dicom") || cl.flag("html")) removed = reporter.removedRegion();
+    if (cl.flag("dicom")) dicom = writePlanDicom(out, loaded, report, removed, {cl.flag("anonymize"), programVersion()});
+    if (cl.flag("html")) {
+        plan::ReportPage content;
+        content.createdUtc = currentTimeIso8601();
+        content.curetteVersion = programVersion();
+        content.views = reportViews(renderer, loaded, 320);
+        content.slices = reportSlices(loaded, state, removed);
+        if (!dicom.empty()) content.notes.push_back(dicom.substr(0, dicom.size() - 1));
+        writeFileAtomically(out / "report.html", plan::reportPageHtml(report, content));
+        page = "page: report.html";
+        if (cl.flag("pdf"))
+            page += printPageToPdf(out / "report.html", out / "report.pdf") ? " and report.pdf (headless Chromium)"
+                                                                            : "; no chromium on PATH, so no report.pdf (apt-get install chromium)";
+        page += "\n";
+    }
+    std::printf("curette report: %s\n%s%s%s", where.c_str(), carveSummary(report).c_str(), dicom.c_str(), page.c_str());
     std::printf("report in %.0f ms (GPU field and tract flags %.0f ms); wrote %s\n", report.timings.totalMs + reporter.lastGpuMs(),
                 reporter.lastGpuMs(), out.c_str());
     return 0;
@@ -70,7 +97,11 @@ Command reportCommand() {
               {"frame", true, "with --session: the frame index (default: the last frame)"},
               {"out", true, "directory for report.json, the CSVs and the exports"},
               {"lps", false, "write the cavity surface in LPS (default RAS)"},
-              {"no-exports", false, "only report.json and the CSVs"}})},
+              {"no-exports", false, "only report.json and the CSVs"},
+              {"dicom", false, "also seg.dcm (DICOM Segmentation) and rtstruct.dcm (RT Structure Set) on the source series (a non-DICOM scan is written as a DICOM series into scan-dicom/)"},
+              {"html", false, "also report.html: one self-contained page (summary, warnings, tables, 3-D views, slices through the cavity)"},
+              {"pdf", false, "with --html: also report.pdf, printed by headless Chromium when it is on PATH"},
+              {"anonymize", false, "with --dicom: replace the patient and study identifiers (the scan is written again under new UIDs)"}})},
             &report};
 }
 
