@@ -139,9 +139,11 @@ FrameRun Renderer::beginRun(const FrameDescription& frame, bool exact) {
             if (run.ambient == PreviewAmbient::None) run.shaded.shading = inputs.shading = ShadingMode::Phong;
         }
         // No slab pass in a preview: it marches every view-aligned slice over every pixel, seconds at any preview
-        // size on a software renderer. dos previews as phong does, tubes and all (the G-buffer and the ray cast
-        // that stops at it cost little more than the ray cast).
+        // size on a software renderer. dos previews as phong does. Tubes are left out but in ismos: the G-buffer
+        // costs what its triangles cost at any preview size (a whole-brain set, seconds), so the preview would
+        // not keep up with a motion.
         if (traits(inputs.shading).slabPass) run.shaded.shading = inputs.shading = ShadingMode::Phong;
+        if (inputs.shading != ShadingMode::Ismos) inputs.tubesInView = false;
         run.plan = planFrame(inputs);
     }
     ensureOutput(exact ? kExactImage : kPreviewImage, frame.size);

@@ -526,7 +526,9 @@ TEST(Tubes, RayCastTubesMatchTheCpuReference) {
                     leastTubeAmbient);
         EXPECT_GT(tubePixels, 150);
         EXPECT_GT(tubesBehindTissue, 40) << "the test must see tubes through tissue";
-        if (usesAmbientOcclusion(mode)) EXPECT_LT(leastTubeAmbient, 0.9) << "the test must see V_AO shade a tube";
+        if (usesAmbientOcclusion(mode)) {
+            EXPECT_LT(leastTubeAmbient, 0.9) << "the test must see V_AO shade a tube";
+        }
         EXPECT_LT(maxOnTubes, 5e-4) << "rms " << rms;
         // The volume's own pixels: lao/cao double the colour (ambientScale), and with it the baked TF's error at
         // the field's steps (measured 4.9e-4 against 3.5e-4 in solid and phong).
