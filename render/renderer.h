@@ -92,7 +92,7 @@ public:
     // The frame's plan without steps I, IV and V: the clip maps (the frame's own, as the exact frame would draw
     // them) and the image passes, shading with `previewAmbient()`. A preview never runs the slab pass (seconds
     // on a software renderer even at a preview's size): dos previews as phong, and tubes are left out of the
-    // preview (ismos keeps them: its pass 1 stops at them without the slab pass). It writes the output image and nothing any
+    // preview (their G-buffer costs its triangles at any size; ismos keeps them). It writes the output image and nothing any
     // exact frame reads, so the next render() is unchanged by it (Preview.NeverChangesTheExactFrame).
     void renderPreview(const FrameDescription& frame);
     PreviewAmbient previewAmbient() const;

@@ -55,10 +55,11 @@ std::optional<PixelRegion> Renderer::recastRegion(const FrameDescription& frame,
     InputVersions now = currentVersions(), before = exactImage_->stamp.versions;
     before.clipMeshes = now.clipMeshes;
     if (!(before == now)) return std::nullopt;
-    // The ray cast must be the only image pass (tubes in view bring the slab pass and the compositor), and the maps
-    // not drawn again (a rigid motion only moves their cameras).
+    // The ray cast must be the only image pass (tubes in dos bring the slab pass and the compositor), the maps
+    // not drawn again (a rigid motion only moves their cameras), and no tubes in view (the region is argued for
+    // the volume's samples alone: docs/subsystems.md, "Pixels an exact frame casts again").
     for (const PlannedPass& p : plan.passes)
-        if (p.pass == Pass::ClipMaps || (writesImage(p.pass) && p.pass != Pass::RayCast)) return std::nullopt;
+        if (p.pass == Pass::ClipMaps || p.pass == Pass::TubeGBuffer || (writesImage(p.pass) && p.pass != Pass::RayCast)) return std::nullopt;
     auto boxes = changedRegions(exactImage_->clip, ClipSnapshot::of(clip_, volume_.geometry().cellDiagonalMm()),
                                 traits(frame.shading).ambientOcclusion);
     // No mesh moved: render() of an unchanged state is asked for on purpose (benchmarks time it), so it runs whole.
@@ -139,8 +140,9 @@ FrameRun Renderer::beginRun(const FrameDescription& frame, bool exact) {
             if (run.ambient == PreviewAmbient::None) run.shaded.shading = inputs.shading = ShadingMode::Phong;
         }
         // No slab pass in a preview: it marches every view-aligned slice over every pixel, seconds at any preview
-        // size on a software renderer. dos previews as phong does; tubes (which bring the slab pass into every
-        // mode but ismos) are left out, so the image pass is the ray cast.
+        // size on a software renderer. dos previews as phong does. Tubes are left out but in ismos: the G-buffer
+        // costs what its triangles cost at any preview size (a whole-brain set, seconds), so the preview would
+        // not keep up with a motion.
         if (traits(inputs.shading).slabPass) run.shaded.shading = inputs.shading = ShadingMode::Phong;
         if (inputs.shading != ShadingMode::Ismos) inputs.tubesInView = false;
         run.plan = planFrame(inputs);
@@ -329,9 +331,14 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
     SampleShadingPiece::addDefines(defines, shading);
     SampleShadingPiece::addCutFaceDefines(defines, frame.raycast.cutFace, clip_.count());
     clip_.addDefines(defines);
-    bool tubes = ismosLayers && context.plan.runs(Pass::TubeGBuffer);
+    // Tubes in view: ISMOS's pass 1 stops at them (its compositor lays them behind); every other mode's ray cast
+    // stops at them and shades them itself (tube_surface.glsl).
+    bool withTubes = context.plan.runs(Pass::TubeGBuffer);
+    bool tubes = ismosLayers && withTubes;
+    bool rayCastTubes = !ismosLayers && withTubes;
     if (ismosLayers) IsmosPass::addLayerDefines(defines, frame.ismos);
     if (tubes) defines.emplace_back("ISMOS_TUBES", "1");
+    if (rayCastTubes) TubeSurfacePiece::addDefines(defines);
     if (countSamples_) defines.emplace_back("COUNT_SAMPLES", "1");
     tf_->addDefines(defines);
     NoDataPiece{volume_}.addDefines(defines);
@@ -350,6 +357,7 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
         glBindTextureUnit(binding::tubeNormal, gbuffer_.normal());
         p.set("ismosTubeThicknessMm", static_cast<float>(tubeShading_.thicknessMm));
     }
+    if (rayCastTubes) TubeSurfacePiece{frame, gbuffer_.depth(), gbuffer_.color(), gbuffer_.normal(), tubeShading_}.apply(p);
     p.set("stepMm", static_cast<float>(resolveStepMm(frame.raycast)));
     p.set("earlyTerminationAlpha", static_cast<float>(frame.raycast.earlyTerminationAlpha));
     p.set("jitterSeed", static_cast<unsigned>(frame.raycast.jitterSeed));
@@ -439,7 +447,7 @@ void Renderer::runComposite(const PassContext& context) {
     c.set("vicinityRadiusPixelsAtUnitDepth",
           static_cast<float>(tubeShading_.vicinityDistanceMm * std::tan(glm::radians(frame.dos.coneAngleDeg)) * pixelsPerMmAtUnitDepth));
     c.set("depthBiasMm", static_cast<float>(tubeShading_.depthBiasMm));
-    c.set("useOcclusion", traits(frame.shading).occludesTubes ? 1 : 0);
+    c.set("useOcclusion", traits(frame.shading).tubesInSlabPass ? 1 : 0);
     c.set("lineDiffuseExponent", static_cast<float>(tubeShading_.lineDiffuseExponent));
     glBindImageTexture(binding::imageOutput, context.image, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glBindTextureUnit(binding::tubeDepth, gbuffer_.depth());

@@ -119,4 +119,16 @@ void SampleShadingPiece::apply(gl::Program& p) const {
     if (ambient) glBindTextureUnit(binding::ambient, ambient);
 }
 
+void TubeSurfacePiece::addDefines(gl::Defines& defines) { defines.emplace_back("TUBES", "1"); }
+
+void TubeSurfacePiece::apply(gl::Program& p) const {
+    glBindTextureUnit(binding::tubeDepth, depth);
+    glBindTextureUnit(binding::tubeColor, color);
+    glBindTextureUnit(binding::tubeNormal, normal);
+    const TransferFunction::Material& m = shading.material;
+    p.set("tubeMaterial", glm::vec4(glm::dvec4(m.ambient, m.diffuse, m.specular, m.specularPower)));
+    p.set("tubeLineDiffuseExponent", static_cast<float>(shading.lineDiffuseExponent));
+    p.set("tubeViewForward", glm::vec3(frame.camera.forward()));
+}
+
 }  // namespace curette

@@ -15,12 +15,14 @@
 //   clip_test.glsl               clip::ClipMeshSet::apply (render/passes/clip_mesh_set.h)
 //   tile_order.glsl              TileOrderPiece (below; it also dispatches)
 //   ismos_layers.glsl            IsmosPass::applyLayers (render/passes/ismos_pass.h); ismos_occlusion.comp: IsmosPass
+//   tube_surface.glsl            TubeSurfacePiece (below)
 
 #include "gl/program.h"
 #include "render/model/frame.h"
 #include "render/gpu_volume.h"
 #include "render/recast_region.h"
 #include "render/model/shading_mode.h"
+#include "render/model/tube_vertices.h"
 
 #include <vector>
 
@@ -83,6 +85,17 @@ struct SampleShadingPiece {
     static void addDefines(gl::Defines& defines, ShadingMode mode);
     // CUT_FACES when the frame clips (`clipMeshes` > 0) and cut faces are on.
     static void addCutFaceDefines(gl::Defines& defines, const CutFaceSettings& settings, int clipMeshes);
+    void apply(gl::Program& program) const;
+};
+
+// tube_surface.glsl: the ray cast's tubes (raycast.comp with TUBES): the G-buffer's depth, colour and normal
+// textures, the tubes' material and line exponent, and the camera's forward axis. lao/cao read V_AO through
+// SampleShadingPiece's binding.
+struct TubeSurfacePiece {
+    const FrameDescription& frame;
+    GLuint depth = 0, color = 0, normal = 0;   // GBuffer's textures (render/passes/tube_set.h)
+    const TubeShading& shading;
+    static void addDefines(gl::Defines& defines);
     void apply(gl::Program& program) const;
 };
 

@@ -6,7 +6,8 @@
 // the cube of (2d - 1)^3 empty bricks around it at once. Samples lie at t = (k + jitter) * stepMm along each ray,
 // t measured in millimetres from the eye, so the segment length of every sample is stepMm exactly, except
 // with CUT_FACES: where the ray leaves a clip mesh, one extra segment from the crossing to the next lattice
-// sample, with its partial length (the lattice itself does not move).
+// sample, with its partial length (the lattice itself does not move). With TUBES (tube_surface.glsl) the ray
+// ends in front of the tube G-buffer's surface, which is shaded in the mode's light and laid behind it.
 #include "bindings.glsl"
 #include "pixel_ray.glsl"
 #include "shade_sample.glsl"
@@ -31,6 +32,9 @@ layout(std430, binding = 0) buffer SampleCounter { uint samplesTaken; uint raySt
 #endif
 #ifdef ISMOS_LAYERS
 #include "ismos_layers.glsl"
+#endif
+#ifdef TUBES
+#include "tube_surface.glsl"
 #endif
 
 // Front-to-back compositing of one segment: premultiplied colour and opacity.
@@ -99,6 +103,11 @@ void latticeRange(ivec2 pixel, vec3 direction, float tNear, float tFar, out floa
     // The ray stops in front of the tube surface (G-buffer view depth; 0: none).
     float tubeView = texelFetch(ismosTubeDepth, pixel, 0).r;
     if (tubeView > 0.0) kLast = min(kLast, int(ceil(tubeView / dot(direction, ismosForward) / stepMm - jitter)) - 1);
+#endif
+#ifdef TUBES
+    // The ray ends in front of the tube surface: only lattice samples with t < the surface's are taken.
+    float tubeT = tubeRayT(pixel, direction);
+    if (tubeT > 0.0) kLast = min(kLast, int(ceil(tubeT / stepMm - jitter)) - 1);
 #endif
 }
 
@@ -312,6 +321,11 @@ void main() {
     float tNear, tFar;
     if (intersectBox(originTex, directionTex, vec3(0.0), vec3(1.0), tNear, tFar))
         accumulated = castRay(pixel, direction, originTex, directionTex, tNear, tFar, samples, steps);
+#ifdef TUBES
+    // The opaque tube surface behind the volume in front of it (also where the ray misses the volume's box).
+    float tubeT = tubeRayT(pixel, direction);
+    if (tubeT > 0.0) accumulated = vec4(accumulated.rgb + (1.0 - accumulated.a) * shadeTubeSurface(pixel, direction, tubeT), 1.0);
+#endif
 #ifdef COUNT_SAMPLES
     atomicAdd(samplesTaken, samples);
     atomicAdd(raySteps, steps);

@@ -20,8 +20,9 @@ const PassInfo kPasses[] = {
     {Pass::LaoRecompute, "V LAO recompute", "CAO step V: LAO of category-b voxels",
      {R::ClippedOpacity, R::CategoryMask, R::PrecomputedAo, R::LaoDirections, R::SeenBricks, R::VisitedBricks}, {R::RecomputeList, R::Ambient}, true, "occlusion under the carve"},
     {Pass::TubeGBuffer, "tubes G-buffer", "DOS+geometry section 3.1.1", {R::TubeGeometry, R::ClipMaps}, {R::GBuffer}, false, "fiber tubes"},
+    // With tubes in view the ray stops at the G-buffer's surface and shades it (shaders/tube_surface.glsl).
     {Pass::RayCast, "VI ray casting", "CAO step VI: ray casting with shadow-test clipping",
-     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::Occupancy, R::ClipMaps, R::Ambient}, {R::OutputImage}, false, "full-quality image"},
+     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::Occupancy, R::ClipMaps, R::Ambient, R::GBuffer}, {R::OutputImage}, false, "full-quality image"},
     {Pass::SlabPass, "slab pass", "DOS Algorithms 1, 3; DOS+geometry Algorithms 2-4",
      {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::ClipMaps, R::Ambient, R::GBuffer},
      {R::OcclusionBuffers, R::GBuffer, R::OutputImage}, false, "shadows (directional occlusion)"},
@@ -99,11 +100,16 @@ FramePlan planFrame(const PlanInputs& in) {
         add(Pass::IsmosRayCast);
         add(Pass::Composite);
         add(Pass::IsmosOcclusion);
-    } else if (tubes) {
-        // Seed 000 Algorithm 1: G-buffer, slab pass, composite.
+    } else if (tubes && mode.tubesInSlabPass) {
+        // dos: seed 000 Algorithm 1, G-buffer, slab pass, composite (the combined occlusion is the model).
         add(Pass::TubeGBuffer);
         add(Pass::SlabPass);
         add(Pass::Composite);
+    } else if (tubes) {
+        // solid, phong, lao, cao: no occlusion to propagate slice by slice, so the ray cast ends each ray at the
+        // G-buffer's tube surface and shades it in the mode's light (lao/cao: V_AO at the surface).
+        add(Pass::TubeGBuffer);
+        add(Pass::RayCast);
     } else if (mode.slabPass) {
         add(Pass::SlabPass);
     } else if (in.shading == ShadingMode::Ismos) {

@@ -8,11 +8,11 @@ namespace curette {
 
 namespace {
 constexpr ShadingModeTraits kModes[] = {
-    //  mode               name     AO     dilated slab   occludes tubes
+    //  mode               name     AO     dilated slab   tubes in slab pass
     {ShadingMode::Solid, "solid", false, false, false, false, "emission-absorption with the TF colour"},
     {ShadingMode::Phong, "phong", false, false, false, false, "Blinn-Phong with gradient normals"},
-    {ShadingMode::Lao, "lao", true, false, false, true, "ambient from LAO recomputed for every voxel (CAO's baseline)"},
-    {ShadingMode::Cao, "cao", true, true, false, true, "ambient from Contextual Ambient Occlusion (seed 002)"},
+    {ShadingMode::Lao, "lao", true, false, false, false, "ambient from LAO recomputed for every voxel (CAO's baseline)"},
+    {ShadingMode::Cao, "cao", true, true, false, false, "ambient from Contextual Ambient Occlusion (seed 002)"},
     {ShadingMode::Dos, "dos", false, false, true, true, "directional occlusion shading (seed 001), slab pass"},
     {ShadingMode::Ismos, "ismos", false, false, false, false, "image-space multidirectional occlusion (seed 003) over phong"},
 };

@@ -19,7 +19,8 @@ struct ShadingModeTraits {
     bool ambientOcclusion;    // needs V_o, V_PAO, V_AO (steps I, IV, V)
     bool dilatedMaps;         // step IV tests the dilated maps (cao); lao recomputes every visible voxel
     bool slabPass;            // the volume is integrated slice by slice even without tubes (dos)
-    bool occludesTubes;       // tube surfaces take the slab pass's occlusion (and the vicinity term)
+    bool tubesInSlabPass;     // tubes go through the slab pass (seed 000's combined occlusion and the vicinity
+                              // term); the other modes but ismos shade them in the ray cast (tube_surface.glsl)
     const char* description;
 };
 

@@ -50,6 +50,17 @@ std::vector<float> GBuffer::readDepth() const {
 }
 
 namespace {
+std::vector<glm::vec4> readRgba(GLuint texture, glm::ivec2 size) {
+    std::vector<glm::vec4> values(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y));
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(values.size() * sizeof(glm::vec4)), values.data());
+    return values;
+}
+}  // namespace
+
+std::vector<glm::vec4> GBuffer::readColor() const { return readRgba(color_.name(), size_); }
+std::vector<glm::vec4> GBuffer::readNormal() const { return readRgba(normal_.name(), size_); }
+
+namespace {
 
 TubeBuffers upload(const TubeVertices& v) {
     if (v.positions.size() != v.directions.size() || v.positions.size() != v.colors.size())

@@ -24,6 +24,8 @@ public:
     GLuint framebuffer() const { return framebuffer_.name(); }
     std::size_t gpuBytes() const;
     std::vector<float> readDepth() const;
+    std::vector<glm::vec4> readColor() const;    // tests: the colour and the normal/tangent + kind, row 0 at the top
+    std::vector<glm::vec4> readNormal() const;
 
 private:
     glm::ivec2 size_{0};

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace curette::reference {
 
@@ -45,7 +46,51 @@ glm::dvec3 shadePhong(const TransferFunction::Material& m, const std::vector<std
     return color;
 }
 
+std::vector<std::pair<glm::dvec3, glm::dvec3>> frameLights(const FrameDescription& frame) {
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> lights;
+    for (const Light& l : frame.lights) {
+        if (lights.size() == 4) break;
+        lights.emplace_back(worldLightDirection(l, frame.camera), l.color);
+    }
+    return lights;
+}
+
+bool readsAmbient(ShadingMode mode) { return mode == ShadingMode::Lao || mode == ShadingMode::Cao; }
+
 }  // namespace
+
+glm::dvec3 shadeTubeSurface(const VolumeData& volume, const FrameDescription& frame, const TubeSurface& surface, glm::dvec3 eye,
+                            glm::dvec3 direction, double t, const RaycastOptions& options) {
+    if (frame.shading == ShadingMode::Solid) return surface.color;
+    const TransferFunction::Material& m = options.tubeShading.material;
+    glm::dvec3 toViewer = -direction;
+    glm::dvec3 diffuse(0.0), specular(0.0);
+    glm::dvec3 n = glm::normalize(surface.normalOrTangent);
+    if (!surface.line && glm::dot(n, toViewer) < 0) n = -n;
+    for (const auto& [l, c] : frameLights(frame)) {
+        double d = 0, s = 0;
+        if (surface.line) {
+            // Seed 004 eq. 3.12-3.15 (render/model/tube_geometry.h illuminatedLineColor), L and V pointing away.
+            double lt = glm::dot(l, n), vt = glm::dot(toViewer, n);
+            double ln = std::sqrt(std::max(1.0 - lt * lt, 0.0));
+            double vr = ln * std::sqrt(std::max(1.0 - vt * vt, 0.0)) - lt * vt;
+            d = std::pow(ln, options.tubeShading.lineDiffuseExponent);
+            s = std::pow(std::max(vr, 0.0), m.specularPower);
+        } else {
+            d = std::max(glm::dot(n, l), 0.0);
+            glm::dvec3 halfway = glm::normalize(l + toViewer);
+            s = d > 0 ? std::pow(std::max(glm::dot(n, halfway), 0.0), m.specularPower) : 0.0;
+        }
+        diffuse += c * d;
+        specular += c * s;
+    }
+    double occlusion = 1.0;
+    if (readsAmbient(frame.shading)) {
+        VolumeGeometry g{volume.dims, volume.indexToWorld};
+        occlusion = options.ambient(glm::dvec3(g.worldToTexture() * glm::dvec4(eye + t * direction, 1.0)));
+    }
+    return occlusion * surface.color * (m.ambient + m.diffuse * diffuse) + m.specular * specular;
+}
 
 RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf, const FrameDescription& frame,
                            double stepMm, glm::ivec2 pixel, const RaycastOptions& options) {
@@ -55,21 +100,30 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
     glm::dvec3 originTex = glm::dvec3(worldToTexture * glm::dvec4(eye, 1.0));
     glm::dvec3 directionTex = glm::dmat3(worldToTexture) * direction;
 
-    std::vector<std::pair<glm::dvec3, glm::dvec3>> lights;
-    for (const Light& l : frame.lights) {
-        if (lights.size() == 4) break;
-        lights.emplace_back(worldLightDirection(l, frame.camera), l.color);
-    }
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> lights = frameLights(frame);
     VolumeSampler sampler(volume);
     bool useGradient = frame.shading == ShadingMode::Phong || tf.hasGradientOpacity();
+    if (readsAmbient(frame.shading) && !options.ambient) throw std::invalid_argument("reference::raycastPixel: lao/cao need V_AO");
+    // A tube surface ends the ray in front of it (tube_surface.glsl: samples with t below the surface's).
+    double stopAt = options.opaqueAtMm, tubeT = -1.0;
+    if (options.tube && options.tube->viewDepthMm > 0) {
+        tubeT = options.tube->viewDepthMm / glm::dot(direction, frame.camera.forward());
+        stopAt = std::min(stopAt, tubeT);
+    }
 
     RaycastResult result;
+    glm::dvec4& acc = result.rgba;
+    // The opaque tube behind what the ray gathered in front of it, whether or not the ray met the volume's box.
+    auto withTube = [&]() {
+        if (tubeT > 0)
+            acc = glm::dvec4(glm::dvec3(acc) + (1.0 - acc.a) * shadeTubeSurface(volume, frame, *options.tube, eye, direction, tubeT, options), 1.0);
+        return result;
+    };
     double tNear, tFar;
-    if (!intersectBox(originTex, directionTex, glm::dvec3(0), glm::dvec3(1), tNear, tFar)) return result;
+    if (!intersectBox(originTex, directionTex, glm::dvec3(0), glm::dvec3(1), tNear, tFar)) return withTube();
     double jitter = frame.raycast.jitterSeed ? pixelRandom(glm::uvec2(pixel), frame.raycast.jitterSeed) : 0.0;
     long k = static_cast<long>(std::ceil(std::max(tNear, 0.0) / stepMm - jitter));
     long kLast = static_cast<long>(std::floor(tFar / stepMm - jitter));
-    glm::dvec4& acc = result.rgba;
     // Cut faces (the rules of shaders/raycast.comp and shade_sample.glsl, render/model/frame.h CutFaceSettings): the
     // first visible lattice sample after clipped ones is taken at the crossing (here by bisection with the
     // exact inside test), standing for the ray to the end of its half step; phong lights the tissue behind the
@@ -81,7 +135,7 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
     glm::dvec3 faceNormal(0.0);
     for (; k <= kLast; ++k) {
         double t = (static_cast<double>(k) + jitter) * stepMm;
-        if (t >= options.opaqueAtMm) break;
+        if (t >= stopAt) break;
         double segment = stepMm;
         if (options.clipped && options.clipped(eye + t * direction)) {
             afterClipped = true;
@@ -118,15 +172,15 @@ RaycastResult raycastPixel(const VolumeData& volume, const TransferFunction& tf,
             if (glm::dot(volumeNormal, faceNormal) < 0) volumeNormal = -volumeNormal;
             if (faceWeight > 0) gradient = -glm::normalize(glm::mix(volumeNormal, faceNormal, faceWeight));
         }
-        glm::dvec3 color = frame.shading == ShadingMode::Phong
-                               ? shadePhong(tf.material, lights, albedo, gradient, -direction, 1.0)
-                               : albedo;
+        glm::dvec3 color = frame.shading == ShadingMode::Phong ? shadePhong(tf.material, lights, albedo, gradient, -direction, 1.0)
+                           : readsAmbient(frame.shading)       ? albedo * options.ambientScale * options.ambient(tex)
+                                                               : albedo;
         acc += glm::dvec4((1.0 - acc.a) * alpha * color, (1.0 - acc.a) * alpha);
         ++result.samples;
         if (acc.a >= 0.5 && result.halfOpacityDistanceMm < 0) result.halfOpacityDistanceMm = t;
         if (acc.a >= frame.raycast.earlyTerminationAlpha) break;
     }
-    return result;
+    return withTube();
 }
 
 }  // namespace curette::reference

@@ -2,7 +2,7 @@
 // in slices of its recompute list and the ray cast in bands of tile rows give render()'s V_AO and image bit
 // for bit; the image shown stays the last one until the exact frame is done; and when the scene moves while a
 // step V is under way, it is abandoned, not finished, and CAO stays equal to a fresh renderer's (the exactness
-// contract). The slab pass (dos, and tubes in view) in its view-aligned slices gives render()'s image too, with
+// contract). The slab pass (dos, with and without tubes) in its view-aligned slices gives render()'s image too, with
 // previews drawn between its slices.
 #include "tests/render/moving_sphere_scene.h"
 
@@ -193,8 +193,8 @@ TEST(ExactInSlices, AnAbandonedStepVIsNotFinishedByTheNextExactFrame) {
 }
 
 // The exact frame in slices runs the plan of the frame it computes, not the last frame's: a scene that gained
-// tubes after its last exact frame (so that frame ran no tube G-buffer) is rendered with them, in a mode whose
-// tubes go through the slab pass (cao, with steps IV and V sliced too) and in ismos (pass 1 stops at the tubes),
+// tubes after its last exact frame (so that frame ran no tube G-buffer) is rendered with them, in cao (the ray
+// cast, sliced like steps IV and V, stops at the tubes and reads V_AO at them) and in ismos (pass 1 stops at them),
 // and equals render() of the same state bit for bit. Each pass reading the plan it belongs to is what makes it
 // so; a pass reading the renderer's last plan drew these frames without the tubes' occlusion.
 TEST(ExactInSlices, TubesAndIsmosInASlicedFrameEqualRender) {
@@ -227,14 +227,14 @@ TEST(ExactInSlices, TubesAndIsmosInASlicedFrameEqualRender) {
     }
 }
 
-// The slab pass's scenes: dos alone (the clip maps, then the slab pass), and phong with a tube in view (G-buffer, slab pass,
+// The slab pass's scenes: dos alone (the clip maps, then the slab pass), and dos with a tube in view (G-buffer, slab pass,
 // composite: seed 000).
 struct SlabCase {
     const char* name;
     ShadingMode mode;
     bool tubes;
 };
-constexpr SlabCase kSlabCases[] = {{"dos", ShadingMode::Dos, false}, {"phong with tubes", ShadingMode::Phong, true}};
+constexpr SlabCase kSlabCases[] = {{"dos", ShadingMode::Dos, false}, {"dos with tubes", ShadingMode::Dos, true}};
 
 MovingSphereScene slabScene(const SlabCase& c) {
     MovingSphereScene s(c.mode);

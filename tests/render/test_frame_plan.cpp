@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 namespace curette {
@@ -25,7 +26,8 @@ std::vector<Pass> passes(const FramePlan& plan) {
 TEST(FramePlan, SlabPassRunsAsThePlanSays) {
     EXPECT_TRUE(slabPassRuns(ShadingMode::Dos, false));
     EXPECT_FALSE(slabPassRuns(ShadingMode::Phong, false));
-    EXPECT_TRUE(slabPassRuns(ShadingMode::Phong, true));     // tubes: G-buffer, slab pass, composite
+    EXPECT_FALSE(slabPassRuns(ShadingMode::Phong, true));    // tubes: G-buffer, then the ray cast
+    EXPECT_TRUE(slabPassRuns(ShadingMode::Dos, true));       // tubes in dos: G-buffer, slab pass, composite
     EXPECT_FALSE(slabPassRuns(ShadingMode::Ismos, true));    // ISMOS shades the tubes itself
     for (const ShadingModeTraits& t : allShadingModes())
         for (bool tubes : {false, true}) {
@@ -62,15 +64,32 @@ TEST(FramePlan, AmbientOcclusionPassesRunOnlyWhenTheirInputsChanged) {
     EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::RayCast});
 }
 
-TEST(FramePlan, TubesInViewGoThroughGBufferSlabAndComposite) {
+// Tubes in view cost the ray caster's price in every mode without occlusion to propagate slice by slice: the
+// G-buffer, then the ray cast, which ends each ray at the tube and shades it (its line reads the G-buffer). Only
+// dos, whose combined occlusion is the model, keeps seed 000's slab pass and compositor.
+TEST(FramePlan, TubesInViewGoThroughTheGBufferAndTheRayCastButInDos) {
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong, ShadingMode::Lao, ShadingMode::Cao}) {
+        SCOPED_TRACE(shadingModeName(mode));
+        PlanInputs in;
+        in.shading = mode;
+        in.tubes = true;
+        in.tubesInView = true;
+        in.precomputedCurrent = in.ambientCurrent = true;
+        FramePlan plan = planFrame(in);
+        ASSERT_EQ(passes(plan), (std::vector<Pass>{Pass::TubeGBuffer, Pass::RayCast}));
+        const std::vector<Resource>& reads = plan.passes[1].reads;
+        EXPECT_NE(std::find(reads.begin(), reads.end(), Resource::GBuffer), reads.end()) << "the ray cast reads the G-buffer";
+        in.tubesInView = false;
+        plan = planFrame(in);
+        ASSERT_EQ(passes(plan), std::vector<Pass>{Pass::RayCast});
+        EXPECT_EQ(std::find(plan.passes[0].reads.begin(), plan.passes[0].reads.end(), Resource::GBuffer), plan.passes[0].reads.end())
+            << "without tubes in view the G-buffer is left out of its line";
+    }
     PlanInputs in;
-    in.shading = ShadingMode::Phong;
-    in.tubes = true;
-    in.tubesInView = true;
+    in.shading = ShadingMode::Dos;
+    in.tubes = in.tubesInView = true;
     EXPECT_EQ(passes(planFrame(in)), (std::vector<Pass>{Pass::TubeGBuffer, Pass::SlabPass, Pass::Composite}));
     in.tubesInView = false;
-    EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::RayCast});
-    in.shading = ShadingMode::Dos;
     EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::SlabPass});
 }
 

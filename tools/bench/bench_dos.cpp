@@ -68,7 +68,8 @@ int benchDos(const CommandLine& cl) {
         }
         r.ms = median(wall);
         for (auto& [pass, list] : passes) r.passes[pass] = median(list);
-        r.slices = renderer.slabPass().slicesLastFrame();
+        // Solid and phong draw their tubes in the ray cast (no slices); dos through the slab pass.
+        r.slices = renderer.lastPlan().runs(Pass::SlabPass) ? renderer.slabPass().slicesLastFrame() : 0;
         return r;
     };
     const DosSettings& dos = base.dos;
