@@ -1,6 +1,7 @@
 #include "plan/removal_volume.h"
 
 #include "base/error.h"
+#include "base/sha256.h"
 
 #include <algorithm>
 #include <bit>
@@ -37,6 +38,16 @@ std::uint64_t RemovalVolume::mask(glm::ivec3 v) const {
     if (glm::any(glm::lessThan(v, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(v, dims_))) return 0;
     auto it = masks_.find(brickNumber(v / kRemovalBrickSize));
     return it == masks_.end() ? 0 : it->second[static_cast<std::size_t>(voxelInBrick(v % kRemovalBrickSize))];
+}
+
+bool RemovalVolume::drilledAt(glm::dvec3 world) const {
+    glm::dvec3 index = glm::dvec3(worldToIndex_ * glm::dvec4(world, 1.0));
+    glm::ivec3 v(glm::floor(index + 0.5));
+    std::uint64_t m = mask(v);
+    if (m == 0) return false;
+    glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor((index - glm::dvec3(v) + 0.5) * double(kRemovalCellsPerAxis))), glm::ivec3(0),
+                                 glm::ivec3(kRemovalCellsPerAxis - 1));
+    return (m >> ((cell.z * kRemovalCellsPerAxis + cell.y) * kRemovalCellsPerAxis + cell.x)) & 1u;
 }
 
 BrickMasks RemovalVolume::brickMasks(std::uint32_t brick) const {
@@ -159,8 +170,51 @@ std::vector<std::uint32_t> RemovalVolume::bricksChangedSince(std::uint64_t versi
     return out;
 }
 
+std::string RemovalVolume::digest() const {
+    std::vector<std::uint32_t> bricks;
+    for (const auto& entry : masks_) bricks.push_back(entry.first);
+    std::sort(bricks.begin(), bricks.end());
+    Sha256 hash;
+    for (std::uint32_t b : bricks) {
+        const BrickMasks& m = masks_.at(b);
+        for (std::size_t i = 0; i < m.size(); ++i) {
+            if (m[i] == 0) continue;
+            std::uint64_t record[2] = {std::uint64_t(b) * kRemovalBrickVoxels + i, m[i]};
+            hash.update(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record), sizeof record));
+        }
+    }
+    return hash.hexDigest();
+}
+
 std::size_t RemovalVolume::storedBytes() const {
     return masks_.size() * (sizeof(BrickMasks) + sizeof(std::uint32_t)) + brickVersion_.size() * sizeof(std::uint64_t);
+}
+
+RemovalField withDrilledRemoval(const RemovalField& meshes, const RemovalVolume& drilled) {
+    if (drilled.empty()) return meshes;
+    if (drilled.dims() != meshes.gridDims) throw std::logic_error("withDrilledRemoval: the removal is not on the field's grid");
+    VoxelBox a = meshes.box(), b = drilled.drilledBox();
+    glm::ivec3 lo = b.origin, hi = b.origin + b.size;
+    if (a.voxelCount() > 0) lo = glm::min(lo, a.origin), hi = glm::max(hi, a.origin + a.size);
+    RemovalField out = meshes;
+    out.origin = lo;
+    out.size = hi - lo;
+    out.insideSamples.assign(out.box().voxelCount(), 0);
+    const int s = meshes.samplesPerVoxel;
+    for (int z = lo.z; z < hi.z; ++z)
+        for (int y = lo.y; y < hi.y; ++y)
+            for (int x = lo.x; x < hi.x; ++x) {
+                glm::ivec3 v(x, y, z);
+                int count = a.contains(v) ? meshes.insideSamples[meshes.boxIndex(v)] : 0;
+                int byte = drilled.drilledByte(v);
+                if (byte > 0) {
+                    // Integer form of ceil(S - (S - count) * (255 - byte) / 255).
+                    int kept = ((s - count) * (255 - byte)) / 255;   // floor of what stays
+                    count = s - kept;
+                }
+                out.insideSamples[out.boxIndex(v)] = static_cast<std::uint16_t>(count);
+            }
+    return out;
 }
 
 }  // namespace curette::plan

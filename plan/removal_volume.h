@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -59,6 +60,8 @@ public:
     void clear();
 
     std::uint64_t mask(glm::ivec3 voxel) const;
+    // Whether the sub-cell holding a world point is drilled (the drilled region as a solid: margins, tract probes).
+    bool drilledAt(glm::dvec3 world) const;
     std::uint8_t drilledByte(glm::ivec3 voxel) const { return drilledByteFromBits(std::popcount(mask(voxel))); }
     double drilledFraction(glm::ivec3 voxel) const { return drilledByte(voxel) / 255.0; }
     bool empty() const { return drilledVoxels_ == 0; }
@@ -71,6 +74,8 @@ public:
     std::uint64_t version() const { return version_; }
     std::vector<std::uint32_t> bricksChangedSince(std::uint64_t version) const;
     std::size_t storedBricks() const { return masks_.size(); }
+    // SHA-256 of every drilled voxel's index and mask, in voxel order: equal digests, equal removals.
+    std::string digest() const;
     std::size_t storedBytes() const;
 
 private:
@@ -83,5 +88,10 @@ private:
     std::uint64_t version_ = 0;
     std::size_t drilledVoxels_ = 0;                          // voxels with a bit set
 };
+
+// The report's removal field with the drilled removal folded in: the box grown to hold the drilled bricks, and
+// each voxel's count made ceil(S * (1 - (1 - count / S) * (1 - drilled))) for S = samplesPerVoxel, the
+// combination step IV applies to V_o, rounded up so the report never counts less removed than that.
+RemovalField withDrilledRemoval(const RemovalField& meshes, const RemovalVolume& drilled);
 
 }  // namespace curette::plan

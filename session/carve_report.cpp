@@ -102,7 +102,7 @@ CarveReporter::CarveReporter(const LoadedScene& loaded, const VolumeGeometry& ge
 }
 
 ReportInputs reportInputs(const clip::ClipMeshSet& clip, const InteractionState& state) {
-    return {clip.version(), state.transferFunctionVersion, state.tubesVersion};
+    return {clip.version(), state.transferFunctionVersion, state.tubesVersion, state.removal ? state.removal->version() : 0};
 }
 
 plan::Report CarveReporter::compute(clip::ClipMeshSet& clip, const InteractionState& state) {
@@ -118,13 +118,24 @@ plan::Report CarveReporter::compute(clip::ClipMeshSet& clip, const InteractionSt
     poses_ = state.sessionPoses();
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
+    // The meshes' field, then the drilled removal folded in (plan::withDrilledRemoval: the combination step IV
+    // applies); the drilled region also counts as inside for the tract probes and the margins.
     field_ = probe_.removalField(clip);
+    const plan::RemovalVolume* drilled = state.removal && !state.removal->empty() ? state.removal.get() : nullptr;
+    if (drilled) field_ = plan::withDrilledRemoval(field_, *drilled);
     auto fieldDone = Clock::now();
-    for (plan::BundleInput& b : bundles_) b.probe.insideFlags = probe_.insideFlags(clip, b.probe.points);
+    auto withDrilled = [drilled](std::vector<std::uint8_t> flags, const std::vector<glm::dvec3>& points) {
+        if (drilled)
+            for (std::size_t i = 0; i < points.size(); ++i) flags[i] = flags[i] || drilled->drilledAt(points[i]);
+        return flags;
+    };
+    for (plan::BundleInput& b : bundles_) b.probe.insideFlags = withDrilled(probe_.insideFlags(clip, b.probe.points), b.probe.points);
     fieldMs_ = std::chrono::duration<double, std::milli>(fieldDone - start).count();
     flagsMs_ = std::chrono::duration<double, std::milli>(Clock::now() - fieldDone).count();
     // Margins are refined with the renderer's own clip test, as the field was made.
-    plan::PointsInside inside = [this, &clip](const std::vector<glm::dvec3>& points) { return probe_.insideFlags(clip, points); };
+    plan::PointsInside inside = [this, &clip, withDrilled](const std::vector<glm::dvec3>& points) {
+        return withDrilled(probe_.insideFlags(clip, points), points);
+    };
     return plan::computeReport(loaded_.volume, transferFunction_, settings_, field_, labelSets_, bundles_, inside);
 }
 

@@ -29,6 +29,7 @@ namespace curette {
 // the reporter and for when the viewer's plan table must be computed again.
 struct ReportInputs {
     std::uint64_t meshes = 0, transferFunction = 0, tubes = 0;
+    std::uint64_t removal = 0;   // the drilled removal's version (plan/removal_volume.h)
     bool operator==(const ReportInputs&) const = default;
 };
 ReportInputs reportInputs(const clip::ClipMeshSet& clip, const InteractionState& state);

@@ -10,7 +10,9 @@
 #include "mesh/limits.h"
 #include "mesh/rigid_pose.h"
 #include "mesh/triangle_mesh.h"
+#include "plan/drill_history.h"
 #include "plan/removal_field.h"
+#include "plan/removal_volume.h"
 #include "input/actions.h"
 #include "render/model/camera.h"
 #include "render/model/frame.h"
@@ -77,6 +79,13 @@ struct InteractionState {
     bool toggleRecording = false, screenshot = false;
     std::vector<int> addedMeshIds, removedMeshIds;   // this frame's, for the session's mesh events
     std::vector<SettingEdit> appliedEdits;           // this frame's, as applied (an added mesh with its id)
+    // Drilling (session/drilling.h): the accumulated removal on the scan grid and its undo steps, made when the
+    // session's scan is known (SessionStep::attachRemoval; null before); shared by copies of the state. And
+    // this frame's drilling meshes and undo/redo commands, as applied, for the session's frame.
+    std::shared_ptr<plan::RemovalVolume> removal;
+    std::shared_ptr<plan::DrillHistory> drillHistory;
+    std::vector<SessionDrill> appliedDrills;
+    std::vector<DrillHistoryCommand> appliedDrillHistory;
 
     static InteractionState fromScene(const Scene& scene);
     // The state a session starts from (its header), with geometry from the scene or the meshes' descriptions.

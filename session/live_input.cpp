@@ -104,6 +104,8 @@ void LiveRecording::addFrame(double now, double dt, glm::ivec2 size, const Orbit
     }
     f.edits = state.appliedEdits;
     f.holds = input.holds;
+    f.drills = state.appliedDrills;
+    f.drillHistory = state.appliedDrillHistory;
     for (const input::RawReport& r : input.reports) f.reports.push_back({r.deviceId, std::max(0.0, r.timeSeconds - start_), r.bytes});
     recorder_.add(f);
 }

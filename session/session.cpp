@@ -204,6 +204,14 @@ std::string sessionFrameLine(const SessionFrame& f) {
     }
     if (!f.meshesRemoved.empty()) j["meshes_removed"] = f.meshesRemoved;
     if (!f.edits.empty()) j["edits"] = editsJson(f.edits);
+    if (!f.drills.empty()) {
+        j["drill"] = nlohmann::ordered_json::array();
+        for (const SessionDrill& d : f.drills) j["drill"].push_back({{"mesh", d.mesh}, {"erase", d.erase}});
+    }
+    if (!f.drillHistory.empty()) {
+        j["drill_history"] = nlohmann::ordered_json::array();
+        for (DrillHistoryCommand c : f.drillHistory) j["drill_history"].push_back(c == DrillHistoryCommand::Undo ? "undo" : "redo");
+    }
     if (!f.holds.empty()) {
         j["holds"] = nlohmann::ordered_json::array();
         for (const input::HoldRequest& h : f.holds)
@@ -458,6 +466,21 @@ SessionFrame readFrame(std::string_view line, std::size_t number, FrameContext& 
     if (auto edits = r.find("edits")) readFrameEdits(*edits, f, context);
     if (auto lights = r.find("lights")) f.lights = readFrameLights(*lights, context);
     if (auto holds = r.find("holds")) f.holds = readHolds(*holds, context);
+    if (auto drills = r.find("drill")) {
+        if (context.version < 5) drills->fail("nothing: session version " + std::to_string(context.version) + " has no drilling (it came with version 5)");
+        for (const JsonReader& d : drills->elements(0, clip::kMaxClipMeshes)) {
+            SessionDrill drill;
+            drill.mesh = d.at("mesh").integer(0, 1 << 30);
+            drill.erase = d.at("erase").boolean();
+            d.finish();
+            f.drills.push_back(drill);
+        }
+    }
+    if (auto history = r.find("drill_history")) {
+        if (context.version < 5) history->fail("nothing: session version " + std::to_string(context.version) + " has no drilling (it came with version 5)");
+        for (const JsonReader& c : history->elements(0, 64))
+            f.drillHistory.push_back(c.oneOf({"undo", "redo"}) == "undo" ? DrillHistoryCommand::Undo : DrillHistoryCommand::Redo);
+    }
     f.keys = static_cast<std::uint32_t>(r.at("keys").unsignedInteger(0xFFFFFFFFu));
     f.drag = r.at("drag").vec2(-1e5, 1e5);
     if (auto drag = r.find("light_drag")) {

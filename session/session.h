@@ -20,7 +20,8 @@
 
 namespace curette {
 
-inline constexpr int kSessionVersion = 4;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed
+inline constexpr int kSessionVersion = 5;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
+                                            // 5: drilling and its undo/redo
 inline constexpr int kOldestSessionVersion = 1;
 
 struct SessionDevice {
@@ -46,6 +47,15 @@ struct SessionLight {
     glm::dvec3 direction{0.0, 0.0, 1.0};   // towards the light; camera space (right, up, towards the viewer) or world
     bool cameraSpace = true;
 };
+
+// A mesh drilling in a frame (version 5; session/drilling.h): it removes (erase: restores) what it sweeps
+// from its pose before the frame to its pose after.
+struct SessionDrill {
+    int mesh = 0;   // id
+    bool erase = false;
+    bool operator==(const SessionDrill&) const = default;
+};
+enum class DrillHistoryCommand { Undo, Redo };
 
 struct SessionAddedMesh {
     int id = 0;
@@ -74,6 +84,9 @@ struct SessionFrame {
     // The hold requests the frame's input pipeline step applied, before its reports (version 4;
     // input::HoldRequest): {"binding": N | "keyboard", "mesh": index}.
     std::vector<input::HoldRequest> holds;
+    // The meshes drilling this frame, then the undo/redo commands applied after them (version 5).
+    std::vector<SessionDrill> drills;
+    std::vector<DrillHistoryCommand> drillHistory;
     std::vector<SessionReport> reports;
 };
 

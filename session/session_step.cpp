@@ -47,8 +47,9 @@ SessionStep::Before SessionStep::begin() {
     return before;
 }
 
-StepChanges SessionStep::compare(const Before& before, bool meshesChanged) {
+StepChanges SessionStep::compare(const Before& before, bool meshesChanged, bool removalChanged) {
     StepChanges c;
+    c.removal = removalChanged;
     c.meshes = meshesChanged;
     c.poses = !samePoses(before.poses, state_.sessionPoses());
     c.shading = state_.shading != before.shading;
@@ -60,11 +61,18 @@ StepChanges SessionStep::compare(const Before& before, bool meshesChanged) {
 }
 
 StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int viewportHeight, const std::vector<SettingEdit>& edits,
-                               const std::string& source) {
+                               const std::string& source, const DrillInput& drill) {
     Before before = begin();
     state_.apply(actions, frame_.camera, viewportHeight);
     state_.applyEdits(edits, source);
-    return compare(before, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty());
+    bool removal = applyDrilling(state_, before.poses, drill);
+    return compare(before, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty(), removal);
+}
+
+void SessionStep::attachRemoval(glm::ivec3 dims, const glm::dmat4& indexToWorld) {
+    if (state_.removal) return;
+    state_.removal = std::make_shared<plan::RemovalVolume>(dims, indexToWorld);
+    state_.drillHistory = std::make_shared<plan::DrillHistory>();
 }
 
 StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::path& sceneDirectory, const std::string& where) {
@@ -101,12 +109,16 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     state_.shading = f.shading;
     frame_.camera = f.camera;
     frame_.size = f.size;
-    return compare(before, !f.meshesAdded.empty() || !f.meshesRemoved.empty());
+    bool removal = applyDrilling(state_, before.poses, DrillInput{f.drills, f.drillHistory});
+    return compare(before, !f.meshesAdded.empty() || !f.meshesRemoved.empty(), removal);
 }
 
 void SessionStep::syncTo(clip::ClipMeshSet& set) const { syncClipMeshes(state_, set); }
 
-void SessionStep::syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts) { syncRenderer(state_, renderer, tracts, synced_); }
+void SessionStep::syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts) {
+    syncRenderer(state_, renderer, tracts, synced_);
+    renderer.setRemoval(state_.removal);
+}
 
 void syncRenderer(const InteractionState& state, Renderer& renderer, const std::vector<Tractogram>& tracts, RendererSync& synced) {
     syncClipMeshes(state, renderer.clipMeshes());

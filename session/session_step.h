@@ -5,6 +5,7 @@
 // renderer, so every per-mesh setting (geometry, scale, pose, clips_tubes) arrives by every command alike;
 // and the only definition of "the poses changed".
 
+#include "session/drilling.h"
 #include "session/interaction.h"
 #include "session/session.h"
 #include "base/tractogram.h"
@@ -27,7 +28,8 @@ struct StepChanges {
     bool shading = false;
     bool lights = false;   // a light (MoveLight, a recorded frame's lights, a light edit)
     bool settings = false; // a setting edit (scene/setting_edit.h)
-    bool any() const { return poses || meshes || shading || lights || settings; }
+    bool removal = false;  // drilling or its undo/redo changed the removal (session/drilling.h)
+    bool any() const { return poses || meshes || shading || lights || settings || removal; }
 };
 
 // SessionStep::syncTo for a state without a step (a scene's first frame: render, bench raycast/dos).
@@ -63,8 +65,12 @@ public:
     // Live input, or input re-derived from recorded reports: the actions applied through the interaction
     // state with the frame's camera, for a viewport `viewportHeight` pixels high (drags).
     // Then the frame's setting edits (the panels', or a session's recorded ones), `source` naming them in errors.
+    // Then the frame's drilling (session/drilling.h).
     StepChanges apply(const std::vector<input::Action>& actions, int viewportHeight, const std::vector<SettingEdit>& edits = {},
-                      const std::string& source = "<panel>");
+                      const std::string& source = "<panel>", const DrillInput& drill = {});
+    // Makes the state's drilled removal on the scan grid (empty, with an empty undo history) unless it has one:
+    // every command that steps a session on a scan calls it, so drilling works alike in each.
+    void attachRemoval(glm::ivec3 dims, const glm::dmat4& indexToWorld);
     // A recorded frame followed as recorded (replay without --from-reports): meshes added and removed, every
     // pose and scale, the lights' directions, the setting edits, the shading, camera and image size. `where`
     // names the line in errors.
@@ -74,7 +80,7 @@ public:
     // (cheap: a rigid motion only changes a camera matrix); meshes are re-added only when the list changed.
     void syncTo(clip::ClipMeshSet& set) const;
     // Makes a renderer match the state through syncRenderer (the frame's raycast, dos, ismos and lights reach
-    // it in frame()).
+    // it in frame()), and hands it the drilled removal.
     void syncTo(Renderer& renderer, const std::vector<Tractogram>& tracts);
 
 private:
@@ -86,7 +92,7 @@ private:
         std::vector<Light> lights;
     };
     Before begin();
-    StepChanges compare(const Before& before, bool meshesChanged);
+    StepChanges compare(const Before& before, bool meshesChanged, bool removalChanged = false);
 
     InteractionState state_;
     FrameDescription frame_;

@@ -304,6 +304,7 @@ int benchView(const CommandLine& cl) {
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
                      initialFrame(loaded.scene, geometry));
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
     Viewer viewer{ViewerState(settings), renderer, step, loaded.tracts, size, background};
     renderer.finish();
     renderer.collectTimings();

@@ -114,6 +114,29 @@ input::KeyboardMouseState scriptedLightKeys(int f, int frames, double phase) {
     return k;
 }
 
+// The frames of --drill / --erase: "A-B" ranges (inclusive), comma-separated, within the recording.
+std::vector<std::pair<int, int>> frameRanges(const std::string& option, const std::string& text, int frames) {
+    std::vector<std::pair<int, int>> ranges;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        std::size_t comma = std::min(text.find(',', start), text.size());
+        std::string range = text.substr(start, comma - start);
+        std::size_t dash = range.find('-');
+        if (dash == std::string::npos) throw InputError("<command line>", "--" + option, "FIRST-LAST frame ranges, comma-separated", range);
+        int a = CommandLine::parseInt(option, range.substr(0, dash), 0, frames - 1);
+        int b = CommandLine::parseInt(option, range.substr(dash + 1), a, frames - 1);
+        ranges.emplace_back(a, b);
+        start = comma + 1;
+    }
+    return ranges;
+}
+
+bool inRanges(const std::vector<std::pair<int, int>>& ranges, int f) {
+    for (const auto& [a, b] : ranges)
+        if (f >= a && f <= b) return true;
+    return false;
+}
+
 int record(const CommandLine& cl) {
     std::filesystem::path scenePath = cl.required("scene"), out = cl.required("out");
     int frames = CommandLine::parseInt("frames", cl.valueOr("frames", "150"), 1, 1000000);
@@ -149,12 +172,21 @@ int record(const CommandLine& cl) {
         input::Key key = *mode == ShadingMode::Ismos ? input::Key::Digit6 : static_cast<input::Key>(static_cast<int>(input::Key::Digit1) + static_cast<int>(*mode));
         shadingPress = std::make_pair(frame, key);
     }
-    if (!moveLights && !shadingPress && !cl.value("synthetic")) (void)cl.required("synthetic");
+    // Scripted drilling (session/drilling.h): the mesh --drill-mesh (index, default 0) drills over the --drill
+    // frames and erases over the --erase ones; --undo / --redo press Ctrl+Z / Ctrl+Shift+Z at those frames.
+    std::vector<std::pair<int, int>> drillFrames, eraseFrames;
+    if (auto d = cl.value("drill")) drillFrames = frameRanges("drill", *d, frames);
+    if (auto e = cl.value("erase")) eraseFrames = frameRanges("erase", *e, frames);
+    std::vector<int> undoFrames = cl.value("undo") ? CommandLine::parseIntList("undo", *cl.value("undo"), 0, frames - 1) : std::vector<int>{};
+    std::vector<int> redoFrames = cl.value("redo") ? CommandLine::parseIntList("redo", *cl.value("redo"), 0, frames - 1) : std::vector<int>{};
+    int drillMesh = CommandLine::parseInt("drill-mesh", cl.valueOr("drill-mesh", "0"), 0, clip::kMaxClipMeshes - 1);
+    if (!moveLights && !shadingPress && !cl.value("synthetic") && drillFrames.empty()) (void)cl.required("synthetic");
     input::MappingConfig mapping = cl.value("mapping") ? input::loadMapping(*cl.value("mapping")) : input::defaultMapping();
 
     LoadedScene loaded = loadSceneWithVolume(scenePath);
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, geometry));
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
     glm::ivec2 size = cl.value("size") ? CommandLine::parseSize("size", *cl.value("size")) : step.frame().size;
     step.frame().size = size;
     InteractionState& state = step.state();
@@ -208,13 +240,24 @@ int record(const CommandLine& cl) {
         input::KeyboardMouseState keys = moveLights ? scriptedLightKeys(f, frames, lightPhase) : input::KeyboardMouseState{};
         if (shadingPress && f == shadingPress->first) keys.keys |= 1u << static_cast<int>(shadingPress->second);
         InputFrame inputFrame = input.step(now, keys, frameDt, static_cast<int>(state.meshes.size()));
-        step.apply(inputFrame.actions, size.y);
+        DrillInput drill;
+        bool drilling = inRanges(drillFrames, f), erasing = inRanges(eraseFrames, f);
+        if ((drilling || erasing) && drillMesh < static_cast<int>(state.meshes.size()))
+            drill.drills.push_back({state.meshes[static_cast<std::size_t>(drillMesh)].id, erasing && !drilling});
+        for (int u : undoFrames)
+            if (u == f) drill.history.push_back(DrillHistoryCommand::Undo);
+        for (int r : redoFrames)
+            if (r == f) drill.history.push_back(DrillHistoryCommand::Redo);
+        step.apply(inputFrame.actions, size.y, {}, "<panel>", drill);
         state.toggleRecording = state.screenshot = false;   // nothing to toggle or capture headless
         recording.addFrame(now, frameDt, size, step.frame().camera, state, keys, inputFrame);
     }
     recording.finish();
     std::printf("wrote %s: %d frames, %zu synthetic devices, %zu meshes, scene %s\n", out.c_str(), frames, kinds.size(), state.meshes.size(),
                 sceneFromSession.c_str());
+    if (state.removal && !state.removal->empty())
+        std::printf("drilled %.3f mL (%zu undo steps); removal %s\n", state.removal->drilledVolumeMm3() / 1000.0, state.drillHistory->undoSteps(),
+                    state.removal->digest().c_str());
     return 0;
 }
 
@@ -233,7 +276,12 @@ Command recordCommand() {
               {"size", true, "image size WxH recorded for the frames (default: the scene's)", "WxH"},
               {"unplug", true, "FRAME: unplug the last device there and plug it back one second later"},
               {"move-lights", false, "also turn the lights with scripted keys (I/J/K/L, O) and Shift + left drags"},
-              {"press-shading", true, "MODE@FRAME: press the key of shading MODE (1-6) at FRAME, as at the window", "MODE@FRAME"}}},
+              {"press-shading", true, "MODE@FRAME: press the key of shading MODE (1-6) at FRAME, as at the window", "MODE@FRAME"},
+              {"drill", true, "FIRST-LAST[,...]: frames over which the mesh --drill-mesh drills (as B held at the window)", "RANGES"},
+              {"erase", true, "FIRST-LAST[,...]: frames over which it erases (N held)", "RANGES"},
+              {"drill-mesh", true, "index of the mesh that drills (default 0)"},
+              {"undo", true, "FRAME[,...]: undo the last stroke there (Ctrl+Z)"},
+              {"redo", true, "FRAME[,...]: redo there (Ctrl+Shift+Z)"}}},
             &record};
 }
 

@@ -99,6 +99,7 @@ int replay(const CommandLine& cl) {
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
                      initialFrame(loaded.scene, geometry));
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
     const InteractionState& state = step.state();
     std::optional<CarveReporter> reporter;
     if (reporting) reporter.emplace(loaded, geometry, programVersion());
@@ -130,7 +131,8 @@ int replay(const CommandLine& cl) {
             input::KeyboardMouseState keys{f.keys, f.drag, f.lightDrag};
             step.frame().camera = f.camera;
             step.frame().size = f.size;
-            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size()), f.holds), f.size.y, f.edits, where);
+            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size()), f.holds), f.size.y, f.edits, where,
+                       DrillInput{f.drills, f.drillHistory});
             // The re-derived poses, lights (version 2) and shading must be the recorded ones, bit for bit.
             bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights);
             if (!same && poseMismatches++ == 0)
@@ -195,6 +197,8 @@ int replay(const CommandLine& cl) {
                     100.0 * fraction, hash.c_str(), equal == "-" ? "" : ("  CAO == LAO: " + equal).c_str());
         ++rendered;
     }
+    if (state.removal && !state.removal->empty())
+        std::printf("drilled %.3f mL; removal %s\n", state.removal->drilledVolumeMm3() / 1000.0, state.removal->digest().c_str());
     if (reporter && lastReport) {
         // The whole plan (exports included) for the last reported frame; the series as CSV and a plot.
         reporter->write(*out / "report", *lastReport, lastReportState, PlanExportOptions{});

@@ -51,6 +51,7 @@ int report(const CommandLine& cl) {
         int frame = cl.value("frame") ? CommandLine::parseInt("frame", *cl.value("frame"), 0, last) : last;
         step.emplace(InteractionState::fromSessionStart(session->header, loaded.scene, scenePath.parent_path(), *cl.value("session")),
                      initialFrame(loaded.scene, geometry));
+        step->attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
         for (int n = 0; n <= frame; ++n)
             step->follow(session->frames[std::size_t(n)], scenePath.parent_path(), *cl.value("session") + " line " + std::to_string(n + 2));
         step->syncTo(renderer, loaded.tracts);   // the renderer in the state at that frame, its meshes and settings

@@ -145,6 +145,7 @@ struct ViewWindow {
     std::optional<glm::dvec2> viewClick{};   // a Ctrl + left click in the 3-D view this iteration (framebuffer pixels)
     std::unique_ptr<LiveRecording> recording{};
     std::size_t played = 0;           // --play: the recorded frames followed
+    std::vector<DrillHistoryCommand> pendingDrillHistory;   // Ctrl+Z / Ctrl+Shift+Z pressed since the last frame
     bool orbiting = false, dragging = false, stereoKeyWasDown = false, exportKeyWasDown = false;
     glm::dvec2 lastCursor{0.0};
     int screenshots = 0;
@@ -198,6 +199,7 @@ private:
         glm::ivec2 framebuffer{0};
         OrbitCamera cameraBefore;
         input::KeyboardMouseState keys;
+        DrillInput drill;   // B held drills with the keyboard's mesh, N erases; Ctrl+Z / Ctrl+Shift+Z (Ctrl+Y) undo / redo
     };
     Polled poll();
     StepChanges applyInput(const Polled& p, InputFrame& input);
@@ -264,6 +266,14 @@ ViewWindow::Polled ViewWindow::poll() {
         if (glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS) p.keys.keys |= 1u << static_cast<int>(input::Key::Fine);
     }
     latchedKeys = 0;
+    // Drilling (session/drilling.h) with the mesh the keyboard moves.
+    int drillMesh = live.pipeline().keyboardSelection();
+    if (!io.WantCaptureKeyboard && drillMesh >= 0 && drillMesh < static_cast<int>(state().meshes.size())) {
+        bool drill = glfwGetKey(w, GLFW_KEY_B) == GLFW_PRESS, erase = glfwGetKey(w, GLFW_KEY_N) == GLFW_PRESS;
+        if (drill || erase) p.drill.drills.push_back({state().meshes[static_cast<std::size_t>(drillMesh)].id, erase && !drill});
+    }
+    p.drill.history = std::move(pendingDrillHistory);
+    pendingDrillHistory.clear();
     if (right && dragging) p.keys.rightDragPixels = delta;
     if (left && orbiting && shift) p.keys.lightDragPixels = delta;
     orbiting = left;
@@ -278,7 +288,7 @@ StepChanges ViewWindow::applyInput(const Polled& p, InputFrame& input) {
     StepChanges changes;
     if (!play) {
         try {
-            changes = step.apply(input.actions, p.framebuffer.y, drawSidebar());
+            changes = step.apply(input.actions, p.framebuffer.y, drawSidebar(), "<panel>", p.drill);
         } catch (const InputError& e) {   // a panel value the scene reader refuses: said, not applied
             messages.push_back(e.what());
         }
@@ -448,6 +458,11 @@ void ViewWindow::windowKeys(const Polled&) {
         if (key == GLFW_KEY_F2) sidebarOpen = !sidebarOpen;
         if (key == GLFW_KEY_HOME && !typing) frame().camera = homeCamera;
         if (key == GLFW_KEY_F5) exportRequested = true;
+        GLFWwindow* w = window.window();
+        bool ctrl = glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+        bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+        if (ctrl && !typing && key == GLFW_KEY_Z) pendingDrillHistory.push_back(shift ? DrillHistoryCommand::Redo : DrillHistoryCommand::Undo);
+        if (ctrl && !typing && key == GLFW_KEY_Y) pendingDrillHistory.push_back(DrillHistoryCommand::Redo);
     }
     latchedWindowKeys.clear();
 }
@@ -683,6 +698,7 @@ int view(const CommandLine& cl) {
     SessionStep step(play ? InteractionState::fromSessionStart(play->header, loaded.scene, loaded.scene.file.parent_path(), play->file.string())
                           : InteractionState::fromScene(loaded.scene),
                      initialFrame(loaded.scene, renderer.geometry()));
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
     ViewPanels panels(loaded, shippedPresetDirectory());
     LiveInput live(openHid(!cl.flag("no-devices") && !play), mapping, 40.0, 60.0);
     ViewWindow viewWindow{*window, loaded, scenePath, renderer, step, panels, live, play, cl.valueOr("screenshot", "curette-play.png"),
