@@ -94,6 +94,7 @@ int viewXr(const CommandLine& cl) {
     const glm::vec4 background(loaded.scene.background);
 
     window->makeCurrent();
+    glfwSwapInterval(0);   // the runtime's xrWaitFrame paces the loop; the mirror must not wait for the monitor
     xr::Session session("curette", [](XrSessionState state) { std::printf("xr session state %s\n", xr::sessionStateName(state)); });
     const RoomAnchor anchor = tableAnchor(renderer.geometry(), session.roomSpace());
     std::printf("xr runtime: %s; system: %s; eyes %dx%d and %dx%d; %s space; volume centre at %.3f, %.3f, %.3f m\n", session.runtimeName().c_str(),
@@ -111,9 +112,10 @@ int viewXr(const CommandLine& cl) {
     std::size_t framesRendered = 0;
     while (session.pollEvents()) {
         glfwPollEvents();
-        if (window->shouldClose() || quitRequested || (frameLimit && framesRendered >= static_cast<std::size_t>(*frameLimit)))
-            session.requestExit();
+        const bool quit = window->shouldClose() || quitRequested;
+        if (quit || (frameLimit && framesRendered >= static_cast<std::size_t>(*frameLimit))) session.requestExit();
         if (!session.running()) {   // idle, ready to begin or stopped: the runtime's next event
+            if (quit) break;        // never begun (no READY yet): nothing to walk down
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
             continue;
         }
