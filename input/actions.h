@@ -29,6 +29,11 @@ struct GripMesh {
     glm::dvec3 translationMm{0.0};
     glm::dvec3 rotationRad{0.0};
 };
+// The mesh's scale multiplied by `factor` on every axis (a held mesh scaled by a thumbstick).
+struct ScaleMesh {
+    int mesh = 0;
+    double factor = 1.0;
+};
 struct DragMesh {                  // a mouse drag in the view plane, in pixels (+x right, +y down)
     int mesh = 0;
     glm::dvec2 pixels{0.0};
@@ -60,7 +65,7 @@ struct NextLight {};
 struct ToggleRecording {};
 struct Screenshot {};
 
-using Action = std::variant<MoveMesh, GripMesh, DragMesh, SelectMesh, SetShading, CycleShading, ResetPose, AddMesh, RemoveMesh,
+using Action = std::variant<MoveMesh, GripMesh, ScaleMesh, DragMesh, SelectMesh, SetShading, CycleShading, ResetPose, AddMesh, RemoveMesh,
                             ToggleRecording, Screenshot, MoveLight, NextLight>;
 
 }  // namespace curette::input

@@ -18,6 +18,8 @@ std::vector<Action> TrackedHand::step(const HandSample& sample) {
         GripMesh move{mesh_, last_.gripMm, sample.gripMm - last_.gripMm, angle * axis};
         if (move.translationMm != glm::dvec3(0.0) || move.rotationRad != glm::dvec3(0.0)) actions.push_back(move);
     }
+    if (holding_ && std::abs(sample.thumbstickY) > kThumbstickDeadZone && sample.dtSeconds > 0)
+        actions.push_back(ScaleMesh{mesh_, std::pow(kScalePerSecond, sample.thumbstickY * sample.dtSeconds)});
     last_ = sample;
     return actions;
 }

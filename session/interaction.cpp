@@ -367,6 +367,9 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
                 m->pose.position = g->pivotMm + turn * (m->pose.position - g->pivotMm) + g->translationMm;
                 m->pose.orientation = glm::normalize(turn * m->pose.orientation);
             }
+        } else if (auto* sc = std::get_if<input::ScaleMesh>(&action)) {
+            // Within the scene reader's bounds on a scale (scene/scene_keys.cpp, readMeshScale).
+            if (MeshState* m = mesh(sc->mesh)) m->scale = glm::clamp(m->scale * sc->factor, glm::dvec3(1e-6), glm::dvec3(1e6));
         } else if (auto* d = std::get_if<input::DragMesh>(&action)) {
             if (MeshState* m = mesh(d->mesh)) {
                 // The view plane through the mesh: a pixel there spans depth / (pixels per mm at unit depth).

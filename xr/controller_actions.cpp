@@ -30,18 +30,19 @@ XrAction createAction(XrInstance instance, XrActionSet set, const char* name, co
     return action;
 }
 
-// The inputs of a profile for the three actions: grip pose, squeeze (or the nearest: select on the simple
-// controller), the shading button; per hand ("" = none on that hand).
+// The inputs of a profile for the actions besides the grip pose: squeeze (or the nearest: select on the simple
+// controller), the shading button per hand, the thumbstick (nullptr: the profile has none).
 struct ProfileInputs {
     const char* profile;
     const char* squeeze;
     std::array<const char*, 2> shading;
+    const char* thumbstick;
 };
 constexpr ProfileInputs kProfiles[] = {
-    {"/interaction_profiles/khr/simple_controller", "/input/select/click", {"/input/menu/click", "/input/menu/click"}},
-    {"/interaction_profiles/valve/index_controller", "/input/squeeze/value", {"/input/a/click", "/input/a/click"}},
-    {"/interaction_profiles/oculus/touch_controller", "/input/squeeze/value", {"/input/x/click", "/input/a/click"}},
-    {"/interaction_profiles/htc/vive_controller", "/input/squeeze/click", {"/input/menu/click", "/input/menu/click"}},
+    {"/interaction_profiles/khr/simple_controller", "/input/select/click", {"/input/menu/click", "/input/menu/click"}, nullptr},
+    {"/interaction_profiles/valve/index_controller", "/input/squeeze/value", {"/input/a/click", "/input/a/click"}, "/input/thumbstick"},
+    {"/interaction_profiles/oculus/touch_controller", "/input/squeeze/value", {"/input/x/click", "/input/a/click"}, "/input/thumbstick"},
+    {"/interaction_profiles/htc/vive_controller", "/input/squeeze/click", {"/input/menu/click", "/input/menu/click"}, "/input/trackpad"},
 };
 
 }  // namespace
@@ -55,6 +56,7 @@ ControllerActions::ControllerActions(XrInstance instance, XrSession session) : i
     grip_ = createAction(instance, set_, "grip_pose", "Hold a tool", XR_ACTION_TYPE_POSE_INPUT, hands_);
     squeeze_ = createAction(instance, set_, "grab", "Grab the tool", XR_ACTION_TYPE_FLOAT_INPUT, hands_);
     shading_ = createAction(instance, set_, "next_shading", "Next shading mode", XR_ACTION_TYPE_BOOLEAN_INPUT, hands_);
+    thumbstick_ = createAction(instance, set_, "scale", "Scale the held tool", XR_ACTION_TYPE_VECTOR2F_INPUT, hands_);
 
     const char* sides[] = {"/user/hand/left", "/user/hand/right"};
     for (const ProfileInputs& p : kProfiles) {
@@ -64,6 +66,7 @@ ControllerActions::ControllerActions(XrInstance instance, XrSession session) : i
             bindings.push_back({grip_, path(instance, side + "/input/grip/pose")});
             bindings.push_back({squeeze_, path(instance, side + p.squeeze)});
             bindings.push_back({shading_, path(instance, side + p.shading[static_cast<std::size_t>(h)])});
+            if (p.thumbstick) bindings.push_back({thumbstick_, path(instance, side + p.thumbstick)});
         }
         auto suggested = typed<XrInteractionProfileSuggestedBinding>(XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING);
         suggested.interactionProfile = path(instance, p.profile);
@@ -121,6 +124,10 @@ std::array<HandState, 2> ControllerActions::sync(XrTime time, XrSpace space) {
         auto button = typed<XrActionStateBoolean>(XR_TYPE_ACTION_STATE_BOOLEAN);
         check(instance_, xrGetActionStateBoolean(session_, &get, &button), "xrGetActionStateBoolean");
         hand.shadingPressed = button.isActive && button.currentState && button.changedSinceLastSync;
+        get.action = thumbstick_;
+        auto stick = typed<XrActionStateVector2f>(XR_TYPE_ACTION_STATE_VECTOR2F);
+        check(instance_, xrGetActionStateVector2f(session_, &get, &stick), "xrGetActionStateVector2f");
+        if (stick.isActive) hand.thumbstick = {stick.currentState.x, stick.currentState.y};
     }
     return hands;
 }

@@ -20,7 +20,7 @@ InteractionState oneBox() {
 }
 
 input::HandSample sample(glm::dvec3 grip, glm::dquat orientation, double squeeze) {
-    return {true, grip, orientation, squeeze, false};
+    return {true, grip, orientation, squeeze, false, 0.0, 1.0 / 90.0};
 }
 
 // The mesh in the grip's frame stays what it was at the grab, whatever the hand does while it holds it.
@@ -71,6 +71,27 @@ TEST(TrackedHand, SqueezeHysteresisGrabsAndReleases) {
     s.apply(hand.step(lost), camera, 100);
     s.apply(hand.step(sample({90, 0, 0}, q, 1.0)), camera, 100);
     EXPECT_LT(glm::length(s.meshes[0].pose.position - (start + glm::dvec3(5, 0, 0))), 1e-12);
+}
+
+// A held mesh grows while the stick is up, kScalePerSecond a second at full deflection; a resting stick's drift
+// and a mesh not held are left alone.
+TEST(TrackedHand, TheThumbstickScalesTheHeldMesh) {
+    InteractionState s = oneBox();
+    input::TrackedHand hand(0);
+    input::HandSample stick = sample({0, 0, 0}, glm::dquat(1, 0, 0, 0), 0.0);
+    stick.thumbstickY = 1.0;
+    s.apply(hand.step(stick), OrbitCamera{}, 100);   // not held
+    EXPECT_EQ(s.meshes[0].scale, glm::dvec3(1.0));
+    stick.squeeze = 1.0;
+    for (int i = 0; i < 90; ++i) s.apply(hand.step(stick), OrbitCamera{}, 100);   // one second, full up
+    EXPECT_NEAR(s.meshes[0].scale.x, input::kScalePerSecond, 1e-9);
+    EXPECT_NEAR(s.meshes[0].scale.z, input::kScalePerSecond, 1e-9);
+    stick.thumbstickY = -0.5;
+    for (int i = 0; i < 90; ++i) s.apply(hand.step(stick), OrbitCamera{}, 100);   // one second, half down
+    EXPECT_NEAR(s.meshes[0].scale.y, std::sqrt(input::kScalePerSecond), 1e-9);
+    stick.thumbstickY = 0.1;   // within the dead zone
+    s.apply(hand.step(stick), OrbitCamera{}, 100);
+    EXPECT_NEAR(s.meshes[0].scale.y, std::sqrt(input::kScalePerSecond), 1e-9);
 }
 
 TEST(TrackedHand, TheButtonCyclesTheShading) {

@@ -168,7 +168,7 @@ TEST(ViewXr, AScriptedControllerCarriesItsToolThroughTheSessionStep) {
     EXPECT_EQ(report.find("VUID"), std::string::npos) << report;
     EXPECT_EQ(report.find("[VALID_"), std::string::npos) << report;
     std::string log = curette::testing::readTextFile(out / "runtime.log");
-    EXPECT_NE(log.find("bindings suggested for /interaction_profiles/valve/index_controller: 6"), std::string::npos) << log;
+    EXPECT_NE(log.find("bindings suggested for /interaction_profiles/valve/index_controller: 8"), std::string::npos) << log;
     EXPECT_NE(run.output.find("xr session over: 5 frames rendered"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("xr tool 0 \"sphere\" left at 30.000, 30.000, 44.000 mm"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("xr tool 1 \"box\" left at -28.000, 40.000, 24.000 mm"), std::string::npos) << run.output;

@@ -8,8 +8,8 @@
 // this is slow).
 //
 // The controllers are action sources like the hidapi devices (xr/controller_actions.h, input/tracked_hand.h):
-// the left hand's squeeze holds tool 0, the right hand's tool 1, each following its grip; a button cycles the
-// shading; their actions go through the session step every command runs (session/session_step.h).
+// the left hand's squeeze holds tool 0, the right hand's tool 1, each following its grip, its thumbstick
+// scaling it; a button cycles the shading; their actions go through the session step every command runs (session/session_step.h).
 // Prints each session state as it changes and, at the end, the frames rendered, the time per eye and where
 // each tool was left.
 #include "tools/commands/view_xr.h"
@@ -110,6 +110,7 @@ int viewXr(const CommandLine& cl) {
     Presenter presenter;
     std::array<std::vector<double>, 2> eyeMs;
     std::size_t framesRendered = 0;
+    XrTime lastDisplayTime = 0;   // the frame before's, for the hands' time step
     while (session.pollEvents()) {
         glfwPollEvents();
         const bool quit = window->shouldClose() || quitRequested;
@@ -120,13 +121,15 @@ int viewXr(const CommandLine& cl) {
             continue;
         }
         xr::Session::Frame frame = session.beginFrame();
+        const double dtSeconds = lastDisplayTime > 0 ? 1e-9 * static_cast<double>(frame.displayTime - lastDisplayTime) : 0.0;
+        lastDisplayTime = frame.displayTime;
         // The hands' actions, applied to the scene as every device's are.
         std::array<xr::HandState, 2> handStates = controllers.sync(frame.displayTime, session.space());
         std::vector<input::Action> actions;
         for (std::size_t h = 0; h < 2; ++h) {
             const xr::HandState& s = handStates[h];
             input::HandSample sample{s.tracked, anchor.roomToWorldMm(s.grip.positionM), RoomAnchor::roomOrientationToWorld(s.grip.orientation),
-                                     s.squeeze, s.shadingPressed};
+                                     s.squeeze, s.shadingPressed, s.thumbstick.y, dtSeconds};
             for (input::Action& a : hands[h].step(sample)) actions.push_back(std::move(a));
         }
         step.apply(actions, session.recommendedSize(0).y);
