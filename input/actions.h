@@ -20,6 +20,20 @@ struct MoveMesh {
     glm::dvec3 translationMm{0.0};
     glm::dvec3 rotationRad{0.0};   // axis * angle, about the mesh's origin
 };
+// A rigid motion of a mesh in world space about a point: turned by rotationRad (axis * angle) about pivotMm,
+// then moved by translationMm. A tracked hand holding the mesh (input/tracked_hand.h): the grip's motion of
+// one frame, so the mesh keeps its place in the hand.
+struct GripMesh {
+    int mesh = 0;
+    glm::dvec3 pivotMm{0.0};
+    glm::dvec3 translationMm{0.0};
+    glm::dvec3 rotationRad{0.0};
+};
+// The mesh's scale multiplied by `factor` on every axis (a held mesh scaled by a thumbstick).
+struct ScaleMesh {
+    int mesh = 0;
+    double factor = 1.0;
+};
 struct DragMesh {                  // a mouse drag in the view plane, in pixels (+x right, +y down)
     int mesh = 0;
     glm::dvec2 pixels{0.0};
@@ -51,7 +65,7 @@ struct NextLight {};
 struct ToggleRecording {};
 struct Screenshot {};
 
-using Action = std::variant<MoveMesh, DragMesh, SelectMesh, SetShading, CycleShading, ResetPose, AddMesh, RemoveMesh,
+using Action = std::variant<MoveMesh, GripMesh, ScaleMesh, DragMesh, SelectMesh, SetShading, CycleShading, ResetPose, AddMesh, RemoveMesh,
                             ToggleRecording, Screenshot, MoveLight, NextLight>;
 
 }  // namespace curette::input

@@ -14,6 +14,11 @@ StereoPair renderStereoPair(Renderer& renderer, const FrameDescription& centre, 
     return pair;
 }
 
+Image renderTrackedEye(Renderer& renderer, const TrackedEye& eye) {
+    renderer.render(eye.frame);
+    return cropImage(renderer.readImage(), eye.cropOrigin, eye.size);
+}
+
 bool StereoView::update(Renderer& renderer, const FrameDescription& window, StereoMode mode, double eyeSeparationMm, glm::vec4 background) {
     FrameDescription centre = window;
     if (mode == StereoMode::SideBySide) centre.size.x = std::max(1, window.size.x / 2);

@@ -6,6 +6,7 @@
 #include "render/model/image.h"
 #include "render/renderer.h"
 #include "render/model/stereo.h"
+#include "render/model/tracked_view.h"
 
 #include <optional>
 
@@ -18,6 +19,10 @@ struct StereoPair {
 
 // Renders the left eye, then the right, and crops them (the renderer shows the right eye's frame afterwards).
 StereoPair renderStereoPair(Renderer& renderer, const FrameDescription& centre, double eyeSeparationMm);
+
+// One eye of a head-mounted display (render/model/tracked_view.h): its symmetric frame rendered, its pixels
+// kept (eye.size, premultiplied). `view --xr` submits this image, `render --xr-views` composes it.
+Image renderTrackedEye(Renderer& renderer, const TrackedEye& eye);
 
 // The viewer's stereo picture of a window-sized frame: side-by-side gives each eye half the width (its own
 // aspect, not squeezed: parallel free viewing), anaglyph the whole window. Renders only when the picture would

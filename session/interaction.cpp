@@ -360,6 +360,16 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
                 double angle = glm::length(axis);
                 if (angle > 0) m->pose.orientation = glm::normalize(glm::angleAxis(angle, axis / angle) * m->pose.orientation);
             }
+        } else if (auto* g = std::get_if<input::GripMesh>(&action)) {
+            if (MeshState* m = mesh(g->mesh)) {
+                double angle = glm::length(g->rotationRad);
+                glm::dquat turn = angle > 0 ? glm::angleAxis(angle, g->rotationRad / angle) : glm::dquat(1, 0, 0, 0);
+                m->pose.position = g->pivotMm + turn * (m->pose.position - g->pivotMm) + g->translationMm;
+                m->pose.orientation = glm::normalize(turn * m->pose.orientation);
+            }
+        } else if (auto* sc = std::get_if<input::ScaleMesh>(&action)) {
+            // Within the scene reader's bounds on a scale (scene/scene_keys.cpp, readMeshScale).
+            if (MeshState* m = mesh(sc->mesh)) m->scale = glm::clamp(m->scale * sc->factor, glm::dvec3(1e-6), glm::dvec3(1e6));
         } else if (auto* d = std::get_if<input::DragMesh>(&action)) {
             if (MeshState* m = mesh(d->mesh)) {
                 // The view plane through the mesh: a pixel there spans depth / (pixels per mm at unit depth).

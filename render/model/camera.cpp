@@ -15,9 +15,28 @@ glm::dvec3 OrbitCamera::forward() const {
 
 glm::dvec3 OrbitCamera::position() const { return target - forward() * distanceMm; }
 
-glm::dvec3 OrbitCamera::right() const { return glm::normalize(glm::cross(forward(), glm::dvec3(0, 0, 1))); }
+namespace {
 
-glm::dvec3 OrbitCamera::up() const { return glm::cross(right(), forward()); }
+// The axes of the unrolled camera: right horizontal, up in the vertical plane through forward.
+glm::dvec3 unrolledRight(const OrbitCamera& c) { return glm::normalize(glm::cross(c.forward(), glm::dvec3(0, 0, 1))); }
+
+}  // namespace
+
+glm::dvec3 OrbitCamera::right() const {
+    glm::dvec3 r = unrolledRight(*this);
+    if (rollDeg == 0.0) return r;
+    glm::dvec3 u = glm::cross(r, forward());
+    double a = glm::radians(rollDeg);
+    return std::cos(a) * r - std::sin(a) * u;
+}
+
+glm::dvec3 OrbitCamera::up() const {
+    glm::dvec3 r = unrolledRight(*this);
+    glm::dvec3 u = glm::cross(r, forward());
+    if (rollDeg == 0.0) return u;
+    double a = glm::radians(rollDeg);
+    return std::sin(a) * r + std::cos(a) * u;
+}
 
 glm::dmat4 OrbitCamera::view() const { return glm::lookAt(position(), target, up()); }
 

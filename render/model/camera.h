@@ -1,7 +1,8 @@
 #pragma once
 // The perspective orbit camera: it circles `target` at `distanceMm`, at an azimuth around world +z
 // (superior) and an elevation above the axial plane. Azimuth 0 looks at the face (camera anterior, +y),
-// 90 from the right (+x). World space is RAS millimetres.
+// 90 from the right (+x). World space is RAS millimetres. A roll turns the image about the view axis: a
+// head-mounted display's eye (render/model/tracked_view.h) tilts with the head; the viewer's camera has none.
 
 #include <glm/glm.hpp>
 
@@ -12,6 +13,7 @@ struct OrbitCamera {
     double distanceMm = 400.0;
     double azimuthDeg = 0.0;
     double elevationDeg = 0.0;
+    double rollDeg = 0.0;        // positive: the image's up turns from the unrolled up towards its right
     double fovYDeg = 30.0;
     double nearMm = 1.0;
     double farMm = 10000.0;
@@ -20,7 +22,7 @@ struct OrbitCamera {
     glm::dvec3 position() const;
     glm::dvec3 forward() const;  // unit vector from the camera towards the target
     glm::dvec3 up() const;       // unit vector, orthogonal to forward
-    glm::dvec3 right() const;
+    glm::dvec3 right() const;    // unit vector: forward x up
     glm::dmat4 view() const;
     glm::dmat4 projection(double aspect) const;
     // projection * view for an image of `sizePx` pixels (aspect width / height): the one matrix the passes,

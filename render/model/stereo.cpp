@@ -73,6 +73,18 @@ Image cropColumns(const Image& image, int first, int width) {
     return out;
 }
 
+Image cropImage(const Image& image, glm::ivec2 origin, glm::ivec2 size) {
+    if (origin.x < 0 || origin.y < 0 || size.x < 0 || size.y < 0 || origin.x + size.x > image.width || origin.y + size.y > image.height)
+        throw std::logic_error("cropImage: rectangle outside the image");
+    Image out;
+    out.width = size.x;
+    out.height = size.y;
+    out.pixels.resize(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y));
+    for (int y = 0; y < size.y; ++y)
+        std::copy_n(&image.at(origin.x, origin.y + y), size.x, &out.at(0, y));
+    return out;
+}
+
 Image sideBySide(const Image& left, const Image& right) {
     if (left.height != right.height) throw std::logic_error("sideBySide: eye images of different heights");
     Image out;

@@ -60,6 +60,8 @@ StereoRig stereoRig(const FrameDescription& centre, double eyeSeparationMm);
 
 // Columns [first, first + width) of `image`.
 Image cropColumns(const Image& image, int first, int width);
+// The rectangle of `size` pixels at `origin` (from the top left) of `image`.
+Image cropImage(const Image& image, glm::ivec2 origin, glm::ivec2 size);
 // Left eye on the left, right on the right: 2W x H (parallel free viewing, 3D displays' full side-by-side).
 Image sideBySide(const Image& left, const Image& right);
 // Red-cyan colour anaglyph: each eye composited over `background`, red from the left eye, green and blue from

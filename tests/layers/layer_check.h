@@ -17,7 +17,7 @@ struct Layer {
     std::string folder;                 // "render/model": a top-level folder or one subfolder with its own rule
     std::vector<std::string> includes;  // the layers it may include besides itself
     bool glFree = false;                // no GL header, no gl/ include, no GL call
-    bool glCalls = false;               // may call GL itself (gl/ and render/ only)
+    bool glCalls = false;               // may call GL itself (gl/, render/ and xr/ only)
 };
 
 // Lowest first: the order of the top-level CMakeLists.txt and of the table in docs/architecture.md.

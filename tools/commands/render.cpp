@@ -6,7 +6,9 @@
 // draws the clip meshes over the image (render/clip_mesh_overlay.h; not in stereo): the renderer's image is
 // unchanged, the PNG gets the overlay. --slices DIR writes the axial, coronal and sagittal slice views
 // through --crosshair (render/model/slice_view.h, the viewer's slice panel's), with the removed region as
-// `curette report` computes it; without --out only those.
+// `curette report` computes it; without --out only those. --xr-views F renders the two eyes a head-mounted
+// display located (tools/tracked_views_file.h; render/model/tracked_view.h) as `view --xr` renders them,
+// composed as --stereo says: a frame of an XR session again, headless.
 #include "session/carve_report.h"
 #include "session/scene_slices.h"
 #include "scene/volume_statistics.h"
@@ -14,6 +16,7 @@
 #include "tools/commands/commands.h"
 #include "session/loaded_scene.h"
 #include "tools/movie.h"
+#include "tools/tracked_views_file.h"
 #include "base/error.h"
 #include "base/progress.h"
 #include "render/clip_mesh_overlay.h"
@@ -112,6 +115,13 @@ int render(const CommandLine& cl) {
     if (cl.value("eye-separation") && stereo == StereoMode::Off)
         throw InputError("<command line>", "--eye-separation", "together with --stereo side-by-side|anaglyph");
     double eyeSeparationMm = CommandLine::parseDouble("eye-separation", cl.valueOr("eye-separation", "65"), 0, 1000);
+    std::optional<std::string> xrViews = cl.value("xr-views");
+    if (xrViews) {
+        if (stereo == StereoMode::Off) throw InputError("<command line>", "--xr-views", "together with --stereo side-by-side|anaglyph");
+        for (const char* option : {"turntable", "size", "azimuth", "elevation", "eye-separation"})
+            if (cl.value(option))
+                throw InputError("<command line>", std::string("--") + option, "not with --xr-views (the views give the eyes, their poses and sizes)");
+    }
     FrameOverrides overrides;
     if (auto s = cl.value("size")) overrides.size = CommandLine::parseSize("size", *s);
     if (auto s = cl.value("shading")) overrides.shading = parseShadingOption("shading", *s);
@@ -142,6 +152,19 @@ int render(const CommandLine& cl) {
     }
     std::optional<MeshOverlay> meshOverlay;
     if (showMeshes) meshOverlay.emplace(loaded.scene.clipMeshDisplay.display);
+    if (xrViews) {
+        TrackedViewsFile views = readTrackedViews(*xrViews);
+        RoomAnchor anchor = tableAnchor(renderer.geometry(), views.space);
+        std::array<Image, 2> eyes;
+        for (std::size_t eye = 0; eye < 2; ++eye)
+            eyes[eye] = renderTrackedEye(renderer, trackedEye(frame, views.views[eye], anchor, views.recommendedSize));
+        if (stereo == StereoMode::Anaglyph && (eyes[0].width != eyes[1].width || eyes[0].height != eyes[1].height))
+            throw InputError(*xrViews, "views", "eyes of one size for an anaglyph (use --stereo side-by-side)");
+        writePng(out, composeStereo(stereo, eyes[0], eyes[1], background), background);
+        std::printf("%s: eyes %dx%d and %dx%d from %s, %s shading\n", out.c_str(), eyes[0].width, eyes[0].height, eyes[1].width, eyes[1].height,
+                    xrViews->c_str(), shadingModeName(frame.shading));
+        return 0;
+    }
     if (stereo != StereoMode::Off) {
         StereoRig rig = stereoRig(frame, eyeSeparationMm);
         std::printf("stereo %s: eyes %.1f mm apart, off-axis (parallel axes), zero parallax at %.1f mm, %d extra columns per eye\n",
@@ -207,6 +230,7 @@ Command renderCommand() {
               {"elevation", true, "camera elevation in degrees (default: the scene's)"},
               {"stereo", true, "side-by-side|anaglyph: an off-axis stereo pair (side-by-side: 2W x H)", "side-by-side|anaglyph"},
               {"eye-separation", true, "stereo eye separation in mm (default 65: orthostereo, render/model/stereo.h)"},
+              {"xr-views", true, "with --stereo: the two eyes a head-mounted display located (JSON, docs/commands.md), rendered as view --xr renders them", "F.json"},
               {"turntable", true, "N frames turning the camera once about the vertical axis, into the --out folder"},
               {"fps", true, "with --turntable: frames per second of the MP4 (default 30)"},
               {"timings", false, "print the GPU time of every pass and the GPU memory of every resource"},

@@ -16,6 +16,7 @@
 #include "session/carve_report.h"
 #include "tools/command_line.h"
 #include "tools/commands/commands.h"
+#include "tools/commands/view_xr.h"
 #include "session/interaction.h"
 #include "session/live_input.h"
 #include "session/loaded_scene.h"
@@ -676,6 +677,9 @@ bool ViewWindow::iterate() {
 }
 
 int view(const CommandLine& cl) {
+    if (cl.flag("xr")) return viewXr(cl);
+    for (const char* option : {"frames", "save-views"})
+        if (cl.value(option)) throw InputError("<command line>", std::string("--") + option, "together with --xr");
     glm::ivec2 windowSize = CommandLine::parseSize("size", cl.valueOr("size", "1024x768"));
     std::optional<Session> play;
     if (auto p = cl.value("play")) play = readSession(*p, false);
@@ -752,7 +756,10 @@ Command viewCommand() {
               {"screenshot", true, "with --play: the PNG of the 3-D view after the last frame (default curette-play.png)"},
               {"window-shot", true, "with --play: also the PNG of the whole window, side bar included"},
               {"idle-seconds", true, "with --play: stay this long after the view has settled (exact, nothing to do) before exiting"},
-              {"frame-log", true, "write one JSON line per frame drawn to the window (and one when the view settles)"}}},
+              {"frame-log", true, "write one JSON line per frame drawn to the window (and one when the view settles)"},
+              {"xr", false, "in a head-mounted display through OpenXR (the active runtime; tools/commands/view_xr.cpp); --size is then the mirror window's"},
+              {"frames", true, "with --xr: end the session after N rendered frames", "N"},
+              {"save-views", true, "with --xr: write the last rendered frame's eye views (the JSON render --xr-views reads)", "F.json"}}},
             &view};
 }
 

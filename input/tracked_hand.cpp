@@ -1,0 +1,27 @@
+#include "input/tracked_hand.h"
+
+#include <cmath>
+
+namespace curette::input {
+
+std::vector<Action> TrackedHand::step(const HandSample& sample) {
+    std::vector<Action> actions;
+    if (sample.cycleShading) actions.push_back(CycleShading{});
+    const bool wasHolding = holding_;
+    holding_ = sample.tracked && (holding_ ? sample.squeeze >= kReleaseBelow : sample.squeeze >= kGrabAt);
+    if (holding_ && wasHolding && last_.tracked) {
+        // The grip's motion since the last frame: turn about where the grip was, then move by its displacement.
+        glm::dquat turn = glm::normalize(sample.gripOrientation * glm::conjugate(last_.gripOrientation));
+        if (turn.w < 0) turn = -turn;   // the shorter way round
+        double angle = 2.0 * std::atan2(glm::length(glm::dvec3(turn.x, turn.y, turn.z)), turn.w);
+        glm::dvec3 axis = angle > 0 ? glm::normalize(glm::dvec3(turn.x, turn.y, turn.z)) : glm::dvec3(0.0);
+        GripMesh move{mesh_, last_.gripMm, sample.gripMm - last_.gripMm, angle * axis};
+        if (move.translationMm != glm::dvec3(0.0) || move.rotationRad != glm::dvec3(0.0)) actions.push_back(move);
+    }
+    if (holding_ && std::abs(sample.thumbstickY) > kThumbstickDeadZone && sample.dtSeconds > 0)
+        actions.push_back(ScaleMesh{mesh_, std::pow(kScalePerSecond, sample.thumbstickY * sample.dtSeconds)});
+    last_ = sample;
+    return actions;
+}
+
+}  // namespace curette::input

@@ -1,0 +1,75 @@
+#include "render/model/tracked_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace curette {
+
+glm::dvec3 RoomAnchor::roomDirectionToWorld(glm::dvec3 d) {
+    // Room (x right, y up, z towards the user) to RAS: R = -x, A = z, S = y (a proper rotation).
+    return {-d.x, d.z, d.y};
+}
+
+glm::dquat RoomAnchor::roomOrientationToWorld(glm::dquat orientation) {
+    // M R M^T with M the room-to-RAS rotation above (its columns: where room x, y, z go).
+    const glm::dmat3 m(glm::dvec3(-1, 0, 0), glm::dvec3(0, 0, 1), glm::dvec3(0, 1, 0));
+    return glm::normalize(glm::quat_cast(m * glm::mat3_cast(orientation) * glm::transpose(m)));
+}
+
+glm::dvec3 RoomAnchor::roomToWorldMm(glm::dvec3 roomM) const {
+    return volumeCentreWorldMm + 1000.0 * roomDirectionToWorld(roomM - volumeCentreRoomM);
+}
+
+RoomAnchor tableAnchor(const VolumeGeometry& geometry, RoomSpace space) {
+    RoomAnchor a;
+    a.volumeCentreWorldMm = geometry.worldCenter();
+    double lowestS = a.volumeCentreWorldMm.z;
+    for (const glm::dvec3& corner : geometry.worldCorners()) lowestS = std::min(lowestS, corner.z);
+    double centreHeightM = kTableHeightM + (a.volumeCentreWorldMm.z - lowestS) / 1000.0;
+    if (space == RoomSpace::Local) centreHeightM -= kStandingEyeHeightM;
+    a.volumeCentreRoomM = glm::dvec3(0.0, centreHeightM, -kTableDistanceM);
+    return a;
+}
+
+TrackedEye trackedEye(const FrameDescription& base, const TrackedView& view, const RoomAnchor& anchor, glm::ivec2 recommendedSize) {
+    const FieldOfView& f = view.fov;
+    const double tanL = std::tan(f.angleLeft), tanR = std::tan(f.angleRight), tanU = std::tan(f.angleUp), tanD = std::tan(f.angleDown);
+    if (!(tanR > tanL && tanU > tanD) || recommendedSize.x < 1 || recommendedSize.y < 1)
+        throw std::invalid_argument("eyeView: an empty field of view or image");
+    // The pitch that fits the whole field of view into the recommended image, then the edges inwards to whole
+    // pixels; an edge within kSnap of a whole pixel is on it (the angles came through float).
+    constexpr double kSnap = 1e-4;
+    const double pitch = std::max((tanR - tanL) / recommendedSize.x, (tanU - tanD) / recommendedSize.y);
+    const int left = static_cast<int>(std::ceil(tanL / pitch - kSnap)), right = static_cast<int>(std::floor(tanR / pitch + kSnap));
+    const int up = static_cast<int>(std::floor(tanU / pitch + kSnap)), down = static_cast<int>(std::ceil(tanD / pitch - kSnap));
+    const int halfWidth = std::max({std::abs(left), std::abs(right), 1}), halfHeight = std::max({std::abs(up), std::abs(down), 1});
+
+    TrackedEye eye;
+    eye.size = {std::max(1, right - left), std::max(1, up - down)};
+    eye.cropOrigin = {halfWidth + left, halfHeight - up};
+    eye.renderedFov = {std::atan(left * pitch), std::atan(right * pitch), std::atan(up * pitch), std::atan(down * pitch)};
+
+    // The eye's axes in the room (OpenXR views look along -z, up +y), then in RAS.
+    const glm::dvec3 forward = glm::normalize(RoomAnchor::roomDirectionToWorld(view.orientation * glm::dvec3(0, 0, -1)));
+    const glm::dvec3 upAxis = glm::normalize(RoomAnchor::roomDirectionToWorld(view.orientation * glm::dvec3(0, 1, 0)));
+    const glm::dvec3 position = anchor.roomToWorldMm(view.positionM);
+
+    eye.frame = base;
+    OrbitCamera& c = eye.frame.camera;
+    c.elevationDeg = glm::degrees(std::asin(std::clamp(-forward.z, -1.0, 1.0)));
+    c.azimuthDeg = glm::degrees(std::atan2(-forward.x, -forward.y));
+    c.rollDeg = 0.0;
+    c.distanceMm = std::max(1.0, glm::dot(anchor.volumeCentreWorldMm - position, forward));
+    c.target = position + c.distanceMm * forward;
+    // The roll that turns the unrolled up (camera.h) onto the eye's up.
+    const glm::dvec3 r = c.right(), u = c.up();
+    c.rollDeg = glm::degrees(std::atan2(glm::dot(upAxis, r), glm::dot(upAxis, u)));
+    c.fovYDeg = glm::degrees(2.0 * std::atan(halfHeight * pitch));
+    c.nearMm = 20.0;     // a head-mounted display's near plane (2 cm): the volume may come close to the eyes
+    c.farMm = 10000.0;
+    eye.frame.size = {2 * halfWidth, 2 * halfHeight};
+    return eye;
+}
+
+}  // namespace curette

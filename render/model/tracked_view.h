@@ -1,0 +1,69 @@
+#pragma once
+// A head-mounted display's eye as curette renders it (`view --xr`, `render --xr-views`). GL-free.
+//
+// The runtime locates each eye in its room space (OpenXR's XrView: a pose in metres, +y up, the user looking
+// along -z, and an asymmetric field of view as four angles). The volume stands in that room at real size
+// (1 mm of RAS is 1 mm of room) on a table-height anchor, its anterior towards the user (room +z), the
+// patient's right on the user's left (room -x), superior up (room +y).
+//
+// The renderer draws symmetric frusta only (render/model/stereo.h), so an eye's asymmetric frustum is taken,
+// as the monitor's off-axis pair takes it, as a crop of a wider symmetric one rendered from the eye with the
+// same pixel pitch: pitch p (tangent units per pixel) makes the recommended image hold the whole field of
+// view, the four edges are moved inwards to whole pixels (less than a pixel; the fov actually rendered, which
+// the application submits), and the symmetric frame reaches the farthest edge on each axis.
+
+#include "render/model/frame.h"
+#include "render/model/volume_geometry.h"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace curette {
+
+// OpenXR's XrFovf: angles in radians from the view axis, left and down negative for a centred eye.
+struct FieldOfView {
+    double angleLeft = 0, angleRight = 0, angleUp = 0, angleDown = 0;
+    bool operator==(const FieldOfView&) const = default;
+};
+
+// One located eye in the room (OpenXR's XrView in the reference space the application located it in).
+struct TrackedView {
+    glm::dvec3 positionM{0.0};
+    glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
+    FieldOfView fov;
+};
+
+// The room spaces an anchor is defined for: a stage (origin on the floor) or a local space (origin at the
+// user's head when the session started; taken as standing eye height above the floor).
+enum class RoomSpace { Stage, Local };
+
+// Where the volume stands in the room: a table top kTableHeightM above the floor carries the volume box's
+// lowest corner, its centre kTableDistanceM in front of the space's origin.
+struct RoomAnchor {
+    glm::dvec3 volumeCentreRoomM{0.0};
+    glm::dvec3 volumeCentreWorldMm{0.0};
+    glm::dvec3 roomToWorldMm(glm::dvec3 roomM) const;   // a point
+    static glm::dvec3 roomDirectionToWorld(glm::dvec3 direction);
+    static glm::dquat roomOrientationToWorld(glm::dquat orientation);   // a tracked object's (a grip's)
+};
+
+inline constexpr double kTableHeightM = 0.9;      // an operating or standing work table
+inline constexpr double kTableDistanceM = 0.5;    // within arm's reach
+inline constexpr double kStandingEyeHeightM = 1.6;
+
+RoomAnchor tableAnchor(const VolumeGeometry& geometry, RoomSpace space);
+
+// An eye as rendered: `frame` (symmetric, from the eye's pose) and the rectangle of its image the eye keeps
+// (origin from the top left, size), with the field of view those pixels span.
+struct TrackedEye {
+    FrameDescription frame;
+    glm::ivec2 cropOrigin{0};
+    glm::ivec2 size{0};
+    FieldOfView renderedFov;
+};
+
+// The eye `view` of the scene frame `base` (its shading, settings and lights; camera and size replaced),
+// its image at most `recommendedSize` pixels.
+TrackedEye trackedEye(const FrameDescription& base, const TrackedView& view, const RoomAnchor& anchor, glm::ivec2 recommendedSize);
+
+}  // namespace curette

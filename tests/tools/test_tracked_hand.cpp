@@ -1,0 +1,108 @@
+// A tracked controller as an action source (input/tracked_hand.h) applied to the scene (session/interaction.h):
+// while squeezed, the held mesh moves rigidly with the grip, turns about it, and stays put otherwise.
+#include "input/tracked_hand.h"
+#include "session/interaction.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace curette {
+namespace {
+
+InteractionState oneBox() {
+    InteractionState s;
+    SceneClipMesh box{.name = "box", .geometry = meshFromDescription(R"({"shape": "box", "size_mm": [4, 6, 8]})", "test", ".")};
+    box.pose.position = {30, -10, 5};
+    box.pose.orientation = glm::angleAxis(0.4, glm::normalize(glm::dvec3(1, 2, 3)));
+    s.meshes.push_back(MeshState::make(s.nextMeshId++, box));
+    return s;
+}
+
+input::HandSample sample(glm::dvec3 grip, glm::dquat orientation, double squeeze) {
+    return {true, grip, orientation, squeeze, false, 0.0, 1.0 / 90.0};
+}
+
+// The mesh in the grip's frame stays what it was at the grab, whatever the hand does while it holds it.
+TEST(TrackedHand, AHeldMeshFollowsTheGripRigidly) {
+    InteractionState s = oneBox();
+    OrbitCamera camera;
+    input::TrackedHand hand(0);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    glm::dvec3 grip(10, 20, 30);
+    glm::dquat q = glm::angleAxis(0.3, glm::dvec3(0, 0, 1));
+    s.apply(hand.step(sample(grip, q, 1.0)), camera, 100);   // the grab: nothing moves yet
+    EXPECT_TRUE(hand.holding());
+    const clip::RigidPose start = s.meshes[0].pose;
+    const glm::dvec3 local = glm::conjugate(q) * (start.position - grip);
+    const glm::dquat localTurn = glm::conjugate(q) * start.orientation;
+    for (int i = 0; i < 20; ++i) {
+        grip += glm::dvec3(5 * u(rng), 5 * u(rng), 5 * u(rng));
+        q = glm::normalize(glm::angleAxis(0.3 * u(rng), glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)))) * q);
+        s.apply(hand.step(sample(grip, q, 0.5)), camera, 100);   // 0.5: still held (released below 0.3)
+        const clip::RigidPose& now = s.meshes[0].pose;
+        EXPECT_LT(glm::length(now.position - (grip + q * local)), 1e-9) << "step " << i;
+        glm::dquat turn = glm::conjugate(q) * now.orientation;
+        EXPECT_GT(std::abs(glm::dot(turn, localTurn)), 1.0 - 1e-12) << "step " << i;
+    }
+}
+
+TEST(TrackedHand, SqueezeHysteresisGrabsAndReleases) {
+    InteractionState s = oneBox();
+    OrbitCamera camera;
+    input::TrackedHand hand(0);
+    const glm::dquat q(1, 0, 0, 0);
+    const glm::dvec3 start = s.meshes[0].pose.position;
+    s.apply(hand.step(sample({0, 0, 0}, q, 0.6)), camera, 100);   // below the grab threshold
+    s.apply(hand.step(sample({10, 0, 0}, q, 0.6)), camera, 100);
+    EXPECT_FALSE(hand.holding());
+    EXPECT_EQ(s.meshes[0].pose.position, start);
+    s.apply(hand.step(sample({10, 0, 0}, q, 0.8)), camera, 100);   // grabbed
+    s.apply(hand.step(sample({15, 0, 0}, q, 0.35)), camera, 100);  // held: above the release threshold
+    EXPECT_LT(glm::length(s.meshes[0].pose.position - (start + glm::dvec3(5, 0, 0))), 1e-12);
+    s.apply(hand.step(sample({20, 0, 0}, q, 0.2)), camera, 100);   // released: this motion is not the mesh's
+    EXPECT_FALSE(hand.holding());
+    EXPECT_LT(glm::length(s.meshes[0].pose.position - (start + glm::dvec3(5, 0, 0))), 1e-12);
+    // Lost tracking drops the mesh; tracking back while squeezed is a new grab, not a jump.
+    s.apply(hand.step(sample({20, 0, 0}, q, 1.0)), camera, 100);
+    input::HandSample lost = sample({90, 0, 0}, q, 1.0);
+    lost.tracked = false;
+    s.apply(hand.step(lost), camera, 100);
+    s.apply(hand.step(sample({90, 0, 0}, q, 1.0)), camera, 100);
+    EXPECT_LT(glm::length(s.meshes[0].pose.position - (start + glm::dvec3(5, 0, 0))), 1e-12);
+}
+
+// A held mesh grows while the stick is up, kScalePerSecond a second at full deflection; a resting stick's drift
+// and a mesh not held are left alone.
+TEST(TrackedHand, TheThumbstickScalesTheHeldMesh) {
+    InteractionState s = oneBox();
+    input::TrackedHand hand(0);
+    input::HandSample stick = sample({0, 0, 0}, glm::dquat(1, 0, 0, 0), 0.0);
+    stick.thumbstickY = 1.0;
+    s.apply(hand.step(stick), OrbitCamera{}, 100);   // not held
+    EXPECT_EQ(s.meshes[0].scale, glm::dvec3(1.0));
+    stick.squeeze = 1.0;
+    for (int i = 0; i < 90; ++i) s.apply(hand.step(stick), OrbitCamera{}, 100);   // one second, full up
+    EXPECT_NEAR(s.meshes[0].scale.x, input::kScalePerSecond, 1e-9);
+    EXPECT_NEAR(s.meshes[0].scale.z, input::kScalePerSecond, 1e-9);
+    stick.thumbstickY = -0.5;
+    for (int i = 0; i < 90; ++i) s.apply(hand.step(stick), OrbitCamera{}, 100);   // one second, half down
+    EXPECT_NEAR(s.meshes[0].scale.y, std::sqrt(input::kScalePerSecond), 1e-9);
+    stick.thumbstickY = 0.1;   // within the dead zone
+    s.apply(hand.step(stick), OrbitCamera{}, 100);
+    EXPECT_NEAR(s.meshes[0].scale.y, std::sqrt(input::kScalePerSecond), 1e-9);
+}
+
+TEST(TrackedHand, TheButtonCyclesTheShading) {
+    InteractionState s = oneBox();
+    s.shading = ShadingMode::Phong;
+    input::TrackedHand hand(0);
+    input::HandSample pressed = sample({0, 0, 0}, glm::dquat(1, 0, 0, 0), 0.0);
+    pressed.cycleShading = true;
+    s.apply(hand.step(pressed), OrbitCamera{}, 100);
+    EXPECT_EQ(s.shading, nextShadingMode(ShadingMode::Phong));
+}
+
+}  // namespace
+}  // namespace curette
