@@ -35,6 +35,8 @@ const KeyHelp kKeys[] = {
     {"Shift (held)", "fine steps: a tenth of the speed for keys and devices"},
     {"Tab / R", "hold the next mesh / put it back where the scene had it"},
     {"Insert / Delete", "add a mesh / remove the held one"},
+    {"B / N (hold)", "drill / erase with the held mesh: it removes what it sweeps"},
+    {"Ctrl+Z / Ctrl+Shift+Z", "undo / redo a drill stroke"},
     {"1 2 3 4 5 6, C", "shading: solid, phong, lao, cao, dos, ismos; C cycles"},
     {"O; I J K L; Shift + left drag", "next light; turn it"},
     {"Ctrl + left click", "put the slices' crosshair on the first visible surface under the cursor (and a ruler point when measuring)"},

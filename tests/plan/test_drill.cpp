@@ -177,3 +177,51 @@ TEST(DrillHistory, UndoAndRedoRestoreTheMasksExactly) {
 
 }  // namespace
 }  // namespace curette::plan
+
+namespace curette::plan {
+namespace {
+
+using namespace testing;
+
+// The report's field with the drilled removal folded in: the box grows to the drilled bricks, a voxel only
+// drilled counts its drilled fraction, one only cut by meshes keeps its count, and where both reach the count
+// is 1 - (1 - meshes)(1 - drilled), rounded up (never less removed than step IV's V_o says).
+TEST(DrillReport, TheFieldCountsTheDrilledRemovalWithTheMeshes) {
+    glm::ivec3 dims = dimsFor(glm::dvec3(1.0), 16.0);
+    glm::dmat4 affine = gridAffine(glm::dvec3(1.0), dims);
+    RemovalVolume removal(dims, affine);
+    DrillSweep sweep({clip::SolidShape{clip::SolidShape::Kind::Sphere, 3.0}}, clip::RigidPose{glm::dvec3(-8, 0, 0), {}},
+                     clip::RigidPose{glm::dvec3(-2, 0, 0), {}});
+    removal.apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal.voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), false);
+    RemovalField meshes;
+    meshes.gridDims = dims;
+    meshes.indexToWorld = affine;
+    meshes.samplesPerVoxel = 9 + 256;
+    meshes.origin = glm::ivec3(14);
+    meshes.size = glm::ivec3(6);
+    meshes.insideSamples.assign(meshes.box().voxelCount(), 0);
+    for (std::size_t i = 0; i < meshes.insideSamples.size(); ++i) meshes.insideSamples[i] = static_cast<std::uint16_t>((i * 37) % 266);
+    RemovalField both = withDrilledRemoval(meshes, removal);
+    both.validate();
+    VoxelBox drilledBox = removal.drilledBox();
+    EXPECT_TRUE(both.box().contains(drilledBox.origin) && both.box().contains(drilledBox.origin + drilledBox.size - 1));
+    EXPECT_TRUE(both.box().contains(meshes.origin) && both.box().contains(meshes.origin + meshes.size - 1));
+    int checkedBoth = 0;
+    for (int z = both.origin.z; z < both.origin.z + both.size.z; ++z)
+        for (int y = both.origin.y; y < both.origin.y + both.size.y; ++y)
+            for (int x = both.origin.x; x < both.origin.x + both.size.x; ++x) {
+                glm::ivec3 v(x, y, z);
+                double m = meshes.removedFraction(v), d = removal.drilledFraction(v);
+                double expected = 1.0 - (1.0 - m) * (1.0 - d);
+                double got = both.removedFraction(v);
+                ASSERT_GE(got, expected - 1e-12) << "never less than the combination";
+                ASSERT_LT(got, expected + 1.0 / both.samplesPerVoxel) << "rounded up by less than one sample";
+                checkedBoth += m > 0 && d > 0 && d < 1;
+            }
+    EXPECT_GT(checkedBoth, 0) << "some voxels must be reached by both";
+    RemovalField none = withDrilledRemoval(meshes, RemovalVolume(dims, affine));
+    EXPECT_EQ(none.insideSamples, meshes.insideSamples);
+}
+
+}  // namespace
+}  // namespace curette::plan

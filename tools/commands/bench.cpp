@@ -9,6 +9,7 @@
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_stereo.h"
 #include "tools/bench/bench_view.h"
+#include "tools/bench/bench_drill.h"
 #include "tools/bench/bench_tracts.h"
 #include "tools/bench/lao_options.h"
 #include "tools/command_line.h"
@@ -99,6 +100,11 @@ std::vector<Command> benchCommands() {
                 bench::recastOption(),
                 {"json", true, "JSON output file (default bench-view.json)"}})},
          &bench::benchView},
+        {{"bench drill", "[--scene S]", "drilling: sweep steps per second, bricks and undo bytes per step, capsule error; exact frame after a stroke",
+          withGpuOption({{"scene", true, "scene file (default assets/scenes/head-drill.json)"},
+                {"size", true, "image size of the exact frames (default: the scene's)", "WxH"},
+                {"json", true, "JSON output file (default bench-drill.json)"}})},
+         &bench::benchDrill},
         {{"bench tracts", "[--scene S]", "lines and tubes at whole-brain scale: build, upload, GPU memory, frame time",
           withGpuOption({{"scene", true, "scene file with tubes (default assets/scenes/tracts-100k.json)"},
                 {"counts", true, "streamline counts, the first N of each tube entry (default 1000,10000,100000)"},
