@@ -3,6 +3,7 @@
 #include "plan/tissue_mask.h"
 #include "base/base64.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -106,6 +107,27 @@ std::string reportPageHtml(const Report& r, const ReportPage& page) {
     }
     h += figures("3-D views", page.views);
     h += figures("Slices through the cavity", page.slices);
+    if (page.removalOverTime.size() >= 2) {
+        // Removed mL over the session's time: a polyline in a 600 x 220 box, axes labelled at their ends.
+        double t0 = page.removalOverTime.front().timeS, t1 = page.removalOverTime.back().timeS, top = 0;
+        for (const ReportPage::RemovalSample& s : page.removalOverTime) top = std::max(top, s.removedMl);
+        if (t1 <= t0) t1 = t0 + 1;
+        if (top <= 0) top = 1;
+        const double x0 = 50, y0 = 190, w = 530, hgt = 170;
+        std::string points;
+        for (const ReportPage::RemovalSample& s : page.removalOverTime)
+            points += number(x0 + w * (s.timeS - t0) / (t1 - t0), 1) + "," + number(y0 - hgt * s.removedMl / top, 1) + " ";
+        h += "<h2>Removed over the session</h2>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"600\" height=\"220\" "
+             "role=\"img\" aria-label=\"removed mL over the session\">\n";
+        h += "<line x1=\"50\" y1=\"190\" x2=\"580\" y2=\"190\" stroke=\"#444\"/><line x1=\"50\" y1=\"20\" x2=\"50\" y2=\"190\" stroke=\"#444\"/>\n";
+        h += "<polyline fill=\"none\" stroke=\"#b03030\" stroke-width=\"2\" points=\"" + points + "\"/>\n";
+        h += "<text x=\"45\" y=\"25\" text-anchor=\"end\" font-size=\"11\">" + number(top, 2) + " mL</text>";
+        h += "<text x=\"45\" y=\"190\" text-anchor=\"end\" font-size=\"11\">0</text>";
+        h += "<text x=\"50\" y=\"208\" font-size=\"11\">" + number(t0, 1) + " s</text>";
+        h += "<text x=\"580\" y=\"208\" text-anchor=\"end\" font-size=\"11\">" + number(t1, 1) + " s</text>\n</svg>\n";
+        h += "<p>" + std::to_string(page.removalOverTime.size()) + " frames sampled; the last: " + number(page.removalOverTime.back().removedMl, 3) +
+             " mL.</p>\n";
+    }
     if (!page.notes.empty()) {
         h += "<h2>Notes</h2>\n";
         for (const std::string& n : page.notes) h += "<p>" + htmlEscaped(n) + "</p>\n";

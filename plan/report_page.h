@@ -8,6 +8,7 @@
 //   structures  label set, name, protected, volume, removed +- u, share, depth +- u, margin +- u ("contact");
 //   bundles     name, protected, streamlines, cut, share, removed length, margin +- u;
 //   3-D views   and slices: the figures given, each with its caption;
+//   over time   for a session: removed mL at sampled frames, an inline SVG chart;
 //   notes       free lines (what the DICOM export wrote, say).
 // No patient identifier is ever handed in, so none is written.
 
@@ -28,6 +29,10 @@ struct ReportPage {
     std::string title = "curette surgical plan";
     std::string createdUtc, curetteVersion;
     std::vector<ReportFigure> views, slices;
+    struct RemovalSample {
+        double timeS = 0, removedMl = 0;
+    };
+    std::vector<RemovalSample> removalOverTime;   // a session's, in time order (empty: no chart)
     std::vector<std::string> notes;
 };
 

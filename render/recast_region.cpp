@@ -188,4 +188,31 @@ std::optional<PixelRegion> pixelsMeeting(const std::vector<ChangedRegion>& regio
     return all;
 }
 
+std::optional<ChangedRegion> drilledRegion(const plan::RemovalVolume& removal, std::uint64_t since, double growMm) {
+    std::vector<std::uint32_t> bricks = removal.bricksChangedSince(since);
+    if (bricks.empty()) return std::nullopt;
+    glm::ivec3 lo(INT32_MAX), hi(INT32_MIN);
+    for (std::uint32_t b : bricks) {
+        glm::ivec3 o = removal.brickOrigin(b);
+        lo = glm::min(lo, o), hi = glm::max(hi, o + plan::kRemovalBrickSize - 1);
+    }
+    // Index units per mm at most 1 / the smallest stretch |A^-1|_F^-1 of the grid's linear part.
+    glm::dmat3 inverse = glm::inverse(glm::dmat3(removal.indexToWorld()));
+    double frobenius = 0;
+    for (int c = 0; c < 3; ++c) frobenius += glm::dot(inverse[c], inverse[c]);
+    double growIndex = growMm * std::sqrt(frobenius) + 0.5;   // and half a voxel: a voxel's cell around its centre
+    glm::dvec3 a = glm::dvec3(lo) - growIndex, b = glm::dvec3(hi) + growIndex;
+    ChangedRegion region;
+    glm::dvec3 centre(0.0);
+    for (int c = 0; c < 8; ++c) {
+        glm::dvec3 index((c & 1) ? b.x : a.x, (c & 2) ? b.y : a.y, (c & 4) ? b.z : a.z);
+        region.box.push_back(glm::dvec3(removal.indexToWorld() * glm::dvec4(index, 1.0)));
+        centre += region.box.back() / 8.0;
+    }
+    double radius = 0;
+    for (const glm::dvec3& corner : region.box) radius = std::max(radius, glm::length(corner - centre));
+    region.ball = {centre, radius};
+    return region;
+}
+
 }  // namespace curette

@@ -17,6 +17,7 @@
 // when its centre ray can meet one. Anything else that changed (camera, size, mode, settings, volume, TF, LAO
 // settings, the meshes' geometry, scale, number or maps, tubes in the frame) casts every pixel.
 
+#include "plan/removal_volume.h"
 #include "render/passes/clip_mesh_set.h"
 #include "render/model/frame.h"
 
@@ -73,6 +74,9 @@ struct ChangedRegion {
     WorldBall ball;
 };
 std::optional<std::vector<ChangedRegion>> changedRegions(const ClipSnapshot& before, const ClipSnapshot& now, bool ambient);
+// Where drilling since version `since` can change an image: the world box of the bricks it changed, grown by
+// `growMm` (index steps of at least the grid's smallest stretch), and a ball holding it. None when no brick changed.
+std::optional<ChangedRegion> drilledRegion(const plan::RemovalVolume& removal, std::uint64_t since, double growMm);
 
 // The pixels of `frame` whose centre ray can meet `corners`' hull, row by row; none when the hull reaches the
 // eye's plane, so that its projection is not the hull of its corners' (then every pixel).

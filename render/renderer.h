@@ -258,6 +258,7 @@ private:
         ImageStamp stamp;
         ClipSnapshot clip;
         glm::ivec3 diagnostics{0};
+        bool drillCompiled = false;   // the drilled removal was in the shaders (Renderer::syncRemoval)
     };
     // The settings that change what a frame counts or how it is dispatched, not its image: a frame after one of
     // them changed casts every pixel, so what it counts is the whole image's.

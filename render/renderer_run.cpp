@@ -54,6 +54,12 @@ std::optional<PixelRegion> Renderer::recastRegion(const FrameDescription& frame,
         return std::nullopt;
     InputVersions now = currentVersions(), before = exactImage_->stamp.versions;
     before.clipMeshes = now.clipMeshes;
+    // Drilling since: the voxels it changed are known (the removal's brick versions), so is how far their change
+    // reaches; but a first drilled frame compiles the drill into the shaders, and then every pixel is cast.
+    const std::uint64_t removalBefore = before.removal;
+    bool drilled = removalBefore != now.removal;
+    if (drilled && !(removalTexture_ && exactImage_->drillCompiled)) return std::nullopt;
+    before.removal = now.removal;
     if (!(before == now)) return std::nullopt;
     // The ray cast must be the only image pass (tubes in dos bring the slab pass and the compositor), the maps
     // not drawn again (a rigid motion only moves their cameras), and no tubes in view (the region is argued for
@@ -62,6 +68,13 @@ std::optional<PixelRegion> Renderer::recastRegion(const FrameDescription& frame,
         if (p.pass == Pass::ClipMaps || p.pass == Pass::TubeGBuffer || (writesImage(p.pass) && p.pass != Pass::RayCast)) return std::nullopt;
     auto boxes = changedRegions(exactImage_->clip, ClipSnapshot::of(clip_, volume_.geometry().cellDiagonalMm()),
                                 traits(frame.shading).ambientOcclusion);
+    if (boxes && drilled) {
+        // A sample reads the drilled fraction trilinearly, within a cell diagonal of a changed voxel; V_AO changes
+        // within R of one (the contract) and a sample reads it within a cell diagonal more.
+        const double cell = volume_.geometry().cellDiagonalMm();
+        double grow = cell + (traits(frame.shading).ambientOcclusion ? AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()) + cell : 0.0);
+        if (std::optional<ChangedRegion> r = drilledRegion(*removal_, removalBefore, grow)) boxes->push_back(*r);
+    }
     // No mesh moved: render() of an unchanged state is asked for on purpose (benchmarks time it), so it runs whole.
     if (!boxes || boxes->empty()) return std::nullopt;
     return pixelsMeeting(*boxes, frame);
@@ -190,7 +203,8 @@ void Renderer::finishRun(const FrameRun& run) {
     lastPlan_ = run.plan;
     lastPassBindings_ = run.bound;
     if (run.exact)
-        exactImage_ = ExactImage{stampOf(run.frame), ClipSnapshot::of(clip_, volume_.geometry().cellDiagonalMm()), diagnostics()};
+        exactImage_ = ExactImage{stampOf(run.frame), ClipSnapshot::of(clip_, volume_.geometry().cellDiagonalMm()), diagnostics(),
+                                 removalTexture_ != nullptr};
     shown_ = ShownImage{stampOf(run.frame), run.exact, run.ambient};
 }
 

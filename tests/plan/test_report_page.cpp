@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <limits>
 
 namespace curette::plan {
@@ -11,6 +13,25 @@ namespace {
 
 TEST(ReportPage, TextIsEscaped) {
     EXPECT_EQ(htmlEscaped("a<b>&\"c'"), "a&lt;b&gt;&amp;&quot;c&#39;");
+}
+
+// A session's removed mL over time: a chart whose polyline has one point per sample, from the first time to
+// the last, and no chart for fewer than two samples.
+TEST(ReportPage, ASessionChartsItsRemovalOverTime) {
+    Report r;
+    ReportPage page;
+    EXPECT_EQ(reportPageHtml(r, page).find("<svg"), std::string::npos);
+    page.removalOverTime = {{0.0, 0.0}, {0.5, 0.2}, {1.0, 0.7}, {1.5, 0.65}};
+    std::string html = reportPageHtml(r, page);
+    ASSERT_NE(html.find("Removed over the session"), std::string::npos);
+    std::size_t at = html.find("points=\"");
+    ASSERT_NE(at, std::string::npos);
+    std::string points = html.substr(at + 8, html.find('"', at + 8) - at - 8);
+    EXPECT_EQ(std::count(points.begin(), points.end(), ','), 4);
+    EXPECT_NE(points.find("50.0,190.0"), std::string::npos) << "the first sample at the origin: " << points;
+    EXPECT_NE(points.find("403.3,20.0"), std::string::npos) << "the largest at the top: " << points;
+    EXPECT_NE(points.find("580.0,32.1"), std::string::npos) << "the last at the right: " << points;
+    EXPECT_NE(html.find("0.70 mL"), std::string::npos);
 }
 
 TEST(ReportPage, TablesCarryTheRowsAndTheWarnings) {

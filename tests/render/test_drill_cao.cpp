@@ -71,6 +71,9 @@ TEST(DrillCao, EqualsFullLaoAfterEveryStrokeStepWithUndoAndRedo) {
     auto removal = std::make_shared<plan::RemovalVolume>(dims, test::centredAffine(dims));
     cao.renderer->setRemoval(removal);
     lao.renderer->setRemoval(removal);
+    // The CAO side casts again only the pixels drilling and the mesh can change (render/recast_region.h); the
+    // LAO side casts every pixel, so a region that misses a changed pixel fails too.
+    lao.renderer->setRecastOnlyChangedPixels(false);
     auto sphere = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(4.0, 3));
     for (Renderer* r : {cao.renderer.get(), lao.renderer.get()}) r->clipMeshes().add(sphere, glm::dvec3(1.0), {}, "live sphere");
     auto setLivePose = [&](const clip::RigidPose& p) {
@@ -82,11 +85,12 @@ TEST(DrillCao, EqualsFullLaoAfterEveryStrokeStepWithUndoAndRedo) {
     std::mt19937 random(11);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     plan::DrillHistory history;
-    int compared = 0, partial = 0, undos = 0, redos = 0;
+    int compared = 0, partial = 0, undos = 0, redos = 0, recastPart = 0;
     auto compare = [&](const std::string& what) {
         DrillScene::Result c = cao.render(ShadingMode::Cao), l = lao.render(ShadingMode::Lao);
         const AmbientOcclusionStats& stats = cao.renderer->ambientOcclusion()->lastStats();
         partial += stats.dispatched < stats.voxels;
+        recastPart += cao.renderer->lastRecastShare() < 1.0;
         ++compared;
         expectBitIdentical(l, c, what);
     };
@@ -124,6 +128,42 @@ TEST(DrillCao, EqualsFullLaoAfterEveryStrokeStepWithUndoAndRedo) {
     EXPECT_GT(redos, 0);
     EXPECT_GT(partial, compared / 2) << "most CAO updates must visit less than the volume for the test to mean something";
     EXPECT_FALSE(removal->empty());
+    EXPECT_GT(recastPart, 0) << "some exact frames must cast only part of the image for the test to mean something";
+}
+
+// After drilling alone, an exact frame casts only the pixels the changed bricks can reach (the drilled
+// fraction a cell diagonal around them, V_AO within R more in lao/cao) and keeps the rest: bit for bit the
+// image of a renderer that casts every pixel, in cao and phong, for short strokes in a larger volume where the
+// region is a small part of the image.
+TEST(DrillCao, ExactFramesAfterDrillingCastOnlyTheReachedPixelsAndEqualFullCasts) {
+    glContext();
+    const glm::ivec3 dims(64);
+    for (ShadingMode mode : {ShadingMode::Cao, ShadingMode::Phong}) {
+        DrillScene region(dims), full(dims);
+        for (DrillScene* s : {&region, &full}) {
+            s->frame.size = {96, 96};
+            s->frame.camera.fit(glm::dvec3(0), 0.5 * glm::length(glm::dvec3(dims)) / 2);
+        }
+        full.renderer->setRecastOnlyChangedPixels(false);
+        auto removal = std::make_shared<plan::RemovalVolume>(dims, test::centredAffine(dims));
+        region.renderer->setRemoval(removal);
+        full.renderer->setRemoval(removal);
+        plan::DrillTool burr{clip::SolidShape{clip::SolidShape::Kind::Sphere, 1.5}};
+        glm::dvec3 at(-4, 2, 5);
+        double smallest = 1.0;
+        for (int step = 0; step < 8; ++step) {
+            glm::dvec3 next = at + glm::dvec3(1.0, -0.5, 0.3);
+            plan::DrillSweep sweep(burr, clip::RigidPose{at, {}}, clip::RigidPose{next, {}});
+            removal->apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal->voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), false);
+            at = next;
+            DrillScene::Result r = region.render(mode), f = full.render(mode);
+            if (step > 0) smallest = std::min(smallest, region.renderer->lastRecastShare());
+            EXPECT_EQ(0, std::memcmp(r.image.pixels.data(), f.image.pixels.data(), r.image.pixels.size() * sizeof(glm::vec4)))
+                << shadingModeName(mode) << " step " << step << ": images differ (recast share " << region.renderer->lastRecastShare() << ")";
+        }
+        // cao's region is wider by the LAO reach R.
+        EXPECT_LT(smallest, mode == ShadingMode::Cao ? 0.8 : 0.4) << shadingModeName(mode) << ": the drilled region must be part of the image";
+    }
 }
 
 // The drilled removal changes the image: a stroke through the blobs opens them in every mode.

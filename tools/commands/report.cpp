@@ -21,6 +21,28 @@ namespace curette::commands {
 
 namespace {
 
+// The removed mL at up to 12 frames spread over a session up to `last` (the page's chart), each from the state
+// at that frame as `report --session F --frame N` computes it.
+std::vector<plan::ReportPage::RemovalSample> removalOverTime(const Session& session, const std::string& file, const LoadedScene& loaded,
+                                                             const std::filesystem::path& scenePath, Renderer& renderer,
+                                                             const VolumeGeometry& geometry, int last) {
+    SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file),
+                     initialFrame(loaded.scene, geometry));
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
+    CarveReporter reporter(loaded, geometry, programVersion());
+    const int samples = std::min(12, last + 1);
+    std::vector<plan::ReportPage::RemovalSample> out;
+    int next = 0;
+    for (int n = 0; n <= last; ++n) {
+        step.follow(session.frames[std::size_t(n)], scenePath.parent_path(), file + " line " + std::to_string(n + 2));
+        if (n != (last * next) / std::max(samples - 1, 1)) continue;
+        ++next;
+        step.syncTo(renderer, loaded.tracts);
+        out.push_back({session.frames[std::size_t(n)].time, reporter.compute(renderer.clipMeshes(), step.state()).removedMl});
+    }
+    return out;
+}
+
 int report(const CommandLine& cl) {
     if (!cl.positional().empty()) throw InputError("<command line>", cl.positional()[0], "no positional arguments for report");
     std::filesystem::path out = cl.required("out");
@@ -44,11 +66,13 @@ int report(const CommandLine& cl) {
     configureRenderer(loaded, renderer);
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     std::optional<SessionStep> step;
+    int reportedFrame = -1;
     std::string where = scenePath.string();
     if (session) {
         if (session->frames.empty()) throw InputError(*cl.value("session"), "frames", "at least one recorded frame", "none");
         int last = static_cast<int>(session->frames.size()) - 1;
         int frame = cl.value("frame") ? CommandLine::parseInt("frame", *cl.value("frame"), 0, last) : last;
+        reportedFrame = frame;
         step.emplace(InteractionState::fromSessionStart(session->header, loaded.scene, scenePath.parent_path(), *cl.value("session")),
                      initialFrame(loaded.scene, geometry));
         step->attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
@@ -74,6 +98,9 @@ int report(const CommandLine& cl) {
         content.createdUtc = currentTimeIso8601();
         content.curetteVersion = programVersion();
         content.views = reportViews(renderer, loaded, 320);
+        if (session) content.removalOverTime = removalOverTime(*session, *cl.value("session"), loaded, scenePath, renderer, geometry,
+                                                               reportedFrame);
+        if (session) step->syncTo(renderer, loaded.tracts);   // back to the reported frame's state
         content.slices = reportSlices(loaded, state, removed);
         if (!dicom.empty()) content.notes.push_back(dicom.substr(0, dicom.size() - 1));
         writeFileAtomically(out / "report.html", plan::reportPageHtml(report, content));
