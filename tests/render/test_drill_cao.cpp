@@ -18,19 +18,12 @@ namespace {
 
 using test::glContext;
 
-double blobs(glm::dvec3 p) {
-    const glm::dvec4 centres[] = {{-5, -3, 2, 6}, {6, 4, -3, 5}, {1, -7, -5, 4}, {0, 6, 6, 5}};
-    double v = 0;
-    for (const glm::dvec4& c : centres) v += 240.0 * std::exp(-glm::dot(p - glm::dvec3(c), p - glm::dvec3(c)) / (2 * c.w * c.w));
-    return std::min(v, 255.0);
-}
-
 struct DrillScene {
     VolumeData volume;
     std::unique_ptr<Renderer> renderer;
     FrameDescription frame;
     explicit DrillScene(glm::ivec3 dims) {
-        volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, blobs);
+        volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, test::blobField);
         renderer = std::make_unique<Renderer>(glContext(), volume, test::rampTransferFunction(30, 180, 0.3));
         LaoSettings lao;
         parseLaoPattern("14", lao.directions);
