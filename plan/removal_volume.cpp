@@ -9,6 +9,13 @@
 
 namespace curette::plan {
 
+double smallestStretchMm(const glm::dmat4& indexToWorld) {
+    glm::dmat3 inverse = glm::inverse(glm::dmat3(indexToWorld));
+    double frobenius = 0;
+    for (int c = 0; c < 3; ++c) frobenius += glm::dot(inverse[c], inverse[c]);
+    return 1.0 / std::sqrt(frobenius);
+}
+
 std::uint8_t drilledByteFromBits(int bits) {
     constexpr int cells = kRemovalCellsPerAxis * kRemovalCellsPerAxis * kRemovalCellsPerAxis;
     return static_cast<std::uint8_t>((bits * 255 + cells / 2) / cells);
@@ -56,12 +63,7 @@ BrickMasks RemovalVolume::brickMasks(std::uint32_t brick) const {
 }
 
 void RemovalVolume::setBrick(std::uint32_t brick, const BrickMasks& masks) {
-    BrickMasks old = brickMasks(brick);
-    if (old == masks) return;
-    for (std::size_t i = 0; i < masks.size(); ++i) {
-        drilledVoxels_ -= old[i] != 0;
-        drilledVoxels_ += masks[i] != 0;
-    }
+    if (brickMasks(brick) == masks) return;
     if (std::all_of(masks.begin(), masks.end(), [](std::uint64_t m) { return m == 0; })) masks_.erase(brick);
     else masks_[brick] = masks;
     brickVersion_[brick] = ++version_;

@@ -35,6 +35,10 @@ using BrickMasks = std::array<std::uint64_t, kRemovalBrickVoxels>;   // a brick'
 // The masks of some bricks, by brick number: an undo step's "before" or "after".
 using BrickMaskMap = std::map<std::uint32_t, BrickMasks>;
 
+// A lower bound on the world length (mm) of any unit index step of a grid: 1 / |A^-1|_F for its linear part A
+// (|A x| >= |x| / |A^-1|_F), so also for sheared grids. How far in index units a world distance can reach.
+double smallestStretchMm(const glm::dmat4& indexToWorld);
+
 // A voxel's drilled fraction as stored for the renderer: round(bits * 255 / 64).
 std::uint8_t drilledByteFromBits(int bits);
 
@@ -64,7 +68,7 @@ public:
     bool drilledAt(glm::dvec3 world) const;
     std::uint8_t drilledByte(glm::ivec3 voxel) const { return drilledByteFromBits(std::popcount(mask(voxel))); }
     double drilledFraction(glm::ivec3 voxel) const { return drilledByte(voxel) / 255.0; }
-    bool empty() const { return drilledVoxels_ == 0; }
+    bool empty() const { return masks_.empty(); }
     double drilledVolumeMm3() const;       // sum of drilled fractions times the voxel volume
     VoxelBox drilledBox() const;           // the bricks holding a drilled voxel (size 0: none)
     // A brick's drilled bytes, x fastest, kRemovalBrickVoxels of them (voxels past the grid's edge: 0).
@@ -83,10 +87,9 @@ private:
     glm::ivec3 dims_;
     glm::dmat4 indexToWorld_, worldToIndex_;
     glm::ivec3 bricks_;
-    std::unordered_map<std::uint32_t, BrickMasks> masks_;    // bricks with a bit set
+    std::unordered_map<std::uint32_t, BrickMasks> masks_;    // only bricks with a bit set
     std::vector<std::uint64_t> brickVersion_;                // per brick: the version of its last change
     std::uint64_t version_ = 0;
-    std::size_t drilledVoxels_ = 0;                          // voxels with a bit set
 };
 
 // The report's removal field with the drilled removal folded in: the box grown to hold the drilled bricks, and

@@ -196,11 +196,8 @@ std::optional<ChangedRegion> drilledRegion(const plan::RemovalVolume& removal, s
         glm::ivec3 o = removal.brickOrigin(b);
         lo = glm::min(lo, o), hi = glm::max(hi, o + plan::kRemovalBrickSize - 1);
     }
-    // Index units per mm at most 1 / the smallest stretch |A^-1|_F^-1 of the grid's linear part.
-    glm::dmat3 inverse = glm::inverse(glm::dmat3(removal.indexToWorld()));
-    double frobenius = 0;
-    for (int c = 0; c < 3; ++c) frobenius += glm::dot(inverse[c], inverse[c]);
-    double growIndex = growMm * std::sqrt(frobenius) + 0.5;   // and half a voxel: a voxel's cell around its centre
+    // In index units at most growMm / the grid's smallest stretch, and half a voxel: a voxel's cell around its centre.
+    double growIndex = growMm / plan::smallestStretchMm(removal.indexToWorld()) + 0.5;
     glm::dvec3 a = glm::dvec3(lo) - growIndex, b = glm::dvec3(hi) + growIndex;
     ChangedRegion region;
     glm::dvec3 centre(0.0);

@@ -10,11 +10,7 @@ namespace curette {
 
 RemovalTexture::RemovalTexture(glm::ivec3 dims, const glm::dmat4& indexToWorld) : dims_(dims) {
     bricks_ = (dims + plan::kRemovalBrickSize - 1) / plan::kRemovalBrickSize;
-    // |A x| >= |x| / |A^-1|_F for the grid's linear part A: a lower bound on the world length of any index step.
-    glm::dmat3 inverse = glm::inverse(glm::dmat3(indexToWorld));
-    double frobenius = 0;
-    for (int c = 0; c < 3; ++c) frobenius += glm::dot(inverse[c], inverse[c]);
-    minStretchMm_ = 1.0 / std::sqrt(frobenius);
+    minStretchMm_ = plan::smallestStretchMm(indexToWorld);
     drilledBricks_.assign(std::size_t(bricks_.x) * std::size_t(bricks_.y) * std::size_t(bricks_.z), 0);
 
     auto make = [&](gl::Texture& t, GLenum format, glm::ivec3 size, GLenum filter, const char* label) {

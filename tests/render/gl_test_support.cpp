@@ -1,5 +1,7 @@
 #include "tests/render/gl_test_support.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -95,6 +97,16 @@ TubeVertices straightTube(glm::dvec3 centre, glm::dvec3 axis, double length, dou
             v.indices.insert(v.indices.end(), {first, first + 1 + static_cast<std::uint32_t>(s), first + 1 + static_cast<std::uint32_t>((s + 1) % sides)});
     }
     return v;
+}
+
+void expectSameAmbientAndImage(const std::vector<std::uint16_t>& laoAmbient, const Image& laoImage,
+                               const std::vector<std::uint16_t>& caoAmbient, const Image& caoImage, const std::string& what) {
+    ASSERT_EQ(laoAmbient.size(), caoAmbient.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < laoAmbient.size(); ++i) differing += laoAmbient[i] != caoAmbient[i];
+    EXPECT_EQ(differing, 0u) << what << ": V_AO differs in " << differing << " voxels";
+    EXPECT_EQ(0, std::memcmp(laoImage.pixels.data(), caoImage.pixels.data(), laoImage.pixels.size() * sizeof(glm::vec4)))
+        << what << ": images differ";
 }
 
 }  // namespace curette::test

@@ -5,9 +5,13 @@
 #include "gl/context.h"
 #include "base/transfer_function.h"
 #include "base/volume.h"
+#include "render/model/image.h"
 #include "render/model/tube_vertices.h"
 
+#include <cstdint>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace curette::test {
 
@@ -24,6 +28,11 @@ glm::dmat4 centredAffine(glm::ivec3 dims, glm::dvec3 spacing = glm::dvec3(1.0));
 
 // A smooth field of four Gaussian blobs in a 40 mm box around the origin, values 0..255.
 double blobField(glm::dvec3 p);
+
+// The CAO contract's check: V_AO and the image of full LAO and of CAO equal bit for bit (gtest expectations
+// naming `what`).
+void expectSameAmbientAndImage(const std::vector<std::uint16_t>& laoAmbient, const Image& laoImage,
+                               const std::vector<std::uint16_t>& caoAmbient, const Image& caoImage, const std::string& what);
 
 // A simple TF over [0, 255]: grey ramp colour, opacity ramp from `lo` (0) to `hi` (alpha).
 TransferFunction rampTransferFunction(double lo, double hi, double alpha);

@@ -97,12 +97,7 @@ clip::RigidPose randomPose(std::mt19937& random, double extent) {
 }
 
 void expectBitIdentical(const CaoScene::Result& lao, const CaoScene::Result& cao, const std::string& what) {
-    ASSERT_EQ(lao.ambient.size(), cao.ambient.size());
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < lao.ambient.size(); ++i) differing += lao.ambient[i] != cao.ambient[i];
-    EXPECT_EQ(differing, 0u) << what << ": V_AO differs in " << differing << " voxels";
-    EXPECT_EQ(0, std::memcmp(lao.image.pixels.data(), cao.image.pixels.data(), lao.image.pixels.size() * sizeof(glm::vec4)))
-        << what << ": images differ";
+    test::expectSameAmbientAndImage(lao.ambient, lao.image, cao.ambient, cao.image, what);
 }
 
 std::size_t differingVoxels(const CaoScene::Result& lao, const CaoScene::Result& cao) {

@@ -49,12 +49,7 @@ struct DrillScene {
 };
 
 void expectBitIdentical(const DrillScene::Result& lao, const DrillScene::Result& cao, const std::string& what) {
-    ASSERT_EQ(lao.ambient.size(), cao.ambient.size());
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < lao.ambient.size(); ++i) differing += lao.ambient[i] != cao.ambient[i];
-    EXPECT_EQ(differing, 0u) << what << ": V_AO differs in " << differing << " voxels";
-    EXPECT_EQ(0, std::memcmp(lao.image.pixels.data(), cao.image.pixels.data(), lao.image.pixels.size() * sizeof(glm::vec4)))
-        << what << ": images differ";
+    test::expectSameAmbientAndImage(lao.ambient, lao.image, cao.ambient, cao.image, what);
 }
 
 TEST(DrillCao, EqualsFullLaoAfterEveryStrokeStepWithUndoAndRedo) {
