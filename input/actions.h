@@ -64,8 +64,17 @@ struct MoveLight {
 struct NextLight {};
 struct ToggleRecording {};
 struct Screenshot {};
+// Drilling (session/drilling.h): a device emits HoldDrill every frame the mesh's drill control is down (erase:
+// its restore control); the session removes what the mesh sweeps that frame. A stroke is undone or redone on
+// the press of UndoStroke / RedoStroke.
+struct HoldDrill {
+    int mesh = 0;
+    bool erase = false;
+};
+struct UndoStroke {};
+struct RedoStroke {};
 
 using Action = std::variant<MoveMesh, GripMesh, ScaleMesh, DragMesh, SelectMesh, SetShading, CycleShading, ResetPose, AddMesh, RemoveMesh,
-                            ToggleRecording, Screenshot, MoveLight, NextLight>;
+                            ToggleRecording, Screenshot, MoveLight, NextLight, HoldDrill, UndoStroke, RedoStroke>;
 
 }  // namespace curette::input

@@ -352,6 +352,8 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
     auto mesh = [&](int index) -> MeshState* {
         return index >= 0 && index < static_cast<int>(meshes.size()) ? &meshes[static_cast<std::size_t>(index)] : nullptr;
     };
+    heldDrills.clear();
+    drillHistoryPresses.clear();
     for (const input::Action& action : actions) {
         if (auto* a = std::get_if<input::MoveMesh>(&action)) {
             if (MeshState* m = mesh(a->mesh)) {
@@ -407,6 +409,12 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
             toggleRecording = true;
         } else if (std::holds_alternative<input::Screenshot>(action)) {
             screenshot = true;
+        } else if (auto* h = std::get_if<input::HoldDrill>(&action)) {
+            if (MeshState* m = mesh(h->mesh)) heldDrills.push_back({m->id, h->erase});
+        } else if (std::holds_alternative<input::UndoStroke>(action)) {
+            drillHistoryPresses.push_back(DrillHistoryCommand::Undo);
+        } else if (std::holds_alternative<input::RedoStroke>(action)) {
+            drillHistoryPresses.push_back(DrillHistoryCommand::Redo);
         }
     }
 }

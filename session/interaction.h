@@ -86,6 +86,9 @@ struct InteractionState {
     std::shared_ptr<plan::DrillHistory> drillHistory;
     std::vector<SessionDrill> appliedDrills;
     std::vector<DrillHistoryCommand> appliedDrillHistory;
+    // This frame's drilling asked by actions (HoldDrill by mesh id, UndoStroke, RedoStroke), for applyDrilling.
+    std::vector<SessionDrill> heldDrills;
+    std::vector<DrillHistoryCommand> drillHistoryPresses;
 
     static InteractionState fromScene(const Scene& scene);
     // The state a session starts from (its header), with geometry from the scene or the meshes' descriptions.
