@@ -1,9 +1,10 @@
 #include "plan/distance_transform.h"
 
+#include "base/parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 namespace curette::plan {
 
@@ -55,8 +56,7 @@ void lowerEnvelopeOfParabolas(double* f, int n, double spacing, std::vector<int>
 
 namespace {
 
-// Runs body(first, end, scratch) over [0, lines) split among the machine's threads: the lines of one pass
-// are independent, so the result does not depend on the split.
+// Scratch for one thread's lines (the lines of one pass are independent: base/parallel.h).
 struct LineScratch {
     std::vector<int> v;
     std::vector<double> z, out, line;
@@ -64,17 +64,10 @@ struct LineScratch {
 
 template <typename Body>
 void overLines(std::size_t lines, const Body& body) {
-    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 8);
-    const std::size_t per = (lines + threads - 1) / threads;
-    std::vector<std::thread> workers;
-    for (std::size_t t = 1; t < threads && t * per < lines; ++t)
-        workers.emplace_back([&, t] {
-            LineScratch scratch;
-            body(t * per, std::min(lines, (t + 1) * per), scratch);
-        });
-    LineScratch scratch;
-    body(0, std::min(lines, per), scratch);
-    for (std::thread& w : workers) w.join();
+    splitAcrossThreads(lines, [&](std::size_t first, std::size_t end) {
+        LineScratch scratch;
+        body(first, end, scratch);
+    });
 }
 
 }  // namespace

@@ -93,6 +93,8 @@ struct FrameRun {
     InputVersions ambientVersions{};   // what step IV clipped: V_AO's freshness once step V is done
     std::uint32_t stepIVBricks = 0, stepVGroups = 0;
     int bands = -1, bandsDone = 0;   // the ray cast's (-1: not begun)
+    std::int64_t tubeUnitsDone = -1;  // the tube G-buffer's units drawn (-1: not cleared yet)
+    int compositeRowsDone = 0;        // the composite's rows
     std::optional<SlabRun> slab{};   // the slab pass's (none: not begun)
     std::optional<RecastTiles> recast{};
     std::vector<BoundResources> bound{};   // per pass run, what its programs bound (Renderer::setAuditBindings)

@@ -1,6 +1,7 @@
 #include "render/label_overlay.h"
 
 #include "base/error.h"
+#include "base/parallel.h"
 #include "gl/bindings.h"
 #include "render/gpu_volume.h"
 
@@ -61,23 +62,26 @@ void LabelOverlay::uploadField() const {
     for (float& w : weights) w /= sum;
     const glm::ivec3 stride(1, dims_.x, dims_.x * dims_.y);
     for (int axis = 0; axis < 3 && anyShown; ++axis) {
-        std::size_t v = 0;
-        for (int k = 0; k < dims_.z; ++k)
-            for (int j = 0; j < dims_.y; ++j)
-                for (int i = 0; i < dims_.x; ++i, ++v) {
-                    int at = glm::ivec3(i, j, k)[axis];
-                    glm::vec4 acc(0.0f);
-                    float accOpacity = 0.0f;
-                    // Clamped at the grid's edge, as the textures are.
-                    for (int d = -kLabelSmoothingReach; d <= kLabelSmoothingReach; ++d) {
-                        int q = std::clamp(at + d, 0, dims_[axis] - 1);
-                        std::size_t u = v + static_cast<std::size_t>(static_cast<std::ptrdiff_t>(q - at) * stride[axis]);
-                        acc += weights[d + kLabelSmoothingReach] * field[u];
-                        accOpacity += weights[d + kLabelSmoothingReach] * opacity[u];
+        // Each output voxel reads only the last pass's arrays: planes of k split across threads.
+        splitAcrossThreads(static_cast<std::size_t>(dims_.z), [&](std::size_t kFirst, std::size_t kEnd) {
+            std::size_t v = kFirst * std::size_t(dims_.x) * std::size_t(dims_.y);
+            for (int k = static_cast<int>(kFirst); k < static_cast<int>(kEnd); ++k)
+                for (int j = 0; j < dims_.y; ++j)
+                    for (int i = 0; i < dims_.x; ++i, ++v) {
+                        int at = glm::ivec3(i, j, k)[axis];
+                        glm::vec4 acc(0.0f);
+                        float accOpacity = 0.0f;
+                        // Clamped at the grid's edge, as the textures are.
+                        for (int d = -kLabelSmoothingReach; d <= kLabelSmoothingReach; ++d) {
+                            int q = std::clamp(at + d, 0, dims_[axis] - 1);
+                            std::size_t u = v + static_cast<std::size_t>(static_cast<std::ptrdiff_t>(q - at) * stride[axis]);
+                            acc += weights[d + kLabelSmoothingReach] * field[u];
+                            accOpacity += weights[d + kLabelSmoothingReach] * opacity[u];
+                        }
+                        scratch[v] = acc;
+                        opacityScratch[v] = accOpacity;
                     }
-                    scratch[v] = acc;
-                    opacityScratch[v] = accOpacity;
-                }
+        });
         field.swap(scratch);
         opacity.swap(opacityScratch);
     }

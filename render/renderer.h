@@ -195,6 +195,7 @@ private:
     bool stepIVSlice(FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
     bool stepVSlice(FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
     bool rayCastSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
+    bool tubeGBufferSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
     bool slabSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
     void beginStepIV(FrameRun& run);
     void finishStepV(const FrameRun& run);
@@ -203,7 +204,10 @@ private:
     int runRayCast(const PassContext& context, bool ismosLayers, int firstBand = 0, int bandCount = -1);
     void runSlabPass(const PassContext& context);
     SlabInputs slabInputs(const PassContext& context);
-    void runComposite(const PassContext& context);
+    // The composite over rows [firstRow, firstRow + rows) (all: the whole image). Each pixel reads only the G-buffer
+    // and its own image pixel, so bands give one dispatch's image.
+    void runComposite(const PassContext& context, int firstRow = 0, int rows = -1);
+    bool compositeSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits);
     // The pixels the exact frame `frame` with plan `plan` must cast (none: all of them): those the meshes' motion
     // since the last exact image can change, when nothing else changed (render/recast_region.h).
     std::optional<PixelRegion> recastRegion(const FrameDescription& frame, const FramePlan& plan) const;
@@ -219,7 +223,8 @@ private:
     void recordBindings(FrameRun& run, Pass pass, const std::vector<GLuint>& programs) const;
     std::uint64_t previewsRendered_ = 0;
     SliceSizer stepIVSizer_{SliceSizer::Rate::Last}, stepVSizer_{SliceSizer::Rate::Last}, rayCastSizer_{SliceSizer::Rate::Last},
-        slabSizer_{SliceSizer::Rate::Last};
+        slabSizer_{SliceSizer::Rate::Last}, tubeSizer_{SliceSizer::Rate::Last},
+        compositeSizer_{SliceSizer::Rate::Last};
     SliceSizer precomputeSizers_[2] = {SliceSizer{SliceSizer::Rate::Slowest}, SliceSizer{SliceSizer::Rate::Slowest}};   // step I's phases
     void validateSize(const FrameDescription& frame) const;
     void updateOccupancy();

@@ -21,6 +21,15 @@ bool writesImage(Pass pass) {
     return std::find(writes.begin(), writes.end(), Resource::OutputImage) != writes.end();
 }
 
+// A unit of the tube G-buffer in slices: this many triangles (or line segments), drawn in index order.
+constexpr std::size_t kTubePrimitivesPerUnit = 16384;
+std::int64_t tubeUnits(std::size_t primitives) {
+    return static_cast<std::int64_t>((primitives + kTubePrimitivesPerUnit - 1) / kTubePrimitivesPerUnit);
+}
+
+// A unit of the composite in slices: a band of this many rows (eight work-group rows).
+constexpr int kCompositeRowsPerUnit = 64;
+
 // Runs `n` units of a sliced pass with `run`, waits for the GPU and tells the sizer how long they took.
 template <typename Run>
 void timedSlice(SliceSizer& sizer, std::uint32_t n, Run run) {
@@ -124,6 +133,10 @@ double Renderer::exactProgress() const {
         if (pass == Pass::LaoRecompute && job.stepVBegun && job.stepVGroups > 0)
             within = 1.0 - double(ao_->recomputeGroupsLeft()) / job.stepVGroups;
         if (pass == Pass::RayCast && job.bands > 0) within = double(job.bandsDone) / job.bands;
+        if (pass == Pass::Composite && job.frame.size.y > 0) within = double(job.compositeRowsDone) / job.frame.size.y;
+        if (pass == Pass::TubeGBuffer && job.tubeUnitsDone > 0 && tubes_) {
+            within = std::min(1.0, double(job.tubeUnitsDone) / double(std::max<std::int64_t>(tubeUnits(tubes_->primitiveCount()), 1)));
+        }
         if (pass == Pass::SlabPass && job.slab && job.slab->units() > 0) within = 1.0 - double(job.slab->left()) / double(job.slab->units());
     }
     return (double(job.next) + within) / double(job.plan.passes.size());
@@ -141,7 +154,7 @@ FrameRun Renderer::beginRun(const FrameDescription& frame, bool exact) {
     FrameRun run{.frame = frame, .shaded = frame, .exact = exact, .stamp = stampOf(frame), .previews = previewsRendered_};
     if (exact) {
         run.plan = plan(frame);
-        for (SliceSizer* sizer : {&stepIVSizer_, &stepVSizer_, &rayCastSizer_, &slabSizer_}) sizer->newRun();
+        for (SliceSizer* sizer : {&stepIVSizer_, &stepVSizer_, &rayCastSizer_, &slabSizer_, &tubeSizer_, &compositeSizer_}) sizer->newRun();
     } else {
         // A preview is the frame's plan without steps I, IV and V, shading with previewAmbient()'s volume, or
         // phong while V_PAO is not there. Its clip maps are the frame's own (cao wants the dilated ones), exactly as
@@ -276,6 +289,8 @@ bool Renderer::runSlice(Pass pass, const PassContext& context, FrameRun& run, do
         case Pass::VoxelClipping: return stepIVSlice(run, budgetMs, sliceUnits);
         case Pass::LaoRecompute: return stepVSlice(run, budgetMs, sliceUnits);
         case Pass::RayCast: return rayCastSlice(context, run, budgetMs, sliceUnits);
+        case Pass::TubeGBuffer: return tubeGBufferSlice(context, run, budgetMs, sliceUnits);
+        case Pass::Composite: return compositeSlice(context, run, budgetMs, sliceUnits);
         case Pass::SlabPass: return slabSlice(context, run, budgetMs, sliceUnits);
         default: return runWhole(pass, context, run);
     }
@@ -314,6 +329,36 @@ bool Renderer::stepVSlice(FrameRun& run, double budgetMs, std::uint32_t sliceUni
     finishStepV(run);
     run.stepVDone = true;
     return true;
+}
+
+bool Renderer::tubeGBufferSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits) {
+    const std::int64_t units = tubeUnits(tubes_->primitiveCount());
+    if (run.tubeUnitsDone < 0) {
+        tubes_->clearGBuffer(context.frame.size, gbuffer_);
+        run.tubeUnitsDone = 0;
+    }
+    if (std::int64_t left = units - run.tubeUnitsDone; left > 0) {
+        std::uint32_t n = tubeSizer_.next(budgetMs, static_cast<std::uint32_t>(left), 1, sliceUnits);
+        timedSlice(tubeSizer_, n, [&](std::uint32_t drawn) {
+            tubes_->drawGBuffer(context.frame, clip_, gbuffer_, static_cast<std::size_t>(run.tubeUnitsDone) * kTubePrimitivesPerUnit,
+                                std::size_t{drawn} * kTubePrimitivesPerUnit);
+            run.tubeUnitsDone += drawn;
+        });
+    }
+    return run.tubeUnitsDone >= units;
+}
+
+bool Renderer::compositeSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits) {
+    const int height = context.frame.size.y;
+    if (int left = (height - run.compositeRowsDone + kCompositeRowsPerUnit - 1) / kCompositeRowsPerUnit; left > 0) {
+        std::uint32_t n = compositeSizer_.next(budgetMs, static_cast<std::uint32_t>(left), 1, sliceUnits);
+        timedSlice(compositeSizer_, n, [&](std::uint32_t units) {
+            int rows = std::min(static_cast<int>(units) * kCompositeRowsPerUnit, height - run.compositeRowsDone);
+            runComposite(context, run.compositeRowsDone, rows);
+            run.compositeRowsDone += rows;
+        });
+    }
+    return run.compositeRowsDone >= height;
 }
 
 bool Renderer::rayCastSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits) {
@@ -442,7 +487,7 @@ bool Renderer::slabSlice(const PassContext& context, FrameRun& run, double budge
     return true;
 }
 
-void Renderer::runComposite(const PassContext& context) {
+void Renderer::runComposite(const PassContext& context, int firstRow, int rows) {
     const FrameDescription& frame = context.frame;
     if (!compositeProgram_) compositeProgram_ = gl::Program::compute("tube_composite.comp");
     if (poissonCount_ != tubeShading_.vicinitySamples) {
@@ -469,7 +514,9 @@ void Renderer::runComposite(const PassContext& context) {
     glBindTextureUnit(binding::tubeNormal, gbuffer_.normal());
     glBindTextureUnit(binding::partialOcclusion, gbuffer_.partialOcclusion());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboPoissonDisk, poissonDisk_.name());
-    c.dispatchCovering(glm::uvec3(static_cast<unsigned>(frame.size.x), static_cast<unsigned>(frame.size.y), 1u));
+    if (rows < 0) rows = frame.size.y - firstRow;
+    c.set("firstRow", firstRow);
+    c.dispatchCovering(glm::uvec3(static_cast<unsigned>(frame.size.x), static_cast<unsigned>(std::max(rows, 0)), 1u));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 

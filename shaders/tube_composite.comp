@@ -22,6 +22,7 @@ uniform float vicinityRadiusPixelsAtUnitDepth;   // l_vicinity tan(theta) * pixe
 uniform float depthBiasMm;
 uniform bool useOcclusion;                       // false in solid/phong shading: no occlusion terms
 uniform float lineDiffuseExponent;               // p of eq. 3.15
+uniform int firstRow;                            // the dispatch covers a band of rows from here (an exact frame in slices)
 
 // Algorithm 5: 1 - (neighbours nearer than the biased surface depth) / samples.
 float vicinityOcclusion(ivec2 pixel, float surfaceDepth) {
@@ -37,7 +38,7 @@ float vicinityOcclusion(ivec2 pixel, float surfaceDepth) {
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, firstRow);
     if (outsideImage(pixel)) return;
     vec4 normalKind = texelFetch(tubeNormal, pixel, 0);
     if (normalKind.w == SURFACE_NONE) return;  // the volume alone: the eye buffer is the pixel

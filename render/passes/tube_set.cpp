@@ -3,6 +3,7 @@
 #include "base/error.h"
 #include "gl/bindings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -127,12 +128,24 @@ TubeVertices TubeSet::readBack(std::size_t firstVertex, std::size_t vertexCount,
 }
 
 void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target) {
-    target.ensure(frame.size);
-    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
-    glViewport(0, 0, frame.size.x, frame.size.y);
+    clearGBuffer(frame.size, target);
+    drawGBuffer(frame, clip, target, 0, primitiveCount());
+}
+
+void TubeSet::clearGBuffer(glm::ivec2 size, GBuffer& target) const {
+    target.ensure(size);
+    glDepthMask(GL_TRUE);   // a depth clear obeys the write mask
     const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
     for (GLint i = 0; i < 3; ++i) glClearNamedFramebufferfv(target.framebuffer(), GL_COLOR, i, zero);
     glClearNamedFramebufferfv(target.framebuffer(), GL_DEPTH, 0, &one);
+}
+
+void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target, std::size_t first, std::size_t count) {
+    first = std::min(first, primitiveCount());
+    count = std::min(count, primitiveCount() - first);
+    if (count == 0) return;
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
+    glViewport(0, 0, frame.size.x, frame.size.y);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -145,7 +158,9 @@ void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet
     clip.apply(program_);
     program_.use();
     glBindVertexArray(vertexArray_.name());
-    glDrawElements(lines_ ? GL_LINES : GL_TRIANGLES, static_cast<GLsizei>(buffers_.indexCount), GL_UNSIGNED_INT, nullptr);
+    const std::size_t indicesPer = lines_ ? 2 : 3;
+    glDrawElements(lines_ ? GL_LINES : GL_TRIANGLES, static_cast<GLsizei>(count * indicesPer), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(first * indicesPer * sizeof(std::uint32_t)));
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);

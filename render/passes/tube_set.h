@@ -61,7 +61,13 @@ public:
     // The world box around every vertex (the frame plan leaves tubes out of a frame they cannot be seen in).
     glm::dvec3 boundsMin() const { return buffers_.boundsMin; }
     glm::dvec3 boundsMax() const { return buffers_.boundsMax; }
+    std::size_t primitiveCount() const { return lines_ ? segmentCount() : triangleCount(); }
+    // The whole set into a cleared G-buffer; or, for an exact frame in slices, the G-buffer cleared and then the
+    // primitives [first, first + count) drawn over what earlier ranges drew. Ranges drawn in order give one
+    // draw's G-buffer: each fragment is depth-tested against those before it, ties keep the first drawn.
     void drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target);
+    void clearGBuffer(glm::ivec2 size, GBuffer& target) const;
+    void drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target, std::size_t first, std::size_t count);
 
 private:
     TubeBuffers buffers_;

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 namespace curette {
 namespace {
 
@@ -224,6 +226,55 @@ TEST(ExactInSlices, TubesAndIsmosInASlicedFrameEqualRender) {
         while (!sliced.renderer->advanceExact(sliced.frame, 0.0, 3)) ASSERT_LT(++calls, 200000);
         whole.renderer->render(whole.frame);
         EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "after a preview";
+    }
+}
+
+// 240 thin tubes crossing at random through the volume: over three G-buffer units of triangles, and fragments of
+// many tubes meet at one pixel, so their depth order matters.
+TubeVertices crossingTubes() {
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    TubeVertices all;
+    for (int i = 0; i < 240; ++i) {
+        glm::dvec3 centre = 12.0 * glm::dvec3(u(random), u(random), u(random)), axis(u(random), u(random), u(random));
+        if (glm::length(axis) < 0.1) axis = glm::dvec3(1, 0, 0);
+        TubeVertices t = test::straightTube(centre, axis, 18.0, 0.7, glm::vec4(0.5 + 0.5 * u(random), 0.6, 0.3, 1));
+        const auto offset = static_cast<std::uint32_t>(all.positions.size());
+        all.positions.insert(all.positions.end(), t.positions.begin(), t.positions.end());
+        all.directions.insert(all.directions.end(), t.directions.begin(), t.directions.end());
+        all.colors.insert(all.colors.end(), t.colors.begin(), t.colors.end());
+        for (std::uint32_t index : t.indices) all.indices.push_back(offset + index);
+    }
+    return all;
+}
+
+// The tube G-buffer in slices of one unit (TubeSet::drawGBuffer over index ranges, in order) gives render()'s
+// image bit for bit, in the ray cast's modes and in dos; the progress stays on the G-buffer for several calls.
+TEST(ExactInSlices, TheTubeGBufferInSlicesEqualsOneDraw) {
+    const TubeVertices tubes = crossingTubes();
+    ASSERT_GT(tubes.indices.size() / 3, 3u * 16384u) << "enough triangles for several slices";
+    for (ShadingMode mode : {ShadingMode::Phong, ShadingMode::Cao, ShadingMode::Dos}) {
+        SCOPED_TRACE(shadingModeName(mode));
+        MovingSphereScene sliced(mode), whole(mode);
+        for (MovingSphereScene* s : {&sliced, &whole}) {
+            s->frame.size = {64, 56};
+            s->renderer->setTubes(tubes, TubeShading{});
+        }
+        whole.renderer->render(whole.frame);
+        ASSERT_TRUE(whole.renderer->lastPlan().runs(Pass::TubeGBuffer));
+        const std::string gbuffer = passInfo(Pass::TubeGBuffer).activity;
+        int calls = 0, onGBuffer = 0;
+        double progress = 0;
+        while (!sliced.renderer->advanceExact(sliced.frame, 0.0, 1)) {
+            ASSERT_LT(++calls, 200000);
+            if (sliced.renderer->exactProgressLabel() == gbuffer) {
+                ++onGBuffer;
+                EXPECT_GE(sliced.renderer->exactProgress(), progress) << "the progress falls within the G-buffer";
+                progress = sliced.renderer->exactProgress();
+            }
+        }
+        EXPECT_GE(onGBuffer, 3) << "the G-buffer was not sliced";
+        EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "the G-buffer in slices differs from one draw";
     }
 }
 
