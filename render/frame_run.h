@@ -92,7 +92,7 @@ struct FrameRun {
     bool stepIVBegun = false, stepVBegun = false, stepVDone = false;
     InputVersions ambientVersions{};   // what step IV clipped: V_AO's freshness once step V is done
     std::uint32_t stepIVBricks = 0, stepVGroups = 0;
-    int bands = -1, bandsDone = 0;   // the ray cast's (-1: not begun)
+    int parts = -1, partsDone = 0;   // the ray cast's parts of bands (TileOrderPiece; -1: not begun)
     std::int64_t tubeUnitsDone = -1;  // the tube G-buffer's units drawn (-1: not cleared yet)
     int compositeRowsDone = 0;        // the composite's rows
     std::optional<SlabRun> slab{};   // the slab pass's (none: not begun)

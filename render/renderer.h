@@ -101,13 +101,13 @@ public:
     // once the frame is done. Then showing(frame) holds and the image shown is render(frame)'s, bit for bit;
     // until then the image shown stays the last one (previews have their own image). Step IV runs in slices of
     // its bricks (AmbientOcclusion::advanceClipVoxels), step V in slices of its recompute list
-    // (AmbientOcclusion::advanceRecompute), the ray cast in bands of tile rows
-    // (TileOrderPiece::dispatchBands), the slab pass in its view-aligned slices (SlabPass::advance), every
-    // other pass whole. A call for another frame, or after the scene
+    // (AmbientOcclusion::advanceRecompute), the ray cast in parts of bands of tile rows
+    // (TileOrderPiece::dispatchParts), the tube G-buffer in index ranges, the slab pass in its view-aligned
+    // slices (SlabPass::advance), the composite in bands of rows, every other pass whole. A call for another frame, or after the scene
     // changed or a preview was drawn, starts over; a step IV or V under way is abandoned, and the next update visits
     // the bricks its step IV visited as well as its own (AmbientOcclusion::abandonUpdate), so it rewrites
     // whatever the abandoned one left stale (render() does the same). sliceUnits > 0 fixes the slice size
-    // (step IV: bricks, step V: work groups of the list, the ray cast: bands, the slab pass: slices), for tests.
+    // (step IV: bricks, step V: work groups of the list, the ray cast: parts, the slab pass: slices), for tests.
     bool advanceExact(const FrameDescription& frame, double budgetMs, std::uint32_t sliceUnits = 0);
     // How far the exact frame in slices is, in [0, 1] (passes done, the sliced ones by their share done; 0 when
     // none is under way), and what its pass under way computes, in a planner's words (PassInfo::activity: "shadows
@@ -201,7 +201,7 @@ private:
     void finishStepV(const FrameRun& run);
     // The ray cast of the context's frame: the whole image, or (bandCount >= 0) its bands [firstBand, firstBand +
     // bandCount) of tile rows; returns the image's number of bands.
-    int runRayCast(const PassContext& context, bool ismosLayers, int firstBand = 0, int bandCount = -1);
+    int runRayCast(const PassContext& context, bool ismosLayers, int firstPart = 0, int partCount = -1);
     void runSlabPass(const PassContext& context);
     SlabInputs slabInputs(const PassContext& context);
     // The composite over rows [firstRow, firstRow + rows) (all: the whole image). Each pixel reads only the G-buffer

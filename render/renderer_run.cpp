@@ -132,7 +132,7 @@ double Renderer::exactProgress() const {
             within = 1.0 - double(ao_->clipBricksLeft()) / job.stepIVBricks;
         if (pass == Pass::LaoRecompute && job.stepVBegun && job.stepVGroups > 0)
             within = 1.0 - double(ao_->recomputeGroupsLeft()) / job.stepVGroups;
-        if (pass == Pass::RayCast && job.bands > 0) within = double(job.bandsDone) / job.bands;
+        if (pass == Pass::RayCast && job.parts > 0) within = double(job.partsDone) / job.parts;
         if (pass == Pass::Composite && job.frame.size.y > 0) within = double(job.compositeRowsDone) / job.frame.size.y;
         if (pass == Pass::TubeGBuffer && job.tubeUnitsDone > 0 && tubes_) {
             within = std::min(1.0, double(job.tubeUnitsDone) / double(std::max<std::int64_t>(tubeUnits(tubes_->primitiveCount()), 1)));
@@ -362,26 +362,26 @@ bool Renderer::compositeSlice(const PassContext& context, FrameRun& run, double 
 }
 
 bool Renderer::rayCastSlice(const PassContext& context, FrameRun& run, double budgetMs, std::uint32_t sliceUnits) {
-    if (run.bands < 0) {
-        // The first slice: a probe of one band, which also says how many there are (none: every pixel is kept).
+    if (run.parts < 0) {
+        // The first slice: a probe of one part, which also says how many there are (none: every pixel is kept).
         auto start = Clock::now();
-        run.bands = runRayCast(context, false, 0, 1);
+        run.parts = runRayCast(context, false, 0, 1);
         glFinish();
-        run.bandsDone = std::min(run.bands, 1);
-        rayCastSizer_.next(budgetMs, 1, 1, 0);   // one band, whatever the rate: the count is not known before
+        run.partsDone = std::min(run.parts, 1);
+        rayCastSizer_.next(budgetMs, 1, 1, 0);   // one part, whatever the rate: the count is not known before
         rayCastSizer_.measured(1, msSince(start));
-    } else if (run.bandsDone < run.bands) {
-        auto left = static_cast<std::uint32_t>(run.bands - run.bandsDone);
+    } else if (run.partsDone < run.parts) {
+        auto left = static_cast<std::uint32_t>(run.parts - run.partsDone);
         std::uint32_t n = rayCastSizer_.next(budgetMs, left, 1, sliceUnits);
-        timedSlice(rayCastSizer_, n, [&](std::uint32_t units) { runRayCast(context, false, run.bandsDone, static_cast<int>(units)); });
-        run.bandsDone += static_cast<int>(n);
+        timedSlice(rayCastSizer_, n, [&](std::uint32_t units) { runRayCast(context, false, run.partsDone, static_cast<int>(units)); });
+        run.partsDone += static_cast<int>(n);
     }
-    return run.bandsDone >= run.bands;
+    return run.partsDone >= run.parts;
 }
 
 // ---- The image passes ----
 
-int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int firstBand, int bandCount) {
+int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int firstPart, int partCount) {
     const FrameDescription& frame = context.frame;
     // ISMOS pass 1 is this ray caster shading with the mode's base (phong or solid) plus the layer outputs;
     // every other mode compiles without ISMOS_LAYERS, so its program is unchanged.
@@ -431,10 +431,10 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
             sampleCounter_ = gl::createBuffer();
             glNamedBufferStorage(sampleCounter_.name(), 16, nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
         }
-        // Samples taken, loop steps, steps per half of the dispatch: zeroed at the frame's first band, so an
-        // exact frame in slices counts all of its bands.
+        // Samples taken, loop steps, steps per half of the dispatch: zeroed at the frame's first part, so an
+        // exact frame in slices counts all of its parts.
         const std::uint32_t zero[4] = {0, 0, 0, 0};
-        if (firstBand == 0) glNamedBufferSubData(sampleCounter_.name(), 0, 16, zero);
+        if (firstPart == 0) glNamedBufferSubData(sampleCounter_.name(), 0, 16, zero);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboSampleCounter, sampleCounter_.name());
     }
     // An exact frame's ray cast covers its recast region; a preview's and ISMOS's, every pixel.
@@ -451,10 +451,10 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
         tiles.spans = &*recast.spans;
         tiles.spanBuffer = recast.spanBuffer.name();
     }
-    int bands = tiles.bandCount(p.workGroupSize());
-    tiles.dispatchBands(p, firstBand, bandCount < 0 ? bands : bandCount);
+    int parts = tiles.partCount(p.workGroupSize());
+    tiles.dispatchParts(p, firstPart, partCount < 0 ? parts : partCount);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    return bands;
+    return parts;
 }
 
 SlabInputs Renderer::slabInputs(const PassContext& context) {

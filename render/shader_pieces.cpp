@@ -62,25 +62,50 @@ TileBands tileBands(glm::ivec2 size, int rowsPerBand, glm::uvec3 group, const Ti
 }
 }  // namespace
 
-int TileOrderPiece::bandCount(glm::uvec3 workGroupSize) const {
-    return static_cast<int>(tileBands(size, rowsPerBand, workGroupSize, spans).bands);
+namespace {
+// Tiles across a part of a band.
+unsigned partColumns(glm::uvec3 group) { return std::max(1u, TileOrderPiece::kPartPixels / std::max(group.x, 1u)); }
+unsigned partsPerBand(const TileBands& t, glm::uvec3 group) { return (t.columns + partColumns(group) - 1) / partColumns(group); }
+}  // namespace
+
+int TileOrderPiece::partCount(glm::uvec3 workGroupSize) const {
+    TileBands t = tileBands(size, rowsPerBand, workGroupSize, spans);
+    return static_cast<int>(t.bands * partsPerBand(t, workGroupSize));
 }
 
-void TileOrderPiece::dispatch(gl::Program& p) const { dispatchBands(p, 0, bandCount(p.workGroupSize())); }
+void TileOrderPiece::dispatch(gl::Program& p) const { dispatchParts(p, 0, partCount(p.workGroupSize())); }
 
-void TileOrderPiece::dispatchBands(gl::Program& p, int firstBand, int bands) const {
-    TileBands t = tileBands(size, rowsPerBand, p.workGroupSize(), spans);
-    unsigned first = static_cast<unsigned>(std::clamp(firstBand, 0, static_cast<int>(t.bands)));
-    unsigned count = std::min(static_cast<unsigned>(std::max(bands, 0)), t.bands - first);
+void TileOrderPiece::dispatchParts(gl::Program& p, int firstPart, int parts) const {
+    const glm::uvec3 group = p.workGroupSize();
+    TileBands t = tileBands(size, rowsPerBand, group, spans);
+    const unsigned perBand = partsPerBand(t, group), across = partColumns(group), total = t.bands * perBand;
+    unsigned first = static_cast<unsigned>(std::clamp(firstPart, 0, static_cast<int>(total)));
+    unsigned count = std::min(static_cast<unsigned>(std::max(parts, 0)), total - first);
     if (count == 0 || t.columns == 0) return;
-    p.set("tileBands", count);
-    p.set("firstBand", t.firstBand + first);
     p.set("rowsPerBand", t.perBand);
     p.set("tileGrid", t.tiles);
     p.set("tileSpansOn", spans ? 1 : 0);
     if (spans) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboTileSpans, spanBuffer);
-    p.use();
-    glDispatchCompute(t.columns, count * t.perBand, 1);
+    auto dispatchRun = [&](unsigned band, unsigned bands, unsigned column, unsigned columns) {
+        p.set("tileBands", bands);
+        p.set("firstBand", t.firstBand + band);
+        p.set("firstColumn", column);
+        p.use();
+        glDispatchCompute(columns, bands * t.perBand, 1);
+    };
+    while (count > 0) {
+        unsigned band = first / perBand, within = first % perBand;
+        if (within == 0 && count >= perBand) {   // whole bands
+            unsigned bands = count / perBand;
+            dispatchRun(band, bands, 0, t.columns);
+            first += bands * perBand, count -= bands * perBand;
+        } else {                                 // a run of parts within one band
+            unsigned n = std::min(count, perBand - within);
+            unsigned column = within * across;
+            dispatchRun(band, 1, column, std::min(n * across, t.columns - column));
+            first += n, count -= n;
+        }
+    }
 }
 
 void VolumePiece::apply(gl::Program& p) const {

@@ -53,12 +53,15 @@ struct TileOrderPiece {
     GLuint spanBuffer = 0;
     // One row per llvmpipe worker thread (render/model/worker_deal.h): each thread then gets one row of every band.
     static int defaultRowsPerBand();
-    // The bands of rowsPerBand rows of tiles the dispatch covers (the image's, the last may be partly past it;
-    // with spans, from the band of their first row to that of their last).
-    int bandCount(glm::uvec3 workGroupSize) const;
-    // Every band, or the bands [firstBand, firstBand + bands) of those (clamped to their number).
+    // The parts the dispatch covers: bands of rowsPerBand rows of tiles (the image's, the last may be partly past
+    // it; with spans, from the band of their first row to that of their last), each cut across into runs of
+    // kPartPixels columns, in band order.
+    static constexpr unsigned kPartPixels = 128;
+    int partCount(glm::uvec3 workGroupSize) const;
+    // Every part, or the parts [firstPart, firstPart + parts) (clamped to their number); runs of whole bands go
+    // in one dispatch.
     void dispatch(gl::Program& program) const;
-    void dispatchBands(gl::Program& program, int firstBand, int bands) const;
+    void dispatchParts(gl::Program& program, int firstPart, int parts) const;
 };
 
 // volume.glsl: the data volume, its world-to-texture map and the gradient's map to world units.

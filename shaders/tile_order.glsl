@@ -14,6 +14,8 @@
 // A dispatch may cover a run of bands only (the exact frame in slices, Renderer::advanceExact): bands
 // firstBand .. firstBand + tileBands - 1, dealt out the same way, so each slice is a horizontal strip of the
 // image that the threads share alike, and the slices of a frame together shade every pixel once.
+// A dispatch may also cover a run of columns of one band only, from firstColumn (a part of a band: the exact
+// frame's slices on an image where one band costs more than a slice may).
 // A dispatch may also cover, per row of tiles, only the run of columns in tileSpans (the dispatch as wide as the
 // widest): the exact frame that casts again only the pixels a clip mesh's motion can change
 // (render/recast_region.h). A pixel is shaded by the same invocation code either way.
@@ -22,6 +24,7 @@
 uniform uint tileBands;       // B: the bands this dispatch covers (all: ceil(tile rows / m))
 uniform uint firstBand;       // the first of them
 uniform uint rowsPerBand;     // m
+uniform uint firstColumn;     // the dispatch's first column of tiles (of the span, with tileSpansOn)
 uniform uvec2 tileGrid;       // tiles across and down
 uniform bool tileSpansOn;      // cover only the tiles of each row's span
 layout(std430, binding = SSBO_TILE_SPANS) readonly buffer TileSpans { uvec2 tileSpans[]; };   // per row of tiles: [first, end)
@@ -44,8 +47,8 @@ uvec2 pixelInTile(uvec2 tileSize) {
 bool tilePixel(uvec2 tileSize, out ivec2 pixel) {
     uint j = gl_WorkGroupID.y;
     uint row = (firstBand + j % tileBands) * rowsPerBand + j / tileBands;
-    uint column = gl_WorkGroupID.x;
-    bool inside = row < tileGrid.y;
+    uint column = firstColumn + gl_WorkGroupID.x;
+    bool inside = row < tileGrid.y && column < tileGrid.x;
     if (tileSpansOn && inside) {
         uvec2 span = tileSpans[row];
         column += span.x;

@@ -229,6 +229,39 @@ TEST(ExactInSlices, TubesAndIsmosInASlicedFrameEqualRender) {
     }
 }
 
+// On an image wider than a part (TileOrderPiece::kPartPixels), a slice of one part casts a run of columns of
+// one band: after a mesh motion (the recast region's tile spans) and after a camera turn (every tile), the
+// exact frame in such slices equals render() bit for bit; after the turn it takes more calls than there are bands.
+TEST(ExactInSlices, TheRayCastInPartsOfBandsEqualsRender) {
+    for (ShadingMode mode : {ShadingMode::Phong, ShadingMode::Cao}) {
+        SCOPED_TRACE(shadingModeName(mode));
+        MovingSphereScene sliced(mode), whole(mode);
+        for (MovingSphereScene* s : {&sliced, &whole}) {
+            s->frame.size = {420, 72};
+            s->frame.camera.fit(glm::dvec3(0), 12.0);
+            s->renderer->render(s->frame);
+        }
+        for (int step = 0; step < 2; ++step) {
+            SCOPED_TRACE(step == 0 ? "after a mesh motion" : "after a camera turn");
+            if (step == 0) {
+                sliced.moveTo(2), whole.moveTo(2);
+            } else {
+                sliced.frame.camera.azimuthDeg = whole.frame.camera.azimuthDeg = 70;
+            }
+            whole.renderer->render(whole.frame);
+            int calls = 0, onRayCast = 0;
+            const std::string rayCast = passInfo(Pass::RayCast).activity;
+            while (!sliced.renderer->advanceExact(sliced.frame, 0.0, 1)) {
+                ASSERT_LT(++calls, 100000);
+                onRayCast += sliced.renderer->exactProgressLabel() == rayCast;
+            }
+            const int bands = (72 / 8 + TileOrderPiece::defaultRowsPerBand() - 1) / TileOrderPiece::defaultRowsPerBand();
+            if (step == 1) EXPECT_GT(onRayCast, bands) << "the ray cast went in whole bands";
+            EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "the ray cast in parts differs from render()";
+        }
+    }
+}
+
 // 240 thin tubes crossing at random through the volume: over three G-buffer units of triangles, and fragments of
 // many tubes meet at one pixel, so their depth order matters.
 TubeVertices crossingTubes() {
