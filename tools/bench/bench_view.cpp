@@ -265,6 +265,7 @@ std::string freshRenderHash(gl::Context& context, const LoadedScene& loaded, con
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep freshStep(InteractionState::fromSessionStart(session.header, loaded.scene, sceneFolder, file.string()),
                           initialFrame(loaded.scene, geometry));
+    freshStep.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, sessionStartRemoval(session, loaded).get());   // drilling too
     for (std::size_t n = 0; n < session.frames.size(); ++n)
         freshStep.follow(session.frames[n], sceneFolder, file.string() + " line " + std::to_string(n + 2));
     freshStep.syncTo(fresh, loaded.tracts);
