@@ -7,7 +7,7 @@ namespace curette::input {
 
 std::vector<Action> KeyboardMapper::update(const KeyboardMouseState& s, double dt, int meshCount) {
     std::vector<Action> actions;
-    std::uint32_t pressed = s.keys & ~previous_;
+    std::uint64_t pressed = s.keys & ~previous_;
     previous_ = s.keys;
     auto edge = [&](Key k) { return (pressed >> static_cast<int>(k)) & 1u; };
     auto held = [&](Key k) { return s.down(k) ? 1.0 : 0.0; };
@@ -21,6 +21,8 @@ std::vector<Action> KeyboardMapper::update(const KeyboardMouseState& s, double d
     if (edge(Key::Insert)) actions.push_back(AddMesh{});
     // Lights need no mesh.
     if (edge(Key::O)) actions.push_back(NextLight{});
+    if (edge(Key::Undo)) actions.push_back(UndoStroke{});
+    if (edge(Key::Redo)) actions.push_back(RedoStroke{});
     constexpr double degToRad = std::numbers::pi / 180.0;
     glm::dvec2 turn = glm::dvec2(held(Key::L) - held(Key::J), held(Key::I) - held(Key::K)) * (rotationSpeed_ * dt * degToRad);
     turn += glm::dvec2(s.lightDragPixels.x, -s.lightDragPixels.y) * (kLightDegPerPixel * degToRad);   // +y down on screen
@@ -39,6 +41,8 @@ std::vector<Action> KeyboardMapper::update(const KeyboardMouseState& s, double d
     r *= rotationSpeed_ * dt * std::numbers::pi / 180.0;
     if (t != glm::dvec3(0.0) || r != glm::dvec3(0.0)) actions.push_back(MoveMesh{selected_, MotionFrame::Camera, t, r});
     if (s.rightDragPixels != glm::dvec2(0.0)) actions.push_back(DragMesh{selected_, s.rightDragPixels});
+    // Held, not pressed: the mesh drills every frame the key is down (a stroke lasts as long).
+    if (s.down(Key::Drill) || s.down(Key::Erase)) actions.push_back(HoldDrill{selected_, !s.down(Key::Drill)});
     return actions;
 }
 

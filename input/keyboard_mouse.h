@@ -5,6 +5,8 @@
 // W/S forward/back, A/D left/right, Q/E down/up (camera frame); Up/Down pitch, Left/Right yaw,
 // PageUp/PageDown roll; right-drag moves in the view plane; Tab next mesh; R reset; Insert add; Delete
 // remove; 1-6 solid/phong/lao/cao/dos/ismos; C cycle shading; F9 recording; P or F12 screenshot; Shift fine steps.
+// Drilling (session/drilling.h) with the selected mesh: B held drills, N held erases (B wins when both are);
+// Ctrl+Z undoes the last stroke, Ctrl+Shift+Z or Ctrl+Y redoes it (on press; the viewer sets Undo / Redo for them).
 // Lights: J/L turn the selected light left/right (yaw about the camera's up axis), I/K raise/lower it, O selects
 // the next light, at the keyboard's degrees per second; a Shift + left drag turns it by kLightDegPerPixel
 // (right: towards the right of the screen, up: up).
@@ -21,18 +23,21 @@ enum class Key : int {
     Digit6,   // after the others: recorded sessions store keys as bits, and old ones keep their meaning
     I, J, K, L, O,   // lights (session version 2)
     Fine,            // Shift held: mesh motion from keys and devices at kFineStepFactor of its speed
+    Drill, Erase, Undo, Redo,   // drilling (session version 6): B, N, Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y
     Count
 };
 
 struct KeyboardMouseState {
-    std::uint32_t keys = 0;          // bit per Key
+    std::uint64_t keys = 0;          // bit per Key
     glm::dvec2 rightDragPixels{0.0}; // mouse motion this frame while the right button is held
     glm::dvec2 lightDragPixels{0.0}; // mouse motion this frame while Shift + the left button are held
     bool down(Key k) const { return (keys >> static_cast<int>(k)) & 1u; }
+    void press(Key k) { keys |= keyBit(k); }
+    static std::uint64_t keyBit(Key k) { return std::uint64_t{1} << static_cast<int>(k); }
     bool operator==(const KeyboardMouseState&) const = default;
 };
 
-static_assert(static_cast<int>(Key::Count) <= 32, "keys are recorded as the bits of one 32-bit word");
+static_assert(static_cast<int>(Key::Count) <= 64, "keys are recorded as the bits of one 64-bit word");
 
 // Fine steps (Shift held) scale every mesh motion of the frame, from the keys and from the devices, so a mesh
 // can be placed to a fraction of a millimetre (input/pipeline.cpp).
@@ -42,7 +47,7 @@ inline constexpr double kFineStepFactor = 0.1;
 inline constexpr double kLightDegPerPixel = 0.25;
 
 struct KeyboardMapperState {
-    std::uint32_t previousKeys = 0;
+    std::uint64_t previousKeys = 0;
     int selectedMesh = 0;
     bool operator==(const KeyboardMapperState&) const = default;
 };
@@ -59,7 +64,7 @@ public:
 
 private:
     double translationSpeed_, rotationSpeed_;
-    std::uint32_t previous_ = 0;
+    std::uint64_t previous_ = 0;
     int selected_ = 0;
 };
 

@@ -16,7 +16,8 @@ namespace {
 const std::vector<std::string> kGamepadAxes = {"left_x", "left_y", "right_x", "right_y", "left_trigger", "right_trigger", "triggers", "shoulders"};
 const std::vector<std::string> kSixDofAxes = {"tx", "ty", "tz", "rx", "ry", "rz"};
 const std::vector<std::string> kActions = {"cycle_mesh", "cycle_shading", "reset_pose", "add_mesh", "remove_mesh", "toggle_recording",
-                                           "screenshot", "shading:solid", "shading:phong", "shading:lao", "shading:cao", "shading:dos", "shading:ismos"};
+                                           "screenshot", "shading:solid", "shading:phong", "shading:lao", "shading:cao", "shading:dos", "shading:ismos",
+                                           "drill", "erase", "undo_stroke", "redo_stroke"};
 const std::vector<std::string> kFamilies = {"gamepad", "dualshock4", "dualsense", "switch_pro", "xbox_bt", "spacemouse"};
 
 bool familyMatches(const std::string& wanted, DeviceFamily family) {
@@ -125,6 +126,17 @@ MappingConfig parseMapping(std::string_view text, const std::string& source) {
                 binding.buttons[bit] = action.oneOf(kActions);
             }
         }
+        auto axisControl = [&](const char* key, std::optional<AxisControl>& control) {
+            auto c = b.find(key);
+            if (!c) return;
+            std::vector<std::string> names;
+            for (const std::string& a : gamepad ? kGamepadAxes : kSixDofAxes) names.push_back(a), names.push_back("-" + a);
+            control = AxisControl{c->at("axis").oneOf(names), 0.5};
+            if (auto t = c->find("threshold")) control->threshold = t->number(0.05, 1.0);
+            c->finish();
+        };
+        axisControl("drill", binding.drillAxis);
+        axisControl("erase", binding.eraseAxis);
         b.finish();
         config.bindings.push_back(binding);
     }
@@ -159,6 +171,8 @@ std::string mappingToJson(const MappingConfig& config) {
         nlohmann::ordered_json buttons = nlohmann::ordered_json::object();
         for (const auto& [bit, action] : b.buttons) buttons[gamepad ? buttonName(bit) : "button" + std::to_string(bit)] = action;
         e["buttons"] = buttons;
+        if (b.drillAxis) e["drill"] = {{"axis", b.drillAxis->axis}, {"threshold", b.drillAxis->threshold}};
+        if (b.eraseAxis) e["erase"] = {{"axis", b.eraseAxis->axis}, {"threshold", b.eraseAxis->threshold}};
         j["bindings"].push_back(e);
     }
     return j.dump();
@@ -221,6 +235,10 @@ std::vector<Action> Mapper::update(const std::vector<DeviceSnapshot>& devices, d
                 actions.push_back(Screenshot{});
             } else if (action.rfind("shading:", 0) == 0) {
                 actions.push_back(SetShading{action.substr(8)});
+            } else if (action == "undo_stroke") {
+                actions.push_back(UndoStroke{});
+            } else if (action == "redo_stroke") {
+                actions.push_back(RedoStroke{});
             }
         }
         // Motion: axes -> rates -> this frame's step.
@@ -232,6 +250,14 @@ std::vector<Action> Mapper::update(const std::vector<DeviceSnapshot>& devices, d
         t *= binding.translation.speed * dt;
         r *= binding.rotation.speed * dt * std::numbers::pi / 180.0;
         if (t != glm::dvec3(0.0) || r != glm::dvec3(0.0)) actions.push_back(MoveMesh{held_[b], binding.frame, t, r});
+        // Drill controls act while held (a stroke lasts as long), not on press.
+        auto held = [&](const char* name, const std::optional<AxisControl>& axis) {
+            for (const auto& [bit, action] : binding.buttons)
+                if (action == name && device->state.pressed(bit)) return true;
+            return axis && processedAxis(device->state, device->family, axis->axis, MotionBinding{{}, 0.0, {}, 0.0}) >= axis->threshold;
+        };
+        bool drill = held("drill", binding.drillAxis), erase = held("erase", binding.eraseAxis);
+        if (drill || erase) actions.push_back(HoldDrill{held_[b], !drill});
     }
     return actions;
 }

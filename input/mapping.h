@@ -1,7 +1,7 @@
 #pragma once
 // From device states to actions: which device drives which mesh, how its axes become translation and
 // rotation (dead zone, response curve, sensitivity in mm/s and deg/s, inversion, frame), and which buttons
-// fire which actions (on press, once). A Mapper is a deterministic function of its inputs (device states in
+// fire which actions (on press, once; the drill controls while held). A Mapper is a deterministic function of its inputs (device states in
 // device-id order, dt, mesh count) and its own state (previous buttons, held meshes), so a replay that feeds
 // it the recorded reports reproduces the recorded poses exactly.
 //
@@ -11,11 +11,16 @@
 //                  "translation": {"axes": ["tx", "-tz", "-ty"], "dead_zone": 0.06,
 //                                  "curve": {"type": "linear" | "power", "exponent": 2}, "mm_per_s": 60},
 //                  "rotation": {"axes": [...], ..., "deg_per_s": 90},
-//                  "buttons": {"south": "cycle_mesh", "button0": "reset_pose", ...}}]}
+//                  "buttons": {"south": "cycle_mesh", "button0": "reset_pose", ...},
+//                  "drill": {"axis": "right_trigger", "threshold": 0.5}, "erase": {"axis": "left_trigger", "threshold": 0.5}}]}
 // Axis names: gamepads left_x, left_y, right_x, right_y, left_trigger, right_trigger, triggers (right minus
 // left), shoulders (right minus left shoulder button); 6-DoF tx, ty, tz, rx, ry, rz; "-" inverts; "none".
 // Stick pairs take a radial dead zone, other axes a per-axis one. Actions: cycle_mesh, cycle_shading,
-// reset_pose, add_mesh, remove_mesh, toggle_recording, screenshot, shading:<mode>.
+// reset_pose, add_mesh, remove_mesh, toggle_recording, screenshot, shading:<mode>, undo_stroke, redo_stroke (on
+// press), and drill, erase (HoldDrill for the binding's held mesh every frame the button is down).
+// "drill" / "erase" (optional): an axis that drills (erases) while its raw value (no dead zone or curve; "-"
+// inverts) is at or past `threshold` (0.05 .. 1), e.g. a gamepad trigger; a button or the axis, drill winning
+// over erase when both are held, as the keyboard's B over N.
 
 #include "input/actions.h"
 #include "input/device_state.h"
@@ -40,6 +45,13 @@ struct MotionBinding {
     double speed = 0.0;   // mm/s (translation) or deg/s (rotation) at full deflection
 };
 
+// An axis that holds a drill control while pulled past a threshold.
+struct AxisControl {
+    std::string axis;          // an axis name as in MotionBinding ("-" inverts)
+    double threshold = 0.5;
+    bool operator==(const AxisControl&) const = default;
+};
+
 struct DeviceBinding {
     std::string family = "gamepad";  // "gamepad" matches every gamepad family
     int index = 0;                   // the index-th connected device of that family (by device id)
@@ -47,6 +59,7 @@ struct DeviceBinding {
     MotionFrame frame = MotionFrame::Camera;
     MotionBinding translation, rotation;
     std::map<int, std::string> buttons;  // button bit -> action name
+    std::optional<AxisControl> drillAxis, eraseAxis;
 };
 
 struct MappingConfig {

@@ -27,7 +27,7 @@ void store(std::vector<std::uint8_t>& bytes, std::size_t offset, T value) {
     std::uint8_t raw[sizeof(T)];
     std::memcpy(raw, &value, sizeof(T));
     if constexpr (std::endian::native == std::endian::big) std::reverse(raw, raw + sizeof(T));
-    std::memcpy(bytes.data() + offset, raw, sizeof(T));
+    std::memcpy(&bytes.at(offset + sizeof(T) - 1) - (sizeof(T) - 1), raw, sizeof(T));   // in bounds, or throws
 }
 
 struct Qform {
@@ -73,31 +73,27 @@ Qform qformOf(const glm::dmat3& linear, glm::dvec3 sizes) {
     return q;
 }
 
-std::vector<std::uint8_t> niftiBytes(const LabelMap& labels, const std::string& source) {
-    const glm::dmat4& m = labels.indexToWorld;
+}  // namespace
+
+std::vector<std::uint8_t> niftiHeaderBytes(const NiftiLayout& layout, std::size_t dataBytes, const std::string& source) {
+    const glm::dmat4& m = layout.indexToWorld;
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 3; ++r)
             if (!std::isfinite(m[c][r])) throw InputError(source, "indexToWorld", "a finite index-to-world affine");
     const glm::dmat3 linear(m);
     if (std::abs(glm::determinant(linear)) < 1e-12) throw InputError(source, "indexToWorld", "an invertible index-to-world affine", "a singular one");
     for (int a = 0; a < 3; ++a)
-        if (labels.dims[a] < 1 || labels.dims[a] > 32767)
-            throw InputError(source, "dim[" + std::to_string(a + 1) + "]", "a size in 1..32767 (NIfTI-1 int16)", std::to_string(labels.dims[a]));
-    if (labels.ids.size() != labels.voxelCount())
-        throw InputError(source, "ids", std::to_string(labels.voxelCount()) + " label ids (dims)", std::to_string(labels.ids.size()));
+        if (layout.dims[a] < 1 || layout.dims[a] > 32767)
+            throw InputError(source, "dim[" + std::to_string(a + 1) + "]", "a size in 1..32767 (NIfTI-1 int16)", std::to_string(layout.dims[a]));
 
-    const std::uint16_t maxId = labels.ids.empty() ? 0 : *std::max_element(labels.ids.begin(), labels.ids.end());
-    const bool eightBit = maxId <= 255;
-    const std::size_t voxelBytes = eightBit ? 1 : 2;
-    std::vector<std::uint8_t> b(kVoxOffset + labels.ids.size() * voxelBytes, 0);
-
+    std::vector<std::uint8_t> b(kVoxOffset + dataBytes, 0);
     store<std::int32_t>(b, 0, static_cast<std::int32_t>(kHeaderBytes));
     store<std::int16_t>(b, 40, 3);
-    for (std::size_t a = 0; a < 3; ++a) store<std::int16_t>(b, 42 + 2 * a, static_cast<std::int16_t>(labels.dims[static_cast<int>(a)]));
+    for (std::size_t a = 0; a < 3; ++a) store<std::int16_t>(b, 42 + 2 * a, static_cast<std::int16_t>(layout.dims[static_cast<int>(a)]));
     for (std::size_t a = 3; a < 7; ++a) store<std::int16_t>(b, 42 + 2 * a, 1);
-    store<std::int16_t>(b, 68, kIntentLabel);
-    store<std::int16_t>(b, 70, eightBit ? kDatatypeUint8 : kDatatypeUint16);
-    store<std::int16_t>(b, 72, static_cast<std::int16_t>(8 * voxelBytes));
+    store<std::int16_t>(b, 68, layout.intentCode);
+    store<std::int16_t>(b, 70, layout.datatype);
+    store<std::int16_t>(b, 72, layout.bitpix);
 
     const glm::dvec3 sizes(glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2]));
     const Qform q = qformOf(linear, sizes);
@@ -108,10 +104,9 @@ std::vector<std::uint8_t> niftiBytes(const LabelMap& labels, const std::string& 
     store<float>(b, 112, 1.0f);  // scl_slope
     store<float>(b, 116, 0.0f);  // scl_inter
     b[123] = kUnitsMm;
-    store<float>(b, 124, static_cast<float>(maxId));  // cal_max
-    store<float>(b, 128, 0.0f);                       // cal_min
-    const char description[] = "curette label map";
-    std::memcpy(b.data() + 148, description, sizeof description - 1);
+    store<float>(b, 124, static_cast<float>(layout.calMax));
+    store<float>(b, 128, 0.0f);  // cal_min
+    std::memcpy(b.data() + 148, layout.description.data(), std::min<std::size_t>(layout.description.size(), 79));
     store<std::int16_t>(b, 252, q.valid ? kXformAlignedAnat : std::int16_t{0});
     store<std::int16_t>(b, 254, kXformAlignedAnat);
     if (q.valid) {
@@ -124,10 +119,22 @@ std::vector<std::uint8_t> niftiBytes(const LabelMap& labels, const std::string& 
         for (std::size_t c = 0; c < 4; ++c)
             store<float>(b, 280 + 16 * r + 4 * c, static_cast<float>(m[static_cast<int>(c)][static_cast<int>(r)]));  // srow
     }
-    const char intentName[] = "labels";
-    std::memcpy(b.data() + 328, intentName, sizeof intentName - 1);
+    std::memcpy(b.data() + 328, layout.intentName.data(), std::min<std::size_t>(layout.intentName.size(), 15));
     std::memcpy(b.data() + 344, "n+1\0", 4);
+    return b;
+}
 
+namespace {
+
+std::vector<std::uint8_t> niftiBytes(const LabelMap& labels, const std::string& source) {
+    if (labels.ids.size() != labels.voxelCount())
+        throw InputError(source, "ids", std::to_string(labels.voxelCount()) + " label ids (dims)", std::to_string(labels.ids.size()));
+    const std::uint16_t maxId = labels.ids.empty() ? 0 : *std::max_element(labels.ids.begin(), labels.ids.end());
+    const bool eightBit = maxId <= 255;
+    const std::size_t voxelBytes = eightBit ? 1 : 2;
+    NiftiLayout layout{labels.dims, labels.indexToWorld, eightBit ? kDatatypeUint8 : kDatatypeUint16, static_cast<std::int16_t>(8 * voxelBytes),
+                       kIntentLabel, static_cast<double>(maxId), "curette label map", "labels"};
+    std::vector<std::uint8_t> b = niftiHeaderBytes(layout, labels.ids.size() * voxelBytes, source);
     std::uint8_t* data = b.data() + kVoxOffset;
     if (eightBit) {
         for (std::size_t n = 0; n < labels.ids.size(); ++n) data[n] = static_cast<std::uint8_t>(labels.ids[n]);

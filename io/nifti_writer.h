@@ -14,9 +14,24 @@
 
 #include "base/label_map.h"
 
+#include <cstdint>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace curette::io {
+
+// What varies between the NIfTI-1 files curette writes; the rest of the header is as described above.
+struct NiftiLayout {
+    glm::ivec3 dims{0};
+    glm::dmat4 indexToWorld{1.0};
+    std::int16_t datatype = 2, bitpix = 8, intentCode = 0;
+    double calMax = 0;
+    std::string description, intentName;   // at most 79 and 15 characters are kept
+};
+inline constexpr std::size_t kNiftiVoxOffset = 352;
+// The header (and the 4-byte extension flag) of such a file, followed by `dataBytes` zero bytes for the voxels.
+std::vector<std::uint8_t> niftiHeaderBytes(const NiftiLayout& layout, std::size_t dataBytes, const std::string& source);
 
 // Atomic (base/atomic_file.h): no partial file remains on failure.
 void writeNiftiLabelmap(const std::filesystem::path& path, const LabelMap& labels);

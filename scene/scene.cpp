@@ -223,6 +223,11 @@ Scene parseScene(std::string_view text, const fs::path& path) {
     if (auto labels = root.find("labels"))
         for (const JsonReader& l : labels->elements(0, 8)) scene.labels.push_back(parseLabels(l, path));
     if (auto r = root.find("report")) scene.report = parseReport(*r);
+    if (auto r = root.find("removal")) {
+        std::string file = r->string();
+        if (file.empty()) r->fail("a removal file name (NIfTI-1, datatype 1280), relative to the scene's folder");
+        scene.removalPath = resolvePath(scene.file, file);
+    }
     if (scene.report.tissue == ReportSpec::Tissue::Labels && scene.labels.empty())
         throw InputError(path.string(), "report.tissue", "\"opacity\" or \"all\" in a scene without labels", "\"labels\"");
     root.finish();

@@ -46,6 +46,8 @@
 //               "opacity": 0.5 (per unit length when shown), "show": "all" | "protected" | "none" | [ids or names],
 //               "protected": [ids or names], "protected_color": [r, g, b] (default: the table's colours)}],
 //                                                                       (at most 8 sets)
+//   "removal": "plan.removal.nii.gz" (the drilled removal on the scan grid, session/removal_file.h; a saved scene
+//              writes it beside itself),
 //   "report": {"tissue": "opacity" | "labels" | "all", "opacity_threshold": 0.02,
 //              "tissue_labels": [ids or names of the first label set] (default: all its labels), "tract_step_mm": 0.25}
 // }
@@ -121,6 +123,7 @@ struct Scene {
     IsmosSettings ismos;
     std::vector<SceneLabels> labels;
     ReportSpec report;
+    std::optional<std::filesystem::path> removalPath;   // "removal", resolved against the scene's folder
 };
 
 // A file's name with the known volume and tract suffixes taken off one at a time, the full name first:

@@ -187,8 +187,7 @@ void CarveReporter::write(const fs::path& dir, const plan::Report& report, const
         io::writeGltf(dir / "cavity.gltf", cavity, options.meshSpace);
     }
     std::vector<std::uint8_t> sceneBytes = readFileBytes(loaded_.scene.file);
-    writeFileAtomically(dir / "plan-scene.json",
-                        planSceneJson(loaded_.scene, std::string(sceneBytes.begin(), sceneBytes.end()), state));
+    saveScene(dir / "plan-scene.json", loaded_.scene, std::string(sceneBytes.begin(), sceneBytes.end()), state);
     if (!report.bundles.empty()) {
         fs::create_directories(dir / "tracts", ec);
         if (ec) throw SystemError((dir / "tracts").string() + ": cannot create the directory (" + ec.message() + ")");

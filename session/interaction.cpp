@@ -410,7 +410,12 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
         } else if (std::holds_alternative<input::Screenshot>(action)) {
             screenshot = true;
         } else if (auto* h = std::get_if<input::HoldDrill>(&action)) {
-            if (MeshState* m = mesh(h->mesh)) heldDrills.push_back({m->id, h->erase});
+            // One entry per mesh, whichever controls hold it (keyboard, devices); drill wins over erase.
+            if (MeshState* m = mesh(h->mesh)) {
+                auto same = std::find_if(heldDrills.begin(), heldDrills.end(), [&](const SessionDrill& held) { return held.mesh == m->id; });
+                if (same == heldDrills.end()) heldDrills.push_back({m->id, h->erase});
+                else same->erase = same->erase && h->erase;
+            }
         } else if (std::holds_alternative<input::UndoStroke>(action)) {
             drillHistoryPresses.push_back(DrillHistoryCommand::Undo);
         } else if (std::holds_alternative<input::RedoStroke>(action)) {

@@ -1,5 +1,7 @@
 #include "session/live_input.h"
 
+#include "session/removal_file.h"
+
 #include <algorithm>
 #include <ctime>
 #include <set>
@@ -54,7 +56,9 @@ std::vector<SessionDevice> LiveInput::connectedDevices() const {
 
 namespace {
 
-SessionHeader headerNow(const std::string& scene, const InteractionState& state, const LiveInput& input) {
+// The header of a recording starting now at `path`; a removal drilled before it is written beside it, so the
+// replay starts from it (session/removal_file.h).
+SessionHeader headerNow(const std::filesystem::path& path, const std::string& scene, const InteractionState& state, const LiveInput& input) {
     SessionHeader h;
     h.scene = scene;
     h.created = currentTimeIso8601();
@@ -69,6 +73,15 @@ SessionHeader headerNow(const std::string& scene, const InteractionState& state,
     h.inputState = input.pipeline().state();
     h.keyboardMmPerSecond = input.keyboardMmPerSecond();
     h.keyboardDegPerSecond = input.keyboardDegPerSecond();
+    if (state.removal && !state.removal->empty()) {
+        std::filesystem::path file = removalFileBeside(path);
+        writeRemovalFile(file, *state.removal);
+        h.removal = file.filename().string();
+        h.removalDigest = state.removal->digest();
+    }
+    // A recording starts a new undo history: a replay starts from the removal above and could not undo the
+    // strokes made before it, so neither can the live run from here on.
+    if (state.drillHistory) *state.drillHistory = plan::DrillHistory(state.drillHistory->budgetBytes());
     return h;
 }
 
@@ -76,7 +89,7 @@ SessionHeader headerNow(const std::string& scene, const InteractionState& state,
 
 LiveRecording::LiveRecording(const std::filesystem::path& path, const std::string& scene, const InteractionState& state,
                              const LiveInput& input, double startSeconds, double checkpointSeconds)
-    : recorder_(path, headerNow(scene, state, input), checkpointSeconds), start_(startSeconds) {}
+    : recorder_(path, headerNow(path, scene, state, input), checkpointSeconds), start_(startSeconds) {}
 
 void LiveRecording::addFrame(double now, double dt, glm::ivec2 size, const OrbitCamera& camera, const InteractionState& state,
                              const input::KeyboardMouseState& keys, const InputFrame& input) {

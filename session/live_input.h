@@ -48,7 +48,8 @@ private:
     double keyboardMm_, keyboardDeg_;
 };
 
-// A recording in progress: the header is the state when it started; each frame adds the poses and the lights'
+// A recording in progress: the header is the state when it started (a drilled removal written beside the session
+// file, and the drill undo history started afresh: the state's history is shared, so emptied); each frame adds the poses and the lights'
 // directions after the frame's actions, the frame's input and the meshes that came and went.
 class LiveRecording {
 public:

@@ -1,6 +1,7 @@
 #include "session/loaded_scene.h"
 
 #include "io/tract_file.h"
+#include "session/removal_file.h"
 #include "session/session_step.h"
 #include "base/error.h"
 #include "base/log.h"
@@ -23,6 +24,8 @@ LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath) {
     }
     for (const SceneTubes& t : loaded.scene.tubes) loaded.tracts.push_back(io::readTractogram(t.path));
     loaded.labels = loadSceneLabels(loaded.scene, loaded.volume);
+    if (loaded.scene.removalPath)
+        loaded.removal = readRemovalFile(*loaded.scene.removalPath, loaded.volume.dims, loaded.volume.indexToWorld, scenePath.string(), "removal");
     return loaded;
 }
 
@@ -32,6 +35,7 @@ void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
     // The scene's settings by the session step's path; the renderer was made with its transfer function.
     RendererSync synced{.transferFunction = RendererSync::sceneSettings().transferFunction};
     syncRenderer(InteractionState::fromScene(loaded.scene), renderer, loaded.tracts, synced);
+    if (loaded.removal) renderer.setRemoval(loaded.removal);
 }
 
 namespace {

@@ -14,11 +14,14 @@ struct LoadedScene {
     VolumeData volume;
     std::vector<Tractogram> tracts;   // one per scene.tubes entry
     std::vector<LoadedLabelSet> labels;  // one per scene.labels entry, on the scan grid
+    // The scene's drilled removal ("removal", session/removal_file.h), on the scan grid; null: none. Commands
+    // drill on a copy (SessionStep::attachRemoval), so this stays the scene's.
+    std::shared_ptr<const plan::RemovalVolume> removal;
 };
 
 LoadedScene loadSceneWithVolume(const std::filesystem::path& scenePath);
 
-// Hands the scene's labels, and by syncRenderer (session/session_step.h, the path edits take too) its LAO
+// Hands the scene's labels, its removal, and by syncRenderer (session/session_step.h, the path edits take too) its LAO
 // settings, clip meshes and tubes, to a renderer made for its volume and transfer function: every command that
 // renders a scene goes through here, so they all render the same thing.
 void configureRenderer(const LoadedScene& loaded, Renderer& renderer);

@@ -1,6 +1,8 @@
 #include "session/plan_scene.h"
 
+#include "base/atomic_file.h"
 #include "base/error.h"
+#include "session/removal_file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -79,6 +81,7 @@ std::string planSceneJson(const Scene& scene, const std::string& sceneText, cons
         meshes.push_back(entry);
     }
     root["clip_meshes"] = meshes;
+    root.erase("removal");
     root["shading"] = shadingModeName(state.shading);
     // Edited settings: the value of the last edit of each key (lights and tubes below).
     for (const auto& [key, value] : state.editedKeys)
@@ -113,6 +116,18 @@ std::string planSceneJson(const Scene& scene, const std::string& sceneText, cons
                           {"far_mm", camera->farMm}};
     }
     return root.dump(2) + "\n";
+}
+
+void saveScene(const fs::path& path, const Scene& scene, const std::string& sceneText, const InteractionState& state, const OrbitCamera* camera) {
+    std::string json = planSceneJson(scene, sceneText, state, camera);
+    if (state.removal && !state.removal->empty()) {
+        fs::path removal = removalFileBeside(path);
+        writeRemovalFile(removal, *state.removal);   // before the scene that names it
+        nlohmann::ordered_json root = nlohmann::ordered_json::parse(json);
+        root["removal"] = removal.filename().string();
+        json = root.dump(2) + "\n";
+    }
+    writeFileAtomically(path, json);
 }
 
 }  // namespace curette

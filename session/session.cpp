@@ -91,7 +91,12 @@ nlohmann::ordered_json inputStateJson(const input::InputPipelineState& s) {
     return j;
 }
 
-input::InputPipelineState readInputState(const JsonReader& r, std::size_t bindings) {
+// The largest keys word of a version: 32 bits before version 6, then one bit per input::Key.
+std::uint64_t maxKeys(int version) {
+    return version < kDrillFromInputVersion ? 0xFFFFFFFFu : (std::uint64_t{1} << static_cast<int>(input::Key::Count)) - 1;
+}
+
+input::InputPipelineState readInputState(const JsonReader& r, std::size_t bindings, int version) {
     input::InputPipelineState s;
     for (const JsonReader& d : r.at("devices").elements(0, 64)) {
         input::DeviceSnapshot snapshot{};
@@ -116,7 +121,7 @@ input::InputPipelineState readInputState(const JsonReader& r, std::size_t bindin
     for (std::int64_t v : list("previous_buttons", 0, 0xFFFFFFFFll)) s.mapper.previousButtons.push_back(static_cast<std::uint32_t>(v));
     m.finish();
     JsonReader k = r.at("keyboard");
-    s.keyboard.previousKeys = static_cast<std::uint32_t>(k.at("previous_keys").unsignedInteger(0xFFFFFFFFu));
+    s.keyboard.previousKeys = k.at("previous_keys").unsignedInteger(maxKeys(version));
     s.keyboard.selectedMesh = k.at("selected_mesh").integer(0, 1 << 20);
     k.finish();
     r.finish();
@@ -167,6 +172,7 @@ std::string sessionHeaderLine(const SessionHeader& h) {
     if (!h.edits.empty()) j["edits"] = editsJson(h.edits);
     j["input_state"] = inputStateJson(h.inputState);
     j["keyboard"] = {{"mm_per_s", h.keyboardMmPerSecond}, {"deg_per_s", h.keyboardDegPerSecond}};
+    if (!h.removal.empty()) j["removal"] = {{"file", h.removal}, {"digest", h.removalDigest}};
     return j.dump();
 }
 
@@ -326,7 +332,17 @@ FrameContext readHeader(std::string_view line, const std::string& file, const st
         if (m.id >= header.nextMeshId) r.at("next_mesh_id").fail("an id above every mesh id in \"meshes\"");
     if (auto lights = r.find("lights")) readHeaderLights(r, *lights, header);
     if (auto edits = r.find("edits")) readHeaderEdits(*edits, context.directory, header);
-    header.inputState = readInputState(r.at("input_state"), context.bindings);
+    header.inputState = readInputState(r.at("input_state"), context.bindings, version);
+    if (auto removal = r.find("removal")) {
+        if (version < kDrillFromInputVersion)
+            removal->fail("nothing: session version " + std::to_string(version) + " has no removal at the start (it came with version 6)");
+        header.removal = removal->at("file").string();
+        if (header.removal.empty()) removal->at("file").fail("a file name (relative to the session file's folder)");
+        header.removalDigest = removal->at("digest").string();
+        if (header.removalDigest.size() != 64 || header.removalDigest.find_first_not_of("0123456789abcdef") != std::string::npos)
+            removal->at("digest").fail("64 lower-case hex digits (the removal's SHA-256 digest)");
+        removal->finish();
+    }
     for (const auto& entry : header.inputState.devices) {
         int id = entry.first;
         if (std::none_of(header.devices.begin(), header.devices.end(), [id](const SessionDevice& h) { return h.id == id; }))
@@ -481,7 +497,7 @@ SessionFrame readFrame(std::string_view line, std::size_t number, FrameContext& 
         for (const JsonReader& c : history->elements(0, 64))
             f.drillHistory.push_back(c.oneOf({"undo", "redo"}) == "undo" ? DrillHistoryCommand::Undo : DrillHistoryCommand::Redo);
     }
-    f.keys = static_cast<std::uint32_t>(r.at("keys").unsignedInteger(0xFFFFFFFFu));
+    f.keys = r.at("keys").unsignedInteger(maxKeys(context.version));
     f.drag = r.at("drag").vec2(-1e5, 1e5);
     if (auto drag = r.find("light_drag")) {
         requireVersion2(*drag, context.version);

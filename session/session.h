@@ -2,7 +2,7 @@
 // Sessions: JSON Lines, written atomically. Line 1 is the header (format, version, scene, devices, mapping,
 // and the state at the start: shading, meshes, input pipeline, so a recording may start mid-run); every further line is one frame: time, dt, image size, camera, shading, every clip
 // mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, the panels' setting
-// edits (version 3, scene/setting_edit.h), the mesh panel's hold requests (version 4), and the raw HID reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
+// edits (version 3, scene/setting_edit.h), the mesh panel's hold requests (version 4), the drilling applied (version 5; from version 6 derived from the keys and devices, and the header names the removal at the start), and the raw HID reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
 // back to the same doubles.
 
 #include "scene/setting_edit.h"
@@ -20,8 +20,12 @@
 
 namespace curette {
 
-inline constexpr int kSessionVersion = 5;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
-                                            // 5: drilling and its undo/redo
+inline constexpr int kSessionVersion = 6;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
+                                            // 5: drilling and its undo/redo; 6: drilling from keys and devices (actions, so
+                                            // --from-reports re-derives it; 64-bit keys), the removal at the start
+// The first version whose drilling comes from the recorded keys and devices: replay --from-reports re-derives
+// it and compares it with the frame's "drill"/"drill_history"; before, those are the input.
+inline constexpr int kDrillFromInputVersion = 6;
 inline constexpr int kOldestSessionVersion = 1;
 
 struct SessionDevice {
@@ -73,7 +77,7 @@ struct SessionFrame {
     // Every light's direction after the frame's actions and edits (version 2; absent: unchanged); as many as
     // the header's lights and the lights.add/lights.remove edits since make (version 4).
     std::optional<std::vector<glm::dvec3>> lights;
-    std::uint32_t keys = 0;
+    std::uint64_t keys = 0;          // input::KeyboardMouseState::keys (32 bits before version 6)
     glm::dvec2 drag{0.0};
     glm::dvec2 lightDrag{0.0};   // Shift + left drag (input::KeyboardMouseState::lightDragPixels)
     std::vector<SessionDevice> devicesAdded;
@@ -84,7 +88,8 @@ struct SessionFrame {
     // The hold requests the frame's input pipeline step applied, before its reports (version 4;
     // input::HoldRequest): {"binding": N | "keyboard", "mesh": index}.
     std::vector<input::HoldRequest> holds;
-    // The meshes drilling this frame, then the undo/redo commands applied after them (version 5).
+    // The meshes drilling this frame, then the undo/redo commands applied after them (version 5). From version 6
+    // they are what the frame's actions applied (a record, re-derived from the keys and reports).
     std::vector<SessionDrill> drills;
     std::vector<DrillHistoryCommand> drillHistory;
     std::vector<SessionReport> reports;
@@ -115,6 +120,9 @@ struct SessionHeader {
     std::vector<SettingEdit> edits;               // settings edited before the start (version 3; no mesh edits)
     input::InputPipelineState inputState;         // at the start: device states, held meshes, previous buttons
     double keyboardMmPerSecond = 40.0, keyboardDegPerSecond = 60.0;
+    // The drilled removal at the start (version 6; session/removal_file.h): a file relative to the session file's
+    // folder and its RemovalVolume::digest; empty: nothing drilled (before version 6: the scene's removal).
+    std::string removal, removalDigest;
 };
 
 struct Session {

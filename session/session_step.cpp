@@ -76,9 +76,9 @@ StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int vi
     return compare(before, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty(), removal);
 }
 
-void SessionStep::attachRemoval(glm::ivec3 dims, const glm::dmat4& indexToWorld) {
+void SessionStep::attachRemoval(glm::ivec3 dims, const glm::dmat4& indexToWorld, const plan::RemovalVolume* start) {
     if (state_.removal) return;
-    state_.removal = std::make_shared<plan::RemovalVolume>(dims, indexToWorld);
+    state_.removal = start ? std::make_shared<plan::RemovalVolume>(*start) : std::make_shared<plan::RemovalVolume>(dims, indexToWorld);
     state_.drillHistory = std::make_shared<plan::DrillHistory>();
 }
 

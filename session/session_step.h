@@ -65,12 +65,14 @@ public:
     // Live input, or input re-derived from recorded reports: the actions applied through the interaction
     // state with the frame's camera, for a viewport `viewportHeight` pixels high (drags).
     // Then the frame's setting edits (the panels', or a session's recorded ones), `source` naming them in errors.
-    // Then the frame's drilling (session/drilling.h).
+    // Then the frame's drilling (session/drilling.h): the actions' (HoldDrill, UndoStroke, RedoStroke) with
+    // `drill`, drilling given as input instead (a version 5 session replayed from its reports).
     StepChanges apply(const std::vector<input::Action>& actions, int viewportHeight, const std::vector<SettingEdit>& edits = {},
                       const std::string& source = "<panel>", const DrillInput& drill = {});
-    // Makes the state's drilled removal on the scan grid (empty, with an empty undo history) unless it has one:
-    // every command that steps a session on a scan calls it, so drilling works alike in each.
-    void attachRemoval(glm::ivec3 dims, const glm::dmat4& indexToWorld);
+    // Makes the state's drilled removal on the scan grid (a copy of `start`, the scene's or a session's removal
+    // at its start, or empty; with an empty undo history) unless it has one: every command that steps a session
+    // on a scan calls it, so drilling works alike in each.
+    void attachRemoval(glm::ivec3 dims, const glm::dmat4& indexToWorld, const plan::RemovalVolume* start = nullptr);
     // A recorded frame followed as recorded (replay without --from-reports): meshes added and removed, every
     // pose and scale, the lights' directions, the setting edits, the shading, camera and image size. `where`
     // names the line in errors.

@@ -4,6 +4,7 @@
 
 #include "io/transfer_function_file.h"
 #include "session/plan_scene.h"
+#include "session/removal_file.h"
 #include "scene/volume_statistics.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
@@ -528,8 +529,10 @@ void ViewPanels::scenePanel(const InteractionState& state, const OrbitCamera& ca
     tooltip("writes the scene with its current meshes, poses, settings and camera");
     if (save) {
         try {
-            writeFileAtomically(scenePath_, planSceneJson(loaded_.scene, loaded_.scene.json.dump(), state, &camera));
-            messages_.push_back("wrote the scene to " + std::filesystem::absolute(scenePath_).string());
+            saveScene(scenePath_, loaded_.scene, loaded_.scene.json.dump(), state, &camera);
+            bool drilled = state.removal && !state.removal->empty();
+            messages_.push_back("wrote the scene to " + std::filesystem::absolute(scenePath_).string() +
+                                (drilled ? " and its removal to " + removalFileBeside(scenePath_).filename().string() : ""));
         } catch (const std::exception& e) {
             messages_.push_back(std::string("could not write the scene: ") + e.what());
         }

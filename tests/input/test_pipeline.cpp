@@ -34,7 +34,7 @@ std::vector<Frame> randomFrames(int count, std::uint32_t seed) {
         if (percent(random) < 30) f.reports.push_back({1, 0, encodeSpaceMouseButtons(mouse)});
         f.reports.push_back({2, 0, encodeDualSenseUsb(pad)});
         if (percent(random) < 10) f.reports.push_back({2, 0, {0x01, 0x02, 0x03}});  // truncated: ignored
-        if (percent(random) < 15) f.keys.keys = 1u << (percent(random) % static_cast<int>(Key::Count));
+        if (percent(random) < 15) f.keys.keys = std::uint64_t{1} << (percent(random) % static_cast<int>(Key::Count));
         if (percent(random) < 10) f.keys.rightDragPixels = {axis(random) * 10, axis(random) * 10};
     }
     return frames;

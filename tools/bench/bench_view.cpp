@@ -17,6 +17,7 @@
 #include "tools/bench/report.h"
 #include "session/interaction.h"
 #include "session/loaded_scene.h"
+#include "session/removal_file.h"
 #include "session/session.h"
 #include "session/session_step.h"
 #include "viewer/viewer_driver.h"
@@ -264,6 +265,7 @@ std::string freshRenderHash(gl::Context& context, const LoadedScene& loaded, con
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep freshStep(InteractionState::fromSessionStart(session.header, loaded.scene, sceneFolder, file.string()),
                           initialFrame(loaded.scene, geometry));
+    freshStep.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, sessionStartRemoval(session, loaded).get());   // drilling too
     for (std::size_t n = 0; n < session.frames.size(); ++n)
         freshStep.follow(session.frames[n], sceneFolder, file.string() + " line " + std::to_string(n + 2));
     freshStep.syncTo(fresh, loaded.tracts);
@@ -304,7 +306,7 @@ int benchView(const CommandLine& cl) {
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
                      initialFrame(loaded.scene, geometry));
-    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, sessionStartRemoval(session, loaded).get());
     Viewer viewer{ViewerState(settings), renderer, step, loaded.tracts, size, background};
     renderer.finish();
     renderer.collectTimings();

@@ -88,10 +88,11 @@ struct ScriptedMotion {
             double v = 0.75 * std::sin(w * t + phase[a]) + 0.2 * std::sin(2.7 * w * t + 2.0 * phase[a]);
             s.axes[a] = static_cast<float>(std::clamp(v, -1.0, 1.0));
         }
-        if (gamepad) {  // triggers are [0, 1]; split the signal between them
+        if (gamepad) {  // triggers are [0, 1]; split the signal between them, below half pull (< 1.9 * 0.25): the
+                        // default mapping drills past half pull, and scripted motion drills only with --drill
             double v = s.axes[input::LeftTrigger] - s.axes[input::RightTrigger];
-            s.axes[input::LeftTrigger] = static_cast<float>(std::max(0.0, -v) * 0.6);
-            s.axes[input::RightTrigger] = static_cast<float>(std::max(0.0, v) * 0.6);
+            s.axes[input::LeftTrigger] = static_cast<float>(std::max(0.0, -v) * 0.25);
+            s.axes[input::RightTrigger] = static_cast<float>(std::max(0.0, v) * 0.25);
         }
         return s;
     }
@@ -102,7 +103,7 @@ struct ScriptedMotion {
 input::KeyboardMouseState scriptedLightKeys(int f, int frames, double phase) {
     using input::Key;
     input::KeyboardMouseState k;
-    auto hold = [&](Key key) { k.keys |= 1u << static_cast<int>(key); };
+    auto hold = [&](Key key) { k.press(key); };
     double t = 2.0 * std::numbers::pi * f / std::max(frames, 1);
     double yaw = std::sin(t + phase), pitch = std::sin(2.0 * t + 2.0 * phase);
     if (yaw > 0.3) hold(Key::L);
@@ -172,8 +173,10 @@ int record(const CommandLine& cl) {
         input::Key key = *mode == ShadingMode::Ismos ? input::Key::Digit6 : static_cast<input::Key>(static_cast<int>(input::Key::Digit1) + static_cast<int>(*mode));
         shadingPress = std::make_pair(frame, key);
     }
-    // Scripted drilling (session/drilling.h): the mesh --drill-mesh (index, default 0) drills over the --drill
-    // frames and erases over the --erase ones; --undo / --redo press Ctrl+Z / Ctrl+Shift+Z at those frames.
+    // Scripted drilling (session/drilling.h), as keys at the window (input/keyboard_mouse.h), so the session
+    // records them as keys and replay --from-reports re-derives the drilling: the keyboard's mesh (--drill-mesh, a
+    // hold request at frame 0) drills with B held over the --drill frames and erases with N over the --erase ones;
+    // --undo / --redo press Ctrl+Z / Ctrl+Shift+Z at those frames (adjacent frames are one press, as a held key).
     std::vector<std::pair<int, int>> drillFrames, eraseFrames;
     if (auto d = cl.value("drill")) drillFrames = frameRanges("drill", *d, frames);
     if (auto e = cl.value("erase")) eraseFrames = frameRanges("erase", *e, frames);
@@ -186,7 +189,7 @@ int record(const CommandLine& cl) {
     LoadedScene loaded = loadSceneWithVolume(scenePath);
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, geometry));
-    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, loaded.removal.get());
     glm::ivec2 size = cl.value("size") ? CommandLine::parseSize("size", *cl.value("size")) : step.frame().size;
     step.frame().size = size;
     InteractionState& state = step.state();
@@ -238,17 +241,15 @@ int record(const CommandLine& cl) {
             }
         double frameDt = f == 0 ? 0.0 : dt;
         input::KeyboardMouseState keys = moveLights ? scriptedLightKeys(f, frames, lightPhase) : input::KeyboardMouseState{};
-        if (shadingPress && f == shadingPress->first) keys.keys |= 1u << static_cast<int>(shadingPress->second);
-        InputFrame inputFrame = input.step(now, keys, frameDt, static_cast<int>(state.meshes.size()));
-        DrillInput drill;
-        bool drilling = inRanges(drillFrames, f), erasing = inRanges(eraseFrames, f);
-        if ((drilling || erasing) && drillMesh < static_cast<int>(state.meshes.size()))
-            drill.drills.push_back({state.meshes[static_cast<std::size_t>(drillMesh)].id, erasing && !drilling});
-        for (int u : undoFrames)
-            if (u == f) drill.history.push_back(DrillHistoryCommand::Undo);
-        for (int r : redoFrames)
-            if (r == f) drill.history.push_back(DrillHistoryCommand::Redo);
-        step.apply(inputFrame.actions, size.y, {}, "<panel>", drill);
+        if (shadingPress && f == shadingPress->first) keys.press(shadingPress->second);
+        if (inRanges(drillFrames, f)) keys.press(input::Key::Drill);
+        if (inRanges(eraseFrames, f)) keys.press(input::Key::Erase);
+        if (std::count(undoFrames.begin(), undoFrames.end(), f)) keys.press(input::Key::Undo);
+        if (std::count(redoFrames.begin(), redoFrames.end(), f)) keys.press(input::Key::Redo);
+        std::vector<input::HoldRequest> holds;
+        if (f == 0 && cl.value("drill-mesh")) holds.push_back({input::kKeyboardBinding, drillMesh});
+        InputFrame inputFrame = input.step(now, keys, frameDt, static_cast<int>(state.meshes.size()), holds);
+        step.apply(inputFrame.actions, size.y, {}, "<panel>");
         state.toggleRecording = state.screenshot = false;   // nothing to toggle or capture headless
         recording.addFrame(now, frameDt, size, step.frame().camera, state, keys, inputFrame);
     }
@@ -279,9 +280,9 @@ Command recordCommand() {
               {"press-shading", true, "MODE@FRAME: press the key of shading MODE (1-6) at FRAME, as at the window", "MODE@FRAME"},
               {"drill", true, "FIRST-LAST[,...]: frames over which the mesh --drill-mesh drills (as B held at the window)", "RANGES"},
               {"erase", true, "FIRST-LAST[,...]: frames over which it erases (N held)", "RANGES"},
-              {"drill-mesh", true, "index of the mesh that drills (default 0)"},
-              {"undo", true, "FRAME[,...]: undo the last stroke there (Ctrl+Z)"},
-              {"redo", true, "FRAME[,...]: redo there (Ctrl+Shift+Z)"}}},
+              {"drill-mesh", true, "index of the mesh that drills: the keyboard holds it from frame 0 (default: the keyboard's, 0)"},
+              {"undo", true, "FRAME[,...]: undo the last stroke there (Ctrl+Z pressed)"},
+              {"redo", true, "FRAME[,...]: redo there (Ctrl+Shift+Z pressed)"}}},
             &record};
 }
 

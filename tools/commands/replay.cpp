@@ -3,8 +3,9 @@
 //   --every N        render every Nth frame (poses are still followed on every frame)
 //   --check          per frame: CAO equals full LAO (V_AO and image, for cao/lao frames), render time,
 //                    recompute fraction and image hash, as CSV and a plot
-//   --from-reports   re-derive every pose and light direction from the raw reports and keys through the parsers
-//                    and the recorded mapping, and check they equal the recorded ones exactly
+//   --from-reports   re-derive every pose and light direction (and from session version 6 the drilling: which
+//                    meshes drilled, undo and redo) from the raw reports and keys through the parsers and the
+//                    recorded mapping, and check they equal the recorded ones exactly
 //   --no-render      with --from-reports: check the poses only (no GL context)
 //   --lenient        replay the valid prefix of a session with a bad line instead of refusing it
 //   --mp4            with --out: DIR/replay.mp4 of the frames at the recorded rate (tools/movie.h; needs ffmpeg)
@@ -17,6 +18,7 @@
 #include "tools/commands/commands.h"
 #include "session/interaction.h"
 #include "session/loaded_scene.h"
+#include "session/removal_file.h"
 #include "tools/movie.h"
 #include "session/plan_scene.h"
 #include "session/session.h"
@@ -99,7 +101,7 @@ int replay(const CommandLine& cl) {
     VolumeGeometry geometry{loaded.volume.dims, loaded.volume.indexToWorld};
     SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file.string()),
                      initialFrame(loaded.scene, geometry));
-    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, sessionStartRemoval(session, loaded).get());
     const InteractionState& state = step.state();
     std::optional<CarveReporter> reporter;
     if (reporting) reporter.emplace(loaded, geometry, programVersion());
@@ -131,12 +133,17 @@ int replay(const CommandLine& cl) {
             input::KeyboardMouseState keys{f.keys, f.drag, f.lightDrag};
             step.frame().camera = f.camera;
             step.frame().size = f.size;
+            // From version 6 the drilling comes from the keys and devices (actions) like the poses, and the frame's
+            // "drill" records what they applied; before, it is the drilling input itself (no key or button drilled).
+            bool drillFromInput = session.header.version >= kDrillFromInputVersion;
             step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size()), f.holds), f.size.y, f.edits, where,
-                       DrillInput{f.drills, f.drillHistory});
-            // The re-derived poses, lights (version 2) and shading must be the recorded ones, bit for bit.
-            bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights);
+                       drillFromInput ? DrillInput{} : DrillInput{f.drills, f.drillHistory});
+            // The re-derived poses, lights (version 2), shading and drilling must be the recorded ones, bit for bit.
+            bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights) &&
+                        (!drillFromInput || (state.appliedDrills == f.drills && state.appliedDrillHistory == f.drillHistory));
             if (!same && poseMismatches++ == 0)
-                std::fprintf(stderr, "curette replay: %s: poses or lights re-derived from the reports differ from the recorded ones\n", where.c_str());
+                std::fprintf(stderr, "curette replay: %s: poses, lights or drilling re-derived from the reports differ from the recorded ones\n",
+                             where.c_str());
         } else {
             // Follow the recorded poses: meshes added and removed, then every pose.
             step.follow(f, scenePath.parent_path(), where);
@@ -209,7 +216,7 @@ int replay(const CommandLine& cl) {
     }
     if (auto saved = cl.value("save-scene")) {
         std::vector<std::uint8_t> text = readFileBytes(scenePath);
-        writeFileAtomically(*saved, planSceneJson(loaded.scene, std::string(text.begin(), text.end()), state, &step.frame().camera));
+        saveScene(*saved, loaded.scene, std::string(text.begin(), text.end()), state, &step.frame().camera);
         std::printf("wrote the scene %s\n", saved->c_str());
     }
     if (movie && !movieFrames.empty()) {
@@ -225,7 +232,9 @@ int replay(const CommandLine& cl) {
         std::printf("wrote %s and %s\n", (*out / "frames.csv").c_str(), (*out / "frames.png").c_str());
     }
     std::printf("replayed %zu frames, rendered %d", session.frames.size(), rendered);
-    if (fromReports) std::printf(", poses from reports: %s", poseMismatches ? "DIFFERENT" : "identical to the recorded ones");
+    if (fromReports)
+        std::printf(", %s from reports: %s", session.header.version >= kDrillFromInputVersion ? "poses and drilling" : "poses",
+                    poseMismatches ? "DIFFERENT" : "identical to the recorded ones");
     if (checked) std::printf(", CAO == LAO on %d of %d checked frames", checked - caoMismatches, checked);
     std::printf("\n");
     return poseMismatches || caoMismatches ? 1 : 0;

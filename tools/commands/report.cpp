@@ -11,6 +11,7 @@
 #include "tools/command_line.h"
 #include "tools/commands/commands.h"
 #include "session/loaded_scene.h"
+#include "session/removal_file.h"
 #include "session/session.h"
 #include "session/session_step.h"
 #include "base/error.h"
@@ -28,7 +29,7 @@ std::vector<plan::ReportPage::RemovalSample> removalOverTime(const Session& sess
                                                              const VolumeGeometry& geometry, int last) {
     SessionStep step(InteractionState::fromSessionStart(session.header, loaded.scene, scenePath.parent_path(), file),
                      initialFrame(loaded.scene, geometry));
-    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, sessionStartRemoval(session, loaded).get());
     CarveReporter reporter(loaded, geometry, programVersion());
     const int samples = std::min(12, last + 1);
     std::vector<plan::ReportPage::RemovalSample> out;
@@ -75,13 +76,14 @@ int report(const CommandLine& cl) {
         reportedFrame = frame;
         step.emplace(InteractionState::fromSessionStart(session->header, loaded.scene, scenePath.parent_path(), *cl.value("session")),
                      initialFrame(loaded.scene, geometry));
-        step->attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
+        step->attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, sessionStartRemoval(*session, loaded).get());
         for (int n = 0; n <= frame; ++n)
             step->follow(session->frames[std::size_t(n)], scenePath.parent_path(), *cl.value("session") + " line " + std::to_string(n + 2));
         step->syncTo(renderer, loaded.tracts);   // the renderer in the state at that frame, its meshes and settings
         where = *cl.value("session") + " frame " + std::to_string(frame);
     }
     InteractionState state = step ? step->state() : InteractionState::fromScene(loaded.scene);
+    if (!step && loaded.removal) state.removal = std::make_shared<plan::RemovalVolume>(*loaded.removal);   // the scene's drilling
 
     CarveReporter reporter(loaded, geometry, programVersion());
     plan::Report report = reporter.compute(renderer.clipMeshes(), state);

@@ -20,6 +20,7 @@
 #include "session/interaction.h"
 #include "session/live_input.h"
 #include "session/loaded_scene.h"
+#include "session/removal_file.h"
 #include "session/session_step.h"
 #include "viewer/clearance_readout.h"
 #include "viewer/ruler.h"
@@ -59,21 +60,31 @@ constexpr int kGlfwKeys[] = {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLF
                              GLFW_KEY_LEFT, GLFW_KEY_RIGHT, GLFW_KEY_PAGE_UP, GLFW_KEY_PAGE_DOWN, GLFW_KEY_TAB, GLFW_KEY_R,
                              GLFW_KEY_INSERT, GLFW_KEY_DELETE, GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5,
                              GLFW_KEY_C, GLFW_KEY_F9, GLFW_KEY_P, GLFW_KEY_F12, GLFW_KEY_6, GLFW_KEY_I, GLFW_KEY_J, GLFW_KEY_K,
-                             GLFW_KEY_L, GLFW_KEY_O, GLFW_KEY_LEFT_SHIFT};
+                             GLFW_KEY_L, GLFW_KEY_O, GLFW_KEY_LEFT_SHIFT, GLFW_KEY_B, GLFW_KEY_N,
+                             GLFW_KEY_UNKNOWN, GLFW_KEY_UNKNOWN};   // Undo, Redo: Ctrl combinations (undoRedoKeys)
 static_assert(std::size(kGlfwKeys) == static_cast<std::size_t>(input::Key::Count));
+
+// Ctrl+Z -> Undo, Ctrl+Shift+Z or Ctrl+Y -> Redo, for a key pressed with `mods` (GLFW modifier bits).
+std::uint64_t undoRedoKeys(int key, int mods) {
+    if (!(mods & GLFW_MOD_CONTROL)) return 0;
+    if (key == GLFW_KEY_Z) return input::KeyboardMouseState::keyBit((mods & GLFW_MOD_SHIFT) ? input::Key::Redo : input::Key::Undo);
+    if (key == GLFW_KEY_Y) return input::KeyboardMouseState::keyBit(input::Key::Redo);
+    return 0;
+}
 
 // Presses latched between frames: a key pressed and released while a slow frame renders still counts. The
 // window's own keys (help, side bar, views) are latched apart: they are not scene input and are not recorded.
-std::uint32_t latchedKeys = 0;
+std::uint64_t latchedKeys = 0;
 std::vector<int> latchedWindowKeys;
 // Any event (a key, the mouse, the window resized or uncovered) since the last frame: the window is drawn again
 // for a short while after one, and not at all while nothing happens.
 bool windowEvent = true;
-void latchKey(GLFWwindow*, int key, int, int action, int) {
+void latchKey(GLFWwindow*, int key, int, int action, int mods) {
     windowEvent = true;
     if (action != GLFW_PRESS) return;
     for (int k = 0; k < static_cast<int>(input::Key::Count); ++k)
-        if (kGlfwKeys[k] == key) latchedKeys |= 1u << k;
+        if (kGlfwKeys[k] == key && key != GLFW_KEY_UNKNOWN) latchedKeys |= std::uint64_t{1} << k;
+    latchedKeys |= undoRedoKeys(key, mods);
     latchedWindowKeys.push_back(key);
 }
 void noteCursor(GLFWwindow*, double, double) { windowEvent = true; }
@@ -146,7 +157,6 @@ struct ViewWindow {
     std::optional<glm::dvec2> viewClick{};   // a Ctrl + left click in the 3-D view this iteration (framebuffer pixels)
     std::unique_ptr<LiveRecording> recording{};
     std::size_t played = 0;           // --play: the recorded frames followed
-    std::vector<DrillHistoryCommand> pendingDrillHistory;   // Ctrl+Z / Ctrl+Shift+Z pressed since the last frame
     bool orbiting = false, dragging = false, stereoKeyWasDown = false, exportKeyWasDown = false;
     glm::dvec2 lastCursor{0.0};
     int screenshots = 0;
@@ -200,7 +210,6 @@ private:
         glm::ivec2 framebuffer{0};
         OrbitCamera cameraBefore;
         input::KeyboardMouseState keys;
-        DrillInput drill;   // B held drills with the keyboard's mesh, N erases; Ctrl+Z / Ctrl+Shift+Z (Ctrl+Y) undo / redo
     };
     Polled poll();
     StepChanges applyInput(const Polled& p, InputFrame& input);
@@ -263,18 +272,14 @@ ViewWindow::Polled ViewWindow::poll() {
     if (!io.WantCaptureKeyboard) {
         p.keys.keys = latchedKeys;
         for (int k = 0; k < static_cast<int>(input::Key::Count); ++k)
-            if (glfwGetKey(w, kGlfwKeys[k]) == GLFW_PRESS) p.keys.keys |= 1u << k;
-        if (glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS) p.keys.keys |= 1u << static_cast<int>(input::Key::Fine);
+            if (kGlfwKeys[k] != GLFW_KEY_UNKNOWN && glfwGetKey(w, kGlfwKeys[k]) == GLFW_PRESS) p.keys.keys |= std::uint64_t{1} << k;
+        if (glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS) p.keys.press(input::Key::Fine);
+        // Undo and redo stay down while their keys are (one press, one step: the keyboard mapper acts on presses).
+        int mods = (ctrl ? GLFW_MOD_CONTROL : 0) | (shift ? GLFW_MOD_SHIFT : 0);
+        for (int key : {GLFW_KEY_Z, GLFW_KEY_Y})
+            if (glfwGetKey(w, key) == GLFW_PRESS) p.keys.keys |= undoRedoKeys(key, mods);
     }
     latchedKeys = 0;
-    // Drilling (session/drilling.h) with the mesh the keyboard moves.
-    int drillMesh = live.pipeline().keyboardSelection();
-    if (!io.WantCaptureKeyboard && drillMesh >= 0 && drillMesh < static_cast<int>(state().meshes.size())) {
-        bool drill = glfwGetKey(w, GLFW_KEY_B) == GLFW_PRESS, erase = glfwGetKey(w, GLFW_KEY_N) == GLFW_PRESS;
-        if (drill || erase) p.drill.drills.push_back({state().meshes[static_cast<std::size_t>(drillMesh)].id, erase && !drill});
-    }
-    p.drill.history = std::move(pendingDrillHistory);
-    pendingDrillHistory.clear();
     if (right && dragging) p.keys.rightDragPixels = delta;
     if (left && orbiting && shift) p.keys.lightDragPixels = delta;
     orbiting = left;
@@ -289,7 +294,7 @@ StepChanges ViewWindow::applyInput(const Polled& p, InputFrame& input) {
     StepChanges changes;
     if (!play) {
         try {
-            changes = step.apply(input.actions, p.framebuffer.y, drawSidebar(), "<panel>", p.drill);
+            changes = step.apply(input.actions, p.framebuffer.y, drawSidebar(), "<panel>");
         } catch (const InputError& e) {   // a panel value the scene reader refuses: said, not applied
             messages.push_back(e.what());
         }
@@ -459,11 +464,6 @@ void ViewWindow::windowKeys(const Polled&) {
         if (key == GLFW_KEY_F2) sidebarOpen = !sidebarOpen;
         if (key == GLFW_KEY_HOME && !typing) frame().camera = homeCamera;
         if (key == GLFW_KEY_F5) exportRequested = true;
-        GLFWwindow* w = window.window();
-        bool ctrl = glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
-        bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
-        if (ctrl && !typing && key == GLFW_KEY_Z) pendingDrillHistory.push_back(shift ? DrillHistoryCommand::Redo : DrillHistoryCommand::Undo);
-        if (ctrl && !typing && key == GLFW_KEY_Y) pendingDrillHistory.push_back(DrillHistoryCommand::Redo);
     }
     latchedWindowKeys.clear();
 }
@@ -702,7 +702,7 @@ int view(const CommandLine& cl) {
     SessionStep step(play ? InteractionState::fromSessionStart(play->header, loaded.scene, loaded.scene.file.parent_path(), play->file.string())
                           : InteractionState::fromScene(loaded.scene),
                      initialFrame(loaded.scene, renderer.geometry()));
-    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, play ? sessionStartRemoval(*play, loaded).get() : loaded.removal.get());
     ViewPanels panels(loaded, shippedPresetDirectory());
     LiveInput live(openHid(!cl.flag("no-devices") && !play), mapping, 40.0, 60.0);
     ViewWindow viewWindow{*window, loaded, scenePath, renderer, step, panels, live, play, cl.valueOr("screenshot", "curette-play.png"),

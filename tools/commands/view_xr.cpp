@@ -91,6 +91,7 @@ int viewXr(const CommandLine& cl) {
     Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, loaded.removal.get());   // the scene's drilling
     const glm::vec4 background(loaded.scene.background);
 
     window->makeCurrent();

@@ -1,0 +1,100 @@
+#include "io/nifti_uint64.h"
+
+#include "io/gzip.h"
+#include "io/nifti_writer.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+namespace curette::io {
+
+namespace {
+
+constexpr std::int16_t kDatatypeUint64 = 1280;   // nifti1.h DT_UINT64
+constexpr std::int32_t kHeaderBytes = 348;
+
+template <typename T>
+T load(std::span<const std::uint8_t> bytes, std::size_t offset, bool swap) {
+    std::uint8_t raw[sizeof(T)];
+    std::memcpy(raw, bytes.data() + offset, sizeof(T));
+    if (swap) std::reverse(raw, raw + sizeof(T));
+    T value;
+    std::memcpy(&value, raw, sizeof(T));
+    return value;
+}
+
+}  // namespace
+
+void writeNiftiUint64(const std::filesystem::path& path, const Uint64Volume& volume, const std::string& description) {
+    const std::size_t count = static_cast<std::size_t>(volume.dims.x) * volume.dims.y * volume.dims.z;
+    if (volume.values.size() != count)
+        throw InputError(path.string(), "values", std::to_string(count) + " values (dims)", std::to_string(volume.values.size()));
+    NiftiLayout layout{volume.dims, volume.indexToWorld, kDatatypeUint64, 64, 0, 0.0, description, ""};
+    std::vector<std::uint8_t> bytes = niftiHeaderBytes(layout, count * 8, path.string());
+    std::uint8_t* data = bytes.data() + kNiftiVoxOffset;
+    for (std::size_t n = 0; n < count; ++n) {
+        for (std::size_t k = 0; k < 8; ++k) data[8 * n + k] = static_cast<std::uint8_t>(volume.values[n] >> (8 * k));   // little-endian
+    }
+    if (path.extension() == ".gz") bytes = gzipCompress(bytes);
+    writeFileAtomically(path, bytes);
+}
+
+Uint64Volume readNiftiUint64Bytes(std::span<const std::uint8_t> b, const std::string& source) {
+    if (b.size() < kNiftiVoxOffset) throw InputError(source, "header", "a NIfTI-1 header (348 bytes and the extension flag)", std::to_string(b.size()) + " bytes");
+    bool swap = false;
+    if (load<std::int32_t>(b, 0, false) != kHeaderBytes) {
+        swap = true;
+        if (load<std::int32_t>(b, 0, true) != kHeaderBytes) throw InputError(source, "sizeof_hdr", "348 (a NIfTI-1 file)");
+    }
+    if (std::memcmp(b.data() + 344, "n+1", 4) != 0) throw InputError(source, "magic", "\"n+1\" (a single-file NIfTI-1)");
+    if (load<std::int16_t>(b, 40, swap) != 3) throw InputError(source, "dim[0]", "3 (one 3-D volume)", std::to_string(load<std::int16_t>(b, 40, swap)));
+    Uint64Volume v;
+    for (int a = 0; a < 3; ++a) {
+        int d = load<std::int16_t>(b, 42 + 2 * static_cast<std::size_t>(a), swap);
+        if (d < 1) throw InputError(source, "dim[" + std::to_string(a + 1) + "]", "a size of at least 1", std::to_string(d));
+        v.dims[a] = d;
+    }
+    std::int16_t datatype = load<std::int16_t>(b, 70, swap), bitpix = load<std::int16_t>(b, 72, swap);
+    if (datatype != kDatatypeUint64) throw InputError(source, "datatype", "1280 (DT_UINT64: 64 sub-cell bits per voxel)", std::to_string(datatype));
+    if (bitpix != 64) throw InputError(source, "bitpix", "64 for datatype 1280", std::to_string(bitpix));
+    float slope = load<float>(b, 112, swap), inter = load<float>(b, 116, swap);
+    if (!(slope == 0.0f || slope == 1.0f) || inter != 0.0f)
+        throw InputError(source, "scl_slope", "0 or 1 with scl_inter 0 (the stored words are the bits)");
+    if (load<std::int16_t>(b, 254, swap) <= 0) throw InputError(source, "sform_code", "above 0 (the affine is the srow rows)");
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) v.indexToWorld[c][r] = load<float>(b, 280 + 16 * static_cast<std::size_t>(r) + 4 * static_cast<std::size_t>(c), swap);
+    float offset = load<float>(b, 108, swap);
+    const std::size_t count = static_cast<std::size_t>(v.dims.x) * v.dims.y * v.dims.z;
+    if (!(offset >= static_cast<float>(kNiftiVoxOffset)) || offset != std::floor(offset) ||
+        static_cast<std::size_t>(offset) + count * 8 > b.size())
+        throw InputError(source, "vox_offset", "352 or more, with " + std::to_string(count * 8) + " bytes of voxels after it",
+                         std::to_string(offset) + " in a file of " + std::to_string(b.size()) + " bytes");
+    v.values.resize(count);
+    const std::uint8_t* data = b.data() + static_cast<std::size_t>(offset);
+    // The voxels are in the header's byte order.
+    for (std::size_t n = 0; n < count; ++n) v.values[n] = load<std::uint64_t>(std::span<const std::uint8_t>(data + 8 * n, 8), 0, swap);
+    return v;
+}
+
+Uint64Volume readNiftiUint64(const std::filesystem::path& path) {
+    std::vector<std::uint8_t> bytes = readFileBytes(path);
+    if (isGzip(bytes)) {
+        // No more than the header claims (8 bytes a voxel, and room for extensions), so a small file cannot
+        // claim gigabytes; a header the parser then refuses gets the header's size.
+        std::vector<std::uint8_t> head = gunzip(bytes, path.string(), 1u << 20, kNiftiVoxOffset);
+        std::uint64_t claimed = 0;
+        if (head.size() >= kNiftiVoxOffset) {
+            bool swap = load<std::int32_t>(head, 0, false) != kHeaderBytes;
+            claimed = 8;
+            for (int a = 0; a < 3; ++a) claimed *= static_cast<std::uint64_t>(std::max<std::int16_t>(1, load<std::int16_t>(head, 42 + 2 * static_cast<std::size_t>(a), swap)));
+        }
+        bytes = gunzip(bytes, path.string(), kNiftiVoxOffset + claimed + (std::uint64_t(1) << 20));
+    }
+    return readNiftiUint64Bytes(bytes, path.string());
+}
+
+}  // namespace curette::io

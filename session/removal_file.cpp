@@ -1,0 +1,87 @@
+#include "session/removal_file.h"
+
+#include "base/error.h"
+#include "io/nifti_uint64.h"
+
+#include <cmath>
+
+namespace curette {
+
+namespace {
+
+std::string dimsText(glm::ivec3 d) { return std::to_string(d.x) + " x " + std::to_string(d.y) + " x " + std::to_string(d.z); }
+
+// NIfTI-1 stores the srow rows as float32: the scan's affine matches when each coefficient is within float
+// rounding of the file's.
+bool sameAffine(const glm::dmat4& file, const glm::dmat4& scan) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 3; ++r)
+            if (std::abs(file[c][r] - scan[c][r]) > 1e-5 * std::max(1.0, std::abs(scan[c][r]))) return false;
+    return true;
+}
+
+}  // namespace
+
+std::filesystem::path removalFileBeside(const std::filesystem::path& owner) {
+    return owner.parent_path() / (owner.stem().string() + ".removal.nii.gz");
+}
+
+void writeRemovalFile(const std::filesystem::path& path, const plan::RemovalVolume& removal) {
+    io::Uint64Volume v{removal.dims(), removal.indexToWorld(), {}};
+    v.values.assign(static_cast<std::size_t>(v.dims.x) * v.dims.y * v.dims.z, 0);
+    plan::VoxelBox box = removal.drilledBox();
+    for (int z = box.origin.z; z < box.origin.z + box.size.z; ++z)
+        for (int y = box.origin.y; y < box.origin.y + box.size.y; ++y)
+            for (int x = box.origin.x; x < box.origin.x + box.size.x; ++x)
+                v.values[(static_cast<std::size_t>(z) * v.dims.y + y) * v.dims.x + x] = removal.mask({x, y, z});
+    io::writeNiftiUint64(path, v, "curette drilled removal: 4x4x4 bits");
+}
+
+std::shared_ptr<plan::RemovalVolume> readRemovalFile(const std::filesystem::path& path, glm::ivec3 dims, const glm::dmat4& indexToWorld,
+                                                     const std::string& referrer, const std::string& key) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw InputError(referrer, key, "a removal file (NIfTI-1, datatype 1280) that exists", "\"" + path.string() + "\": no such file");
+    io::Uint64Volume v = io::readNiftiUint64(path);
+    if (v.dims != dims) throw InputError(path.string(), "dim", dimsText(dims) + " (the scan's grid)", dimsText(v.dims));
+    if (!sameAffine(v.indexToWorld, indexToWorld)) throw InputError(path.string(), "srow_x/y/z", "the scan's index-to-world affine (RAS mm)", "another grid");
+    auto removal = std::make_shared<plan::RemovalVolume>(dims, indexToWorld);
+    plan::BrickMaskMap bricks;
+    glm::ivec3 grid = removal->brickGrid();
+    for (int bz = 0; bz < grid.z; ++bz)
+        for (int by = 0; by < grid.y; ++by)
+            for (int bx = 0; bx < grid.x; ++bx) {
+                std::uint32_t brick = removal->brickNumber({bx, by, bz});
+                glm::ivec3 origin = removal->brickOrigin(brick);
+                plan::BrickMasks masks{};
+                bool any = false;
+                for (int k = 0; k < plan::kRemovalBrickSize; ++k)
+                    for (int j = 0; j < plan::kRemovalBrickSize; ++j)
+                        for (int i = 0; i < plan::kRemovalBrickSize; ++i) {
+                            glm::ivec3 p = origin + glm::ivec3(i, j, k);
+                            if (glm::any(glm::greaterThanEqual(p, dims))) continue;
+                            std::uint64_t m = v.values[(static_cast<std::size_t>(p.z) * dims.y + p.y) * dims.x + p.x];
+                            masks[static_cast<std::size_t>((k * plan::kRemovalBrickSize + j) * plan::kRemovalBrickSize + i)] = m;
+                            any = any || m != 0;
+                        }
+                if (any) bricks[brick] = masks;
+            }
+    removal->setBricks(bricks);
+    return removal;
+}
+
+std::shared_ptr<const plan::RemovalVolume> sessionStartRemoval(const Session& session, const LoadedScene& loaded) {
+    if (session.header.version < kDrillFromInputVersion) return loaded.removal;
+    if (session.header.removal.empty()) return nullptr;
+    std::filesystem::path path = session.header.removal;
+    if (path.is_relative()) path = session.file.parent_path() / path;
+    std::string where = session.file.string();
+    std::shared_ptr<plan::RemovalVolume> removal =
+        readRemovalFile(path, loaded.volume.dims, loaded.volume.indexToWorld, where, "line 1: removal.file");
+    if (removal->digest() != session.header.removalDigest)
+        throw InputError(path.string(), "voxels", "the removal the session started from (digest " + session.header.removalDigest + ")",
+                         "another one (digest " + removal->digest() + ")");
+    return removal;
+}
+
+}  // namespace curette

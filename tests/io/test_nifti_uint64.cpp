@@ -1,0 +1,102 @@
+// 64-bit volumes as NIfTI-1 (io/nifti_uint64.h, the drilled removal's file): every bit of every word reads
+// back, the affine within float32, either endianness; anything else is an InputError naming the field.
+#include "io/gzip.h"
+#include "io/nifti_uint64.h"
+#include "io/nifti_writer.h"
+#include "base/atomic_file.h"
+#include "tests/io/io_test_support.h"
+
+#include <random>
+
+namespace curette {
+namespace {
+
+// A folder of its own: other tests read the shared scratch folder as a (DICOM) directory.
+std::filesystem::path folder() {
+    std::filesystem::path dir = test::scratchDirectory() / "uint64";
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+io::Uint64Volume sampleVolume() {
+    io::Uint64Volume v;
+    v.dims = {5, 4, 3};
+    v.indexToWorld = glm::dmat4(glm::dvec4(0.0, 1.2, 0.1, 0.0), glm::dvec4(-0.9, 0.0, 0.0, 0.0), glm::dvec4(0.0, 0.05, 2.0, 0.0),
+                                glm::dvec4(10.5, -20.25, 3.0, 1.0));
+    std::mt19937_64 random(7);
+    for (int i = 0; i < 60; ++i) v.values.push_back(i % 3 == 0 ? 0 : random());
+    v.values[1] = ~std::uint64_t(0);   // every bit, the top one too
+    v.values[2] = std::uint64_t(1) << 63;
+    return v;
+}
+
+TEST(NiftiUint64, EveryBitReadsBackCompressedOrNot) {
+    for (const char* name : {"bits.nii.gz", "bits.nii"}) {
+        std::filesystem::path path = folder() / name;
+        io::Uint64Volume v = sampleVolume();
+        io::writeNiftiUint64(path, v, "test");
+        EXPECT_EQ(io::isGzip(readFileBytes(path)), std::string(name).ends_with(".gz"));
+        io::Uint64Volume back = io::readNiftiUint64(path);
+        EXPECT_EQ(back.dims, v.dims);
+        EXPECT_EQ(back.values, v.values);
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 3; ++r) EXPECT_NEAR(back.indexToWorld[c][r], v.indexToWorld[c][r], 1e-5) << c << "," << r;
+        std::vector<std::uint8_t> raw = readFileBytes(path);
+        std::vector<std::uint8_t> bytes = io::isGzip(raw) ? io::gunzip(raw, name, 1 << 20) : raw;
+        std::int16_t datatype;
+        std::memcpy(&datatype, bytes.data() + 70, 2);
+        EXPECT_EQ(datatype, 1280) << "DT_UINT64";
+    }
+}
+
+TEST(NiftiUint64, ABigEndianFileReadsTheSame) {
+    io::Uint64Volume v = sampleVolume();
+    std::filesystem::path little = folder() / "little.nii";
+    io::writeNiftiUint64(little, v, "test");
+    std::vector<std::uint8_t> b = readFileBytes(little);
+    // Swap every header field curette reads and every voxel word.
+    auto swap = [&](std::size_t offset, std::size_t size) { std::reverse(b.begin() + static_cast<long>(offset), b.begin() + static_cast<long>(offset + size)); };
+    swap(0, 4);
+    for (std::size_t i = 0; i < 8; ++i) swap(40 + 2 * i, 2);
+    swap(70, 2), swap(72, 2), swap(108, 4), swap(112, 4), swap(116, 4), swap(254, 2);
+    for (std::size_t i = 0; i < 12; ++i) swap(280 + 4 * i, 4);
+    for (std::size_t n = 0; n < v.values.size(); ++n) swap(352 + 8 * n, 8);
+    io::Uint64Volume back = io::readNiftiUint64Bytes(b, "big.nii");
+    EXPECT_EQ(back.values, v.values);
+    EXPECT_EQ(back.dims, v.dims);
+}
+
+TEST(NiftiUint64, OtherFilesAreRefusedNamingTheField) {
+    std::filesystem::path dir = folder();
+    // A label map (uint8) is not a removal.
+    LabelMap labels;
+    labels.dims = {2, 2, 2};
+    labels.ids.assign(8, 1);
+    io::writeNiftiLabelmap(dir / "labels.nii", labels);
+    test::expectInputError([&] { io::readNiftiUint64(dir / "labels.nii"); }, (dir / "labels.nii").string(), "datatype");
+    io::Uint64Volume v = sampleVolume();
+    io::writeNiftiUint64(dir / "ok.nii", v, "test");
+    std::vector<std::uint8_t> good = readFileBytes(dir / "ok.nii");
+    auto refused = [&](std::vector<std::uint8_t> bytes, const std::string& field) {
+        test::expectInputError([&] { io::readNiftiUint64Bytes(bytes, "bad.nii"); }, "bad.nii", field);
+    };
+    std::vector<std::uint8_t> b = good;
+    b.resize(b.size() - 8);
+    refused(b, "vox_offset");   // a voxel short
+    b = good, b[254] = 0, b[255] = 0;
+    refused(b, "sform_code");
+    b = good, b[40] = 4;
+    refused(b, "dim[0]");
+    b = good, b[72] = 32;
+    refused(b, "bitpix");
+    b = good, b[344] = 'x';
+    refused(b, "magic");
+    refused(std::vector<std::uint8_t>(good.begin(), good.begin() + 100), "header");
+    // The writer refuses values that do not fill the grid, and leaves no file.
+    v.values.pop_back();
+    EXPECT_THROW(io::writeNiftiUint64(dir / "short.nii", v, "test"), InputError);
+    EXPECT_FALSE(std::filesystem::exists(dir / "short.nii"));
+}
+
+}  // namespace
+}  // namespace curette
