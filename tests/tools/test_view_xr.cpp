@@ -253,6 +253,8 @@ TEST(ViewXr, ARecordedTwoControllerSessionReplaysBitForBit) {
     for (int i = 0; i < n; ++i) {
         const nlohmann::ordered_json& x = recorded[static_cast<std::size_t>(i)]["xr"];
         ASSERT_TRUE(x.contains("views")) << i;
+        ASSERT_TRUE(x.contains("head")) << i;
+        ASSERT_TRUE(x["hands"][1].contains("position_m")) << i << ": the right hand tracked";
         EXPECT_EQ(x["head"]["position_m"][1].get<double>(), static_cast<double>(1.03f)) << i;
         EXPECT_EQ(x["hands"][1]["position_m"][0].get<double>(), static_cast<double>(static_cast<float>(0.1 - 0.006 * std::min(i, 3)))) << i;
         EXPECT_EQ(x["hands"][1]["trigger"].get<double>(), static_cast<double>(static_cast<float>(trigger[i]))) << i;
