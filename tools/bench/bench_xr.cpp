@@ -1,6 +1,6 @@
 // curette bench xr: a head-mounted display session's frame time. Against the active OpenXR runtime, or with
 // --test-runtime curette's scripted one (tests/xr_runtime; XR_RUNTIME_JSON is set to the built manifest, so a
-// test tool runs only when asked): a head looking down at the volume on its table while both hands hold the
+// test tool runs only when asked; each run is a new OpenXR instance playing the script again): a head looking down at the volume on its table while both hands hold the
 // scene's tools and move them every frame (and, with --drill, the right trigger drills), at the runtime's
 // recommended eye size. Each run starts a fresh renderer (so its first frame runs step I) and goes through
 // tools/xr_loop.h as `view --xr` does. Per run: the first frame and its step I; then per frame the time of each
@@ -104,9 +104,10 @@ int benchXr(const CommandLine& cl) {
                 shadingModeName(loaded.scene.shading), runs, frames, testRuntime ? "the test runtime (scripted)" : "the active OpenXR runtime");
     std::string runtimeName, systemName, rendererName;
     std::vector<RunFigures> figures;
+    // One window for every run: closing the last would reset an X server such as xvfb-run's.
+    auto window = gl::createWindowContext("curette bench xr", glm::ivec2(320, 240));
+    rendererName = window->info().renderer;
     for (int run = 0; run < runs; ++run) {
-        auto window = gl::createWindowContext("curette bench xr", glm::ivec2(320, 240));
-        rendererName = window->info().renderer;
         Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
         configureRenderer(loaded, renderer);
         SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
