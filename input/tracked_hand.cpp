@@ -4,11 +4,14 @@
 
 namespace curette::input {
 
+bool analogHeld(bool wasHeld, double value) { return wasHeld ? value >= kReleaseBelow : value >= kGrabAt; }
+
 std::vector<Action> TrackedHand::step(const HandSample& sample) {
     std::vector<Action> actions;
     if (sample.cycleShading) actions.push_back(CycleShading{});
     const bool wasHolding = holding_;
-    holding_ = sample.tracked && (holding_ ? sample.squeeze >= kReleaseBelow : sample.squeeze >= kGrabAt);
+    holding_ = sample.tracked && analogHeld(holding_, sample.squeeze);
+    drilling_ = holding_ && analogHeld(drilling_, sample.trigger);
     if (holding_ && wasHolding && last_.tracked) {
         // The grip's motion since the last frame: turn about where the grip was, then move by its displacement.
         glm::dquat turn = glm::normalize(sample.gripOrientation * glm::conjugate(last_.gripOrientation));
@@ -20,6 +23,8 @@ std::vector<Action> TrackedHand::step(const HandSample& sample) {
     }
     if (holding_ && std::abs(sample.thumbstickY) > kThumbstickDeadZone && sample.dtSeconds > 0)
         actions.push_back(ScaleMesh{mesh_, std::pow(kScalePerSecond, sample.thumbstickY * sample.dtSeconds)});
+    // After the motion: the drill sweeps from where the mesh was before the frame to where the hand put it.
+    if (drilling_) actions.push_back(HoldDrill{mesh_, false});
     last_ = sample;
     return actions;
 }

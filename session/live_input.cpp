@@ -58,7 +58,8 @@ namespace {
 
 // The header of a recording starting now at `path`; a removal drilled before it is written beside it, so the
 // replay starts from it (session/removal_file.h).
-SessionHeader headerNow(const std::filesystem::path& path, const std::string& scene, const InteractionState& state, const LiveInput& input) {
+SessionHeader headerNow(const std::filesystem::path& path, const std::string& scene, const InteractionState& state, const LiveInput& input,
+                        std::optional<SessionXr> xr) {
     SessionHeader h;
     h.scene = scene;
     h.created = currentTimeIso8601();
@@ -82,17 +83,18 @@ SessionHeader headerNow(const std::filesystem::path& path, const std::string& sc
     // A recording starts a new undo history: a replay starts from the removal above and could not undo the
     // strokes made before it, so neither can the live run from here on.
     if (state.drillHistory) *state.drillHistory = plan::DrillHistory(state.drillHistory->budgetBytes());
+    h.xr = std::move(xr);
     return h;
 }
 
 }  // namespace
 
 LiveRecording::LiveRecording(const std::filesystem::path& path, const std::string& scene, const InteractionState& state,
-                             const LiveInput& input, double startSeconds, double checkpointSeconds)
-    : recorder_(path, headerNow(path, scene, state, input), checkpointSeconds), start_(startSeconds) {}
+                             const LiveInput& input, double startSeconds, double checkpointSeconds, std::optional<SessionXr> xr)
+    : recorder_(path, headerNow(path, scene, state, input, std::move(xr)), checkpointSeconds), start_(startSeconds) {}
 
 void LiveRecording::addFrame(double now, double dt, glm::ivec2 size, const OrbitCamera& camera, const InteractionState& state,
-                             const input::KeyboardMouseState& keys, const InputFrame& input) {
+                             const input::KeyboardMouseState& keys, const InputFrame& input, std::optional<SessionXrFrame> xr) {
     SessionFrame f;
     f.index = index_++;
     f.time = std::max(0.0, now - start_);
@@ -119,6 +121,7 @@ void LiveRecording::addFrame(double now, double dt, glm::ivec2 size, const Orbit
     f.holds = input.holds;
     f.drills = state.appliedDrills;
     f.drillHistory = state.appliedDrillHistory;
+    f.xr = std::move(xr);
     for (const input::RawReport& r : input.reports) f.reports.push_back({r.deviceId, std::max(0.0, r.timeSeconds - start_), r.bytes});
     recorder_.add(f);
 }

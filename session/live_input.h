@@ -49,14 +49,16 @@ private:
 };
 
 // A recording in progress: the header is the state when it started (a drilled removal written beside the session
-// file, and the drill undo history started afresh: the state's history is shared, so emptied); each frame adds the poses and the lights'
-// directions after the frame's actions, the frame's input and the meshes that came and went.
+// file, and the drill undo history started afresh: the state's history is shared, so emptied); each frame adds the
+// poses and the lights' directions after the frame's actions, the frame's input and the meshes that came and went.
+// A head-mounted display session (`view --xr`) gives its room and eye sizes (`xr`) and each frame its head, eyes
+// and hands.
 class LiveRecording {
 public:
     LiveRecording(const std::filesystem::path& path, const std::string& scene, const InteractionState& state, const LiveInput& input,
-                  double startSeconds, double checkpointSeconds = 5.0);
+                  double startSeconds, double checkpointSeconds = 5.0, std::optional<SessionXr> xr = {});
     void addFrame(double nowSeconds, double dt, glm::ivec2 size, const OrbitCamera& camera, const InteractionState& state,
-                  const input::KeyboardMouseState& keys, const InputFrame& input);
+                  const input::KeyboardMouseState& keys, const InputFrame& input, std::optional<SessionXrFrame> xr = {});
     void finish() { recorder_.finish(); }
     std::size_t frames() const { return recorder_.frames(); }
     const std::filesystem::path& path() const { return recorder_.path(); }

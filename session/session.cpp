@@ -72,6 +72,102 @@ void requireVersion4Lights(const JsonReader& r, int version) {
     if (version < 4) r.fail("a setting of session version " + std::to_string(version) + " (adding and removing lights came with version 4)");
 }
 
+// Keys of version 6 (head-mounted display sessions).
+void requireVersion6(const JsonReader& r, int version) {
+    if (version < 6) r.fail("nothing: session version " + std::to_string(version) + " has no head-mounted display (it came with version 6)");
+}
+
+// A pose in the room (metres) and, for an eye, its field of view [left, right, up, down] in radians.
+nlohmann::ordered_json roomPoseJson(const TrackedView& v, bool withFov) {
+    nlohmann::ordered_json j = {{"position_m", vec(v.positionM)}, {"orientation", quaternion(v.orientation)}};
+    if (withFov) j["fov_rad"] = {v.fov.angleLeft, v.fov.angleRight, v.fov.angleUp, v.fov.angleDown};
+    return j;
+}
+
+// Reads the keys roomPoseJson writes (the caller finishes the object).
+TrackedView readRoomPose(const JsonReader& r, bool withFov) {
+    TrackedView v;
+    v.positionM = r.at("position_m").vec3(-1e4, 1e4);
+    v.orientation = readQuaternion(r.at("orientation"));
+    if (withFov) {
+        std::vector<double> a = r.at("fov_rad").numbers(4, -1.57, 1.57);
+        v.fov = {a[0], a[1], a[2], a[3]};
+        if (!(v.fov.angleLeft < v.fov.angleRight && v.fov.angleDown < v.fov.angleUp))
+            r.at("fov_rad").fail("[left, right, up, down] in radians with left < right and down < up");
+    }
+    return v;
+}
+
+nlohmann::ordered_json xrHeaderJson(const SessionXr& xr) {
+    return {{"space", xr.space == RoomSpace::Stage ? "stage" : "local"},
+            {"recommended_size", {{xr.recommendedSize[0].x, xr.recommendedSize[0].y}, {xr.recommendedSize[1].x, xr.recommendedSize[1].y}}},
+            {"runtime", xr.runtime},
+            {"system", xr.system}};
+}
+
+SessionXr readXrHeader(const JsonReader& r, int version) {
+    requireVersion6(r, version);
+    SessionXr xr;
+    xr.space = r.at("space").oneOf({"stage", "local"}) == "stage" ? RoomSpace::Stage : RoomSpace::Local;
+    std::vector<JsonReader> sizes = r.at("recommended_size").elements(2, 2);
+    for (std::size_t eye = 0; eye < 2; ++eye) xr.recommendedSize[eye] = glm::ivec2(sizes[eye].vec2(1, 16384));
+    for (std::size_t eye = 0; eye < 2; ++eye)
+        if (glm::dvec2(xr.recommendedSize[eye]) != sizes[eye].vec2(1, 16384)) sizes[eye].fail("[width, height] in whole pixels");
+    if (auto v = r.find("runtime")) xr.runtime = v->string();
+    if (auto v = r.find("system")) xr.system = v->string();
+    r.finish();
+    return xr;
+}
+
+nlohmann::ordered_json xrFrameJson(const SessionXrFrame& f) {
+    nlohmann::ordered_json j;
+    j["display_time_ns"] = f.displayTimeNs;
+    if (f.head) j["head"] = roomPoseJson(*f.head, false);
+    if (f.views) j["views"] = {roomPoseJson((*f.views)[0], true), roomPoseJson((*f.views)[1], true)};
+    j["hands"] = nlohmann::ordered_json::array();
+    for (const SessionXrHand& h : f.hands) {
+        nlohmann::ordered_json hand = {{"tracked", h.tracked}};
+        if (h.tracked) hand.update(roomPoseJson(h.grip, false));
+        hand["squeeze"] = h.squeeze;
+        hand["trigger"] = h.trigger;
+        hand["thumbstick"] = {h.thumbstick.x, h.thumbstick.y};
+        hand["shading"] = h.shadingPressed;
+        j["hands"].push_back(hand);
+    }
+    return j;
+}
+
+SessionXrFrame readXrFrame(const JsonReader& r) {
+    SessionXrFrame f;
+    f.displayTimeNs = static_cast<std::int64_t>(r.at("display_time_ns").unsignedInteger(std::uint64_t(1) << 62));
+    if (auto head = r.find("head")) {
+        f.head = readRoomPose(*head, false);
+        head->finish();
+    }
+    if (auto views = r.find("views")) {
+        std::vector<JsonReader> list = views->elements(2, 2);
+        f.views.emplace();
+        for (std::size_t eye = 0; eye < 2; ++eye) {
+            (*f.views)[eye] = readRoomPose(list[eye], true);
+            list[eye].finish();
+        }
+    }
+    std::vector<JsonReader> hands = r.at("hands").elements(2, 2);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const JsonReader& h = hands[i];
+        SessionXrHand& hand = f.hands[i];
+        hand.tracked = h.at("tracked").boolean();
+        if (hand.tracked) hand.grip = readRoomPose(h, false);
+        hand.squeeze = h.at("squeeze").number(0, 1);
+        hand.trigger = h.at("trigger").number(0, 1);
+        hand.thumbstick = h.at("thumbstick").vec2(-1, 1);
+        hand.shadingPressed = h.at("shading").boolean();
+        h.finish();
+    }
+    r.finish();
+    return f;
+}
+
 nlohmann::ordered_json editsJson(const std::vector<SettingEdit>& edits) {
     nlohmann::ordered_json j = nlohmann::ordered_json::array();
     for (const SettingEdit& e : edits) j.push_back(settingEditJson(e));
@@ -173,6 +269,7 @@ std::string sessionHeaderLine(const SessionHeader& h) {
     j["input_state"] = inputStateJson(h.inputState);
     j["keyboard"] = {{"mm_per_s", h.keyboardMmPerSecond}, {"deg_per_s", h.keyboardDegPerSecond}};
     if (!h.removal.empty()) j["removal"] = {{"file", h.removal}, {"digest", h.removalDigest}};
+    if (h.xr) j["xr"] = xrHeaderJson(*h.xr);
     return j.dump();
 }
 
@@ -224,6 +321,7 @@ std::string sessionFrameLine(const SessionFrame& f) {
             j["holds"].push_back({{"binding", h.binding == input::kKeyboardBinding ? nlohmann::ordered_json("keyboard") : nlohmann::ordered_json(h.binding)},
                                   {"mesh", h.mesh}});
     }
+    if (f.xr) j["xr"] = xrFrameJson(*f.xr);
     j["reports"] = nlohmann::ordered_json::array();
     for (const SessionReport& r : f.reports) j["reports"].push_back({{"device", r.device}, {"time", r.time}, {"bytes", input::toHex(r.bytes)}});
     return j.dump();
@@ -256,6 +354,7 @@ struct FrameContext {
     std::optional<std::size_t> headerLights;  // how many lights line 1 lists, when it lists them
     std::set<int> meshIds, deviceIds;  // of the header and the frames so far
     std::size_t lightCount = 0;        // after each frame's edits
+    bool xr = false;                   // the header has "xr": its frames may have theirs
 };
 
 SessionMeshStart readMeshStart(const JsonReader& m, int version) {
@@ -353,7 +452,9 @@ FrameContext readHeader(std::string_view line, const std::string& file, const st
         header.keyboardDegPerSecond = k->at("deg_per_s").number(0, 1e4);
         k->finish();
     }
+    if (auto xr = r.find("xr")) header.xr = readXrHeader(*xr, version);
     r.finish();
+    context.xr = header.xr.has_value();
 
     if (header.lights) context.headerLights = context.lightCount = header.lights->size();
     for (const SessionMeshStart& m : header.meshes) context.meshIds.insert(m.id);
@@ -502,6 +603,11 @@ SessionFrame readFrame(std::string_view line, std::size_t number, FrameContext& 
     if (auto drag = r.find("light_drag")) {
         requireVersion2(*drag, context.version);
         f.lightDrag = drag->vec2(-1e5, 1e5);
+    }
+    if (auto xr = r.find("xr")) {
+        requireVersion6(*xr, context.version);
+        if (!context.xr) xr->fail("nothing (line 1 has no \"xr\": this is not a head-mounted display session)");
+        f.xr = readXrFrame(*xr);
     }
     readFrameDevices(r, f, context);
     r.finish();

@@ -2,17 +2,23 @@
 // Sessions: JSON Lines, written atomically. Line 1 is the header (format, version, scene, devices, mapping,
 // and the state at the start: shading, meshes, input pipeline, so a recording may start mid-run); every further line is one frame: time, dt, image size, camera, shading, every clip
 // mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, the panels' setting
-// edits (version 3, scene/setting_edit.h), the mesh panel's hold requests (version 4), the drilling applied (version 5; from version 6 derived from the keys and devices, and the header names the removal at the start), and the raw HID reports received since the previous frame (hex). Poses are written with 17 significant digits, so they read
-// back to the same doubles.
+// edits (version 3, scene/setting_edit.h), the mesh panel's hold requests (version 4), the drilling applied
+// (version 5; from version 6 derived from the keys and devices, and the header names the removal at the start),
+// the head, eyes and controllers of a head-mounted display (version 6: `view --xr`), and the raw HID reports
+// received since the previous frame (hex). Poses are written with 17 significant digits, so they read back to
+// the same doubles.
 
 #include "scene/setting_edit.h"
 #include "mesh/rigid_pose.h"
 #include "input/pipeline.h"
 #include "render/model/camera.h"
 #include "render/model/shading_mode.h"
+#include "render/model/tracked_view.h"
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -22,7 +28,8 @@ namespace curette {
 
 inline constexpr int kSessionVersion = 6;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
                                             // 5: drilling and its undo/redo; 6: drilling from keys and devices (actions, so
-                                            // --from-reports re-derives it; 64-bit keys), the removal at the start
+                                            // --from-reports re-derives it; 64-bit keys), the removal at the start,
+                                            // head-mounted display sessions
 // The first version whose drilling comes from the recorded keys and devices: replay --from-reports re-derives
 // it and compares it with the frame's "drill"/"drill_history"; before, those are the input.
 inline constexpr int kDrillFromInputVersion = 6;
@@ -61,6 +68,35 @@ struct SessionDrill {
 };
 enum class DrillHistoryCommand { Undo, Redo };
 
+// A head-mounted display session (version 6, `view --xr`): the room space the runtime located everything in
+// (the volume's anchor follows from it: render/model/tracked_view.h) and each eye's recommended image size.
+struct SessionXr {
+    RoomSpace space = RoomSpace::Stage;
+    std::array<glm::ivec2, 2> recommendedSize{};   // left, right
+    std::string runtime, system;                   // as the runtime named them (information only)
+};
+
+// One controller after the frame's action sync, in the room space (metres). Untracked: its pose is not
+// recorded (nothing reads it). The inputs are the action states the hand's actions come from
+// (session/xr_hands.h), so a replay can derive them again.
+struct SessionXrHand {
+    bool tracked = false;
+    TrackedView grip;                 // position and orientation (fov unused)
+    double squeeze = 0.0, trigger = 0.0;
+    glm::dvec2 thumbstick{0.0};
+    bool shadingPressed = false;      // the shading button went down at this sync
+    bool operator==(const SessionXrHand&) const = default;
+};
+
+// A frame of a head-mounted display: when the runtime displays it, the head and both eyes as located
+// (absent: not located, or the frame was not rendered), and both hands.
+struct SessionXrFrame {
+    std::int64_t displayTimeNs = 0;
+    std::optional<TrackedView> head;                  // the view space in the room (fov unused)
+    std::optional<std::array<TrackedView, 2>> views;  // left, right: pose and asymmetric field of view
+    std::array<SessionXrHand, 2> hands{};             // left, right
+};
+
 struct SessionAddedMesh {
     int id = 0;
     std::string name;
@@ -92,6 +128,7 @@ struct SessionFrame {
     // they are what the frame's actions applied (a record, re-derived from the keys and reports).
     std::vector<SessionDrill> drills;
     std::vector<DrillHistoryCommand> drillHistory;
+    std::optional<SessionXrFrame> xr;   // version 6, in sessions whose header has "xr"
     std::vector<SessionReport> reports;
 };
 
@@ -123,6 +160,7 @@ struct SessionHeader {
     // The drilled removal at the start (version 6; session/removal_file.h): a file relative to the session file's
     // folder and its RemovalVolume::digest; empty: nothing drilled (before version 6: the scene's removal).
     std::string removal, removalDigest;
+    std::optional<SessionXr> xr;                  // a head-mounted display session (version 6)
 };
 
 struct Session {

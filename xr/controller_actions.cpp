@@ -1,6 +1,7 @@
 #include "xr/controller_actions.h"
 
 #include "xr/xr_result.h"
+#include "xr/xr_session.h"
 #include "xr/xr_struct.h"
 
 #include <cstdio>
@@ -31,18 +32,23 @@ XrAction createAction(XrInstance instance, XrActionSet set, const char* name, co
 }
 
 // The inputs of a profile for the actions besides the grip pose: squeeze (or the nearest: select on the simple
-// controller), the shading button per hand, the thumbstick (nullptr: the profile has none).
+// controller), the shading button per hand, the thumbstick and the trigger (nullptr: the profile has none; the
+// simple controller's one button, select, is its squeeze).
 struct ProfileInputs {
     const char* profile;
     const char* squeeze;
     std::array<const char*, 2> shading;
     const char* thumbstick;
+    const char* trigger;
 };
 constexpr ProfileInputs kProfiles[] = {
-    {"/interaction_profiles/khr/simple_controller", "/input/select/click", {"/input/menu/click", "/input/menu/click"}, nullptr},
-    {"/interaction_profiles/valve/index_controller", "/input/squeeze/value", {"/input/a/click", "/input/a/click"}, "/input/thumbstick"},
-    {"/interaction_profiles/oculus/touch_controller", "/input/squeeze/value", {"/input/x/click", "/input/a/click"}, "/input/thumbstick"},
-    {"/interaction_profiles/htc/vive_controller", "/input/squeeze/click", {"/input/menu/click", "/input/menu/click"}, "/input/trackpad"},
+    {"/interaction_profiles/khr/simple_controller", "/input/select/click", {"/input/menu/click", "/input/menu/click"}, nullptr, nullptr},
+    {"/interaction_profiles/valve/index_controller", "/input/squeeze/value", {"/input/a/click", "/input/a/click"}, "/input/thumbstick",
+     "/input/trigger/value"},
+    {"/interaction_profiles/oculus/touch_controller", "/input/squeeze/value", {"/input/x/click", "/input/a/click"}, "/input/thumbstick",
+     "/input/trigger/value"},
+    {"/interaction_profiles/htc/vive_controller", "/input/squeeze/click", {"/input/menu/click", "/input/menu/click"}, "/input/trackpad",
+     "/input/trigger/value"},
 };
 
 }  // namespace
@@ -57,6 +63,7 @@ ControllerActions::ControllerActions(XrInstance instance, XrSession session) : i
     squeeze_ = createAction(instance, set_, "grab", "Grab the tool", XR_ACTION_TYPE_FLOAT_INPUT, hands_);
     shading_ = createAction(instance, set_, "next_shading", "Next shading mode", XR_ACTION_TYPE_BOOLEAN_INPUT, hands_);
     thumbstick_ = createAction(instance, set_, "scale", "Scale the held tool", XR_ACTION_TYPE_VECTOR2F_INPUT, hands_);
+    trigger_ = createAction(instance, set_, "drill", "Drill with the held tool", XR_ACTION_TYPE_FLOAT_INPUT, hands_);
 
     const char* sides[] = {"/user/hand/left", "/user/hand/right"};
     for (const ProfileInputs& p : kProfiles) {
@@ -67,6 +74,7 @@ ControllerActions::ControllerActions(XrInstance instance, XrSession session) : i
             bindings.push_back({squeeze_, path(instance, side + p.squeeze)});
             bindings.push_back({shading_, path(instance, side + p.shading[static_cast<std::size_t>(h)])});
             if (p.thumbstick) bindings.push_back({thumbstick_, path(instance, side + p.thumbstick)});
+            if (p.trigger) bindings.push_back({trigger_, path(instance, side + p.trigger)});
         }
         auto suggested = typed<XrInteractionProfileSuggestedBinding>(XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING);
         suggested.interactionProfile = path(instance, p.profile);
@@ -112,14 +120,16 @@ std::array<HandState, 2> ControllerActions::sync(XrTime time, XrSpace space) {
             check(instance_, xrLocateSpace(gripSpaces_[h], space, time, &location), "xrLocateSpace");
             const XrSpaceLocationFlags valid = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
             hand.tracked = (location.locationFlags & valid) == valid;
-            const XrPosef& p = location.pose;
-            hand.grip.positionM = {p.position.x, p.position.y, p.position.z};
-            hand.grip.orientation = glm::normalize(glm::dquat(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z));
+            if (hand.tracked) hand.grip = roomPose(location.pose);
         }
         get.action = squeeze_;
         auto squeeze = typed<XrActionStateFloat>(XR_TYPE_ACTION_STATE_FLOAT);
         check(instance_, xrGetActionStateFloat(session_, &get, &squeeze), "xrGetActionStateFloat");
         hand.squeeze = squeeze.isActive ? squeeze.currentState : 0.0;
+        get.action = trigger_;
+        auto trigger = typed<XrActionStateFloat>(XR_TYPE_ACTION_STATE_FLOAT);
+        check(instance_, xrGetActionStateFloat(session_, &get, &trigger), "xrGetActionStateFloat");
+        hand.trigger = trigger.isActive ? trigger.currentState : 0.0;
         get.action = shading_;
         auto button = typed<XrActionStateBoolean>(XR_TYPE_ACTION_STATE_BOOLEAN);
         check(instance_, xrGetActionStateBoolean(session_, &get, &button), "xrGetActionStateBoolean");

@@ -71,6 +71,13 @@ bool hasExtension(const char* name) {
 
 }  // namespace
 
+TrackedView roomPose(const XrPosef& p) {
+    TrackedView t;
+    t.positionM = {p.position.x, p.position.y, p.position.z};
+    t.orientation = glm::normalize(glm::dquat(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z));
+    return t;
+}
+
 Session::Session(const std::string& applicationName, std::function<void(XrSessionState)> onState) : onState_(std::move(onState)) {
     if (!hasExtension(XR_KHR_OPENGL_ENABLE_EXTENSION_NAME))
         throw SystemError("the OpenXR runtime offers no OpenGL binding (XR_KHR_opengl_enable), which curette renders with");
@@ -133,6 +140,8 @@ Session::Session(const std::string& applicationName, std::function<void(XrSessio
         spaceInfo.referenceSpaceType = stage ? XR_REFERENCE_SPACE_TYPE_STAGE : XR_REFERENCE_SPACE_TYPE_LOCAL;
         spaceInfo.poseInReferenceSpace.orientation.w = 1.0f;
         check(instance_, xrCreateReferenceSpace(session_, &spaceInfo, &space_), "xrCreateReferenceSpace");
+        spaceInfo.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_VIEW;   // the head, for sessions to record
+        check(instance_, xrCreateReferenceSpace(session_, &spaceInfo, &viewSpace_), "xrCreateReferenceSpace(VIEW)");
 
         std::uint32_t formatCount = 0;
         check(instance_, xrEnumerateSwapchainFormats(session_, 0, &formatCount, nullptr), "xrEnumerateSwapchainFormats");
@@ -144,6 +153,7 @@ Session::Session(const std::string& applicationName, std::function<void(XrSessio
         for (std::size_t eye = 0; eye < 2; ++eye) swapchains_[eye] = std::make_unique<EyeSwapchain>(instance_, session_, format_, recommended_[eye]);
     } catch (...) {
         for (auto& s : swapchains_) s.reset();
+        if (viewSpace_ != XR_NULL_HANDLE) xrDestroySpace(viewSpace_);
         if (space_ != XR_NULL_HANDLE) xrDestroySpace(space_);
         if (session_ != XR_NULL_HANDLE) xrDestroySession(session_);
         xrDestroyInstance(instance_);
@@ -153,6 +163,7 @@ Session::Session(const std::string& applicationName, std::function<void(XrSessio
 
 Session::~Session() {
     for (auto& s : swapchains_) s.reset();
+    if (viewSpace_ != XR_NULL_HANDLE) xrDestroySpace(viewSpace_);
     if (space_ != XR_NULL_HANDLE) xrDestroySpace(space_);
     if (session_ != XR_NULL_HANDLE) xrDestroySession(session_);
     if (instance_ != XR_NULL_HANDLE) xrDestroyInstance(instance_);
@@ -208,6 +219,10 @@ Session::Frame Session::beginFrame() {
     displayTime_ = frameState.predictedDisplayTime;
     frame.displayTime = frameState.predictedDisplayTime;
     frame.shouldRender = frameState.shouldRender == XR_TRUE;
+    auto head = typed<XrSpaceLocation>(XR_TYPE_SPACE_LOCATION);
+    check(instance_, xrLocateSpace(viewSpace_, space_, frameState.predictedDisplayTime, &head), "xrLocateSpace(VIEW)");
+    const XrSpaceLocationFlags located = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
+    if ((head.locationFlags & located) == located) frame.head = roomPose(head.pose);
     if (!frame.shouldRender) return frame;
 
     auto locate = typed<XrViewLocateInfo>(XR_TYPE_VIEW_LOCATE_INFO);
@@ -224,8 +239,7 @@ Session::Frame Session::beginFrame() {
     for (std::size_t eye = 0; eye < 2; ++eye) {
         const XrView& v = views[eye];
         TrackedView& t = frame.views[eye];
-        t.positionM = {v.pose.position.x, v.pose.position.y, v.pose.position.z};
-        t.orientation = glm::normalize(glm::dquat(v.pose.orientation.w, v.pose.orientation.x, v.pose.orientation.y, v.pose.orientation.z));
+        t = roomPose(v.pose);
         t.fov = {v.fov.angleLeft, v.fov.angleRight, v.fov.angleUp, v.fov.angleDown};
     }
     return frame;

@@ -21,6 +21,9 @@ namespace curette::xr {
 // The name of a session state ("READY", ...).
 const char* sessionStateName(XrSessionState state);
 
+// A runtime's pose (floats) in curette's doubles, its orientation normalised; fov left zero.
+TrackedView roomPose(const XrPosef& pose);
+
 class Session {
 public:
     // Throws SystemError naming the call that failed (no runtime, no HMD, no GLX context current, ...).
@@ -46,6 +49,7 @@ public:
     struct Frame {
         XrTime displayTime = 0;
         bool shouldRender = false;
+        std::optional<TrackedView> head;       // the view space, when located (fov unused)
         bool viewsValid = false;               // both eyes located (position and orientation)
         std::array<TrackedView, 2> views{};    // left, right, in the room space
     };
@@ -66,7 +70,7 @@ private:
     XrInstance instance_ = XR_NULL_HANDLE;
     XrSystemId system_ = XR_NULL_SYSTEM_ID;
     XrSession session_ = XR_NULL_HANDLE;
-    XrSpace space_ = XR_NULL_HANDLE;
+    XrSpace space_ = XR_NULL_HANDLE, viewSpace_ = XR_NULL_HANDLE;
     RoomSpace roomSpace_ = RoomSpace::Stage;
     std::string runtimeName_, systemName_;
     std::array<glm::ivec2, 2> recommended_{};

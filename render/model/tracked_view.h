@@ -31,6 +31,7 @@ struct TrackedView {
     glm::dvec3 positionM{0.0};
     glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
     FieldOfView fov;
+    bool operator==(const TrackedView&) const = default;
 };
 
 // The room spaces an anchor is defined for: a stage (origin on the floor) or a local space (origin at the

@@ -281,6 +281,91 @@ TEST(Session, HoldRequestsRoundTripAndNameABadBinding) {
     EXPECT_EQ(parseSession(v3 + "\n" + sessionFrameLine(f) + "\n", "v3.jsonl", false).frames.size(), 1u) << "version 3 sessions still load";
 }
 
+// A head-mounted display session (version 6): the header's room and eye sizes and each frame's head, eyes
+// (pose and asymmetric field of view) and hands read back to the same doubles; an untracked hand has no pose.
+// A version 5 file still loads; "xr" in a version 5 file, a frame's "xr" without the header's, and bad views
+// or hands are InputErrors naming the line, the field and the expected form.
+TEST(Session, HeadMountedDisplayRecordsRoundTripAndNameABadField) {
+    std::mt19937 random(9);
+    std::uniform_real_distribution<double> u(-1, 1);
+    SessionHeader header = exampleHeader();
+    header.xr = SessionXr{RoomSpace::Local, {glm::ivec2(40, 36), glm::ivec2(41, 35)}, "curette test runtime", "scripted HMD"};
+    auto pose = [&] {
+        TrackedView v;
+        v.positionM = {u(random), 1.0 + u(random), u(random) / 3.0};
+        v.orientation = glm::normalize(glm::dquat(u(random), u(random), u(random), u(random)));
+        return v;
+    };
+    SessionFrame f = exampleFrame(0, random);
+    f.xr = SessionXrFrame{};
+    f.xr->displayTimeNs = 1234567891011;
+    f.xr->head = pose();
+    std::array<TrackedView, 2> views{pose(), pose()};
+    views[0].fov = {-0.30000001192092896, 0.2199999988079071, 0.28, -0.3};
+    views[1].fov = {-0.22, 0.30000001192092896, 0.28, -1.0 / 3.0};
+    f.xr->views = views;
+    f.xr->hands[0] = {true, pose(), 0.75, 1.0 / 3.0, {0.1, -0.9}, true};
+    f.xr->hands[1] = {false, {}, 0.0, 0.25, {0.0, 0.0}, false};
+    SessionFrame unrendered = exampleFrame(1, random);
+    unrendered.xr = SessionXrFrame{};
+    unrendered.xr->displayTimeNs = 1234567891011 + 11111111;
+    const std::string headerLine = sessionHeaderLine(header), frameLine = sessionFrameLine(f), secondLine = sessionFrameLine(unrendered);
+    Session s = parseSession(headerLine + "\n" + frameLine + "\n" + secondLine + "\n", "xr.jsonl", false);
+    ASSERT_TRUE(s.header.xr);
+    EXPECT_EQ(s.header.xr->space, RoomSpace::Local);
+    EXPECT_EQ(s.header.xr->recommendedSize, header.xr->recommendedSize);
+    EXPECT_EQ(s.header.xr->runtime, "curette test runtime");
+    ASSERT_EQ(s.frames.size(), 2u);
+    ASSERT_TRUE(s.frames[0].xr);
+    const SessionXrFrame& x = *s.frames[0].xr;
+    EXPECT_EQ(x.displayTimeNs, f.xr->displayTimeNs);
+    EXPECT_EQ(x.head, f.xr->head);
+    EXPECT_EQ(x.views, f.xr->views);
+    EXPECT_EQ(x.hands, f.xr->hands);
+    EXPECT_EQ(frameLine.find("\"position_m\"", frameLine.find("\"tracked\":false")), std::string::npos) << "an untracked hand has no pose";
+    ASSERT_TRUE(s.frames[1].xr);
+    EXPECT_FALSE(s.frames[1].xr->head);
+    EXPECT_FALSE(s.frames[1].xr->views);
+
+    struct Case {
+        const char* what;
+        std::string header, frame, field, expected;
+    };
+    const std::string v5 = replaced(headerLine, "\"version\":" + std::to_string(kSessionVersion), "\"version\":5");
+    const std::string plainHeader = sessionHeaderLine(exampleHeader());
+    const Case cases[] = {
+        {"xr in a version 5 session", v5, frameLine, "line 1: xr", "version 6"},
+        {"a frame's xr without the header's", plainHeader, frameLine, "line 2: xr", "line 1 has no \"xr\""},
+        {"one view", headerLine, replaced(frameLine, "\"views\":[{", "\"views\":[{\"x\":1},{"), "line 2: xr.views", "2"},
+        {"a field of view that is not four angles", headerLine, replaced(frameLine, "\"fov_rad\":[", "\"fov_rad\":[0.1,"), "line 2: xr.views[0].fov_rad",
+         "4"},
+        {"a field of view with left right of right", headerLine, replaced(frameLine, "\"fov_rad\":[-0.30000001192092896", "\"fov_rad\":[0.5"),
+         "line 2: xr.views[0].fov_rad", "left < right"},
+        {"a squeeze beyond 1", headerLine, replaced(frameLine, "\"squeeze\":0.75", "\"squeeze\":1.5"), "line 2: xr.hands[0].squeeze", "1"},
+        {"a tracked hand without its pose", headerLine, replaced(frameLine, "\"tracked\":false", "\"tracked\":true"), "line 2: xr.hands[1].position_m",
+         ""},
+        {"a bad room space", replaced(headerLine, "\"space\":\"local\"", "\"space\":\"room\""), frameLine, "line 1: xr.space", "stage"},
+        {"an eye size that is not whole pixels", replaced(headerLine, "[41,35]", "[41.5,35]"), frameLine, "line 1: xr.recommended_size[1]", "whole pixels"},
+    };
+    for (const Case& c : cases) {
+        try {
+            parseSession(c.header + "\n" + c.frame + "\n", "xr.jsonl", false);
+            ADD_FAILURE() << c.what << ": accepted";
+        } catch (const InputError& e) {
+            std::string message = e.what();
+            EXPECT_NE(message.find("xr.jsonl"), std::string::npos) << c.what << ": " << message;
+            EXPECT_NE(message.find(c.field), std::string::npos) << c.what << ": " << message;
+            EXPECT_NE(message.find(c.expected), std::string::npos) << c.what << ": " << message;
+        }
+    }
+    SessionFrame plain = exampleFrame(0, random);
+    EXPECT_EQ(parseSession(replaced(plainHeader, "\"version\":" + std::to_string(kSessionVersion), "\"version\":5") + "\n" + sessionFrameLine(plain) + "\n",
+                           "v5.jsonl", false)
+                  .frames.size(),
+              1u)
+        << "version 5 sessions still load";
+}
+
 // A frame that adds or removes a light (version 4) records one direction per light after its edits; the
 // next frames keep that count; a version 3 session cannot add lights.
 TEST(Session, LightsAddedAndRemovedChangeTheFramesLightCount) {

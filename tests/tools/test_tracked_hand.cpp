@@ -20,7 +20,7 @@ InteractionState oneBox() {
 }
 
 input::HandSample sample(glm::dvec3 grip, glm::dquat orientation, double squeeze) {
-    return {true, grip, orientation, squeeze, false, 0.0, 1.0 / 90.0};
+    return {.tracked = true, .gripMm = grip, .gripOrientation = orientation, .squeeze = squeeze, .dtSeconds = 1.0 / 90.0};
 }
 
 // The mesh in the grip's frame stays what it was at the grab, whatever the hand does while it holds it.
@@ -102,6 +102,45 @@ TEST(TrackedHand, TheButtonCyclesTheShading) {
     pressed.cycleShading = true;
     s.apply(hand.step(pressed), OrbitCamera{}, 100);
     EXPECT_EQ(s.shading, nextShadingMode(ShadingMode::Phong));
+}
+
+// The trigger drills with the mesh in hand (HoldDrill for the hand's mesh, after its motion), with the squeeze's
+// hysteresis; a trigger on an empty hand drills nothing.
+TEST(TrackedHand, TheTriggerDrillsWithTheHeldMesh) {
+    input::TrackedHand hand(1);
+    auto drills = [](const std::vector<input::Action>& actions) {
+        int n = 0;
+        for (const input::Action& a : actions)
+            if (auto* d = std::get_if<input::HoldDrill>(&a)) {
+                EXPECT_EQ(d->mesh, 1);
+                EXPECT_FALSE(d->erase);
+                ++n;
+            }
+        return n;
+    };
+    const glm::dquat q(1, 0, 0, 0);
+    input::HandSample s = sample({0, 0, 0}, q, 0.0);
+    s.trigger = 1.0;
+    EXPECT_EQ(drills(hand.step(s)), 0) << "nothing in hand";
+    s.squeeze = 1.0;
+    s.trigger = 0.6;
+    EXPECT_EQ(drills(hand.step(s)), 0) << "below the press threshold";
+    s.trigger = 0.75;
+    std::vector<input::Action> first = hand.step(s);
+    EXPECT_EQ(drills(first), 1);
+    EXPECT_TRUE(std::holds_alternative<input::HoldDrill>(first.back()));
+    s.trigger = 0.35;   // held: above the release threshold
+    s.gripMm = {3, 0, 0};
+    std::vector<input::Action> moved = hand.step(s);
+    EXPECT_EQ(drills(moved), 1);
+    ASSERT_EQ(moved.size(), 2u);
+    EXPECT_TRUE(std::holds_alternative<input::GripMesh>(moved.front())) << "the drill sweeps to where the hand moved the mesh";
+    s.trigger = 0.25;
+    EXPECT_EQ(drills(hand.step(s)), 0) << "released";
+    EXPECT_FALSE(hand.drilling());
+    s.trigger = 1.0;
+    s.squeeze = 0.0;   // let go of the mesh: no drilling with it
+    EXPECT_EQ(drills(hand.step(s)), 0);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 namespace curette {
@@ -168,10 +169,147 @@ TEST(ViewXr, AScriptedControllerCarriesItsToolThroughTheSessionStep) {
     EXPECT_EQ(report.find("VUID"), std::string::npos) << report;
     EXPECT_EQ(report.find("[VALID_"), std::string::npos) << report;
     std::string log = curette::testing::readTextFile(out / "runtime.log");
-    EXPECT_NE(log.find("bindings suggested for /interaction_profiles/valve/index_controller: 8"), std::string::npos) << log;
+    EXPECT_NE(log.find("bindings suggested for /interaction_profiles/valve/index_controller: 10"), std::string::npos) << log;
     EXPECT_NE(run.output.find("xr session over: 5 frames rendered"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("xr tool 0 \"sphere\" left at 30.000, 30.000, 44.000 mm"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("xr tool 1 \"box\" left at -28.000, 40.000, 24.000 mm"), std::string::npos) << run.output;
+}
+
+// Left and right eyes of a captured frame as one side-by-side image (rows of the left, then the right).
+std::vector<std::uint8_t> sideBySide(const curette::testing::Png& left, const curette::testing::Png& right) {
+    std::vector<std::uint8_t> joined;
+    for (int y = 0; y < left.height; ++y) {
+        auto row = [&](const curette::testing::Png& p) { return p.rgba.begin() + static_cast<std::ptrdiff_t>(y) * p.width * 4; };
+        joined.insert(joined.end(), row(left), row(left) + left.width * 4);
+        joined.insert(joined.end(), row(right), row(right) + right.width * 4);
+    }
+    return joined;
+}
+
+std::string lineStartingWith(const std::string& text, const std::string& prefix) {
+    std::vector<std::string> found = lines(text, prefix);
+    return found.empty() ? std::string() : prefix + found.back();
+}
+
+// A scripted two-controller session (Oculus Touch) recorded with --record under validation: both hands grab
+// their tools; the left carries and turns tool 0 and grows it with its thumbstick; the right carries tool 1
+// into the ball with its trigger held, drilling. Replayed headless, every frame's two eyes side by side are
+// the images the runtime read back from the swapchains, CAO == LAO holds on each, the poses and the drilling
+// re-derived from the recorded hands are the recorded ones bit for bit, and the removal is the live one.
+TEST(ViewXr, ARecordedTwoControllerSessionReplaysBitForBit) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    auto dir = scratch("record");
+    auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "cao", "clip_meshes": [
+        {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 44]},
+        {"name": "burr", "mesh": {"shape": "sphere", "radius_mm": 5}, "position_mm": [24, 34, 30]}]})"));
+    nlohmann::json script = poseScript();
+    script["interaction_profile"] = "/interaction_profiles/oculus/touch_controller";
+    const int n = 5;
+    const double squeeze[n] = {0.0, 1.0, 1.0, 1.0, 0.0};
+    const double trigger[n] = {0.0, 0.0, 1.0, 0.8, 0.0};
+    const double stick[n] = {0.0, 0.0, 1.0, 1.0, 0.0};
+    nlohmann::json frames = nlohmann::json::array();
+    for (int i = 0; i < n; ++i) {
+        nlohmann::json f = script["frames"][static_cast<std::size_t>(i % 3)];
+        const double step = std::min(i, 3);
+        glm::dquat turn = glm::angleAxis(0.05 * step, glm::normalize(glm::dvec3(0.3, 1.0, 0.2)));
+        f["left"] = {{"grip", {{"position", {-0.1, 1.0 + 0.004 * step, -0.4}}, {"orientation", {turn.x, turn.y, turn.z, turn.w}}}},
+                     {"squeeze", squeeze[i]},
+                     {"thumbstick", {0.0, stick[i]}}};
+        f["right"] = {{"grip", {{"position", {0.1 - 0.006 * step, 1.0, -0.4}}, {"orientation", {0, 0, 0, 1}}}},
+                      {"squeeze", squeeze[i]},
+                      {"trigger", trigger[i]}};
+        frames.push_back(f);
+    }
+    script["frames"] = frames;
+    auto scriptPath = dir / "script.json";
+    std::ofstream(scriptPath) << script.dump(2);
+    auto out = dir / "eyes";
+    auto validation = dir / "validation.txt";
+    auto session = dir / "session.jsonl";
+    ShellRun live = runShell("xvfb-run -a -s '-screen 0 640x480x24' " + xrEnvironment(scriptPath, out, validation) + " " + CURETTE_BINARY +
+                             " view --xr --scene " + scene.string() + " --record " + session.string());
+    ASSERT_EQ(live.exitCode, 0) << live.output;
+    std::string report = curette::testing::readTextFile(validation);
+    EXPECT_EQ(report.find("VUID"), std::string::npos) << report;
+    EXPECT_EQ(report.find("[VALID_"), std::string::npos) << report;
+    std::string log = curette::testing::readTextFile(out / "runtime.log");
+    // The trigger is bound in every profile that has one: not the simple controller (its one button grabs).
+    EXPECT_NE(log.find("bindings suggested for /interaction_profiles/oculus/touch_controller: 10"), std::string::npos) << log;
+    EXPECT_NE(log.find("bindings suggested for /interaction_profiles/htc/vive_controller: 10"), std::string::npos) << log;
+    EXPECT_NE(log.find("bindings suggested for /interaction_profiles/khr/simple_controller: 6"), std::string::npos) << log;
+    EXPECT_NE(live.output.find("xr session over: 5 frames rendered"), std::string::npos) << live.output;
+    const std::string drilled = lineStartingWith(live.output, "drilled ");
+    ASSERT_FALSE(drilled.empty()) << "the trigger drilled nothing:\n" << live.output;
+
+    // The file: the room and eye sizes, and per frame the head as the runtime placed it, both views and both hands.
+    std::ifstream in(session);
+    std::string headerLine;
+    std::getline(in, headerLine);
+    nlohmann::ordered_json header = nlohmann::ordered_json::parse(headerLine);
+    EXPECT_EQ(header["version"], 6);
+    EXPECT_EQ(header["xr"]["space"], "stage");
+    EXPECT_EQ(header["xr"]["recommended_size"], nlohmann::ordered_json::parse("[[40, 36], [40, 36]]"));
+    std::vector<nlohmann::ordered_json> recorded;   // ordered: dumped again, a line reads as in the file
+    for (std::string line; std::getline(in, line);) recorded.push_back(nlohmann::ordered_json::parse(line));
+    ASSERT_EQ(recorded.size(), static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        const nlohmann::ordered_json& x = recorded[static_cast<std::size_t>(i)]["xr"];
+        ASSERT_TRUE(x.contains("views")) << i;
+        ASSERT_TRUE(x.contains("head")) << i;
+        ASSERT_TRUE(x["hands"][1].contains("position_m")) << i << ": the right hand tracked";
+        EXPECT_EQ(x["head"]["position_m"][1].get<double>(), static_cast<double>(1.03f)) << i;
+        EXPECT_EQ(x["hands"][1]["position_m"][0].get<double>(), static_cast<double>(static_cast<float>(0.1 - 0.006 * std::min(i, 3)))) << i;
+        EXPECT_EQ(x["hands"][1]["trigger"].get<double>(), static_cast<double>(static_cast<float>(trigger[i]))) << i;
+        EXPECT_EQ(recorded[static_cast<std::size_t>(i)].contains("drill"), i == 2 || i == 3) << i;
+    }
+
+    // Replayed headless: the eyes side by side are the submitted ones; CAO == LAO on every frame.
+    auto replayed = dir / "replay";
+    curette::testing::Invocation replay = curette::testing::runCurette("replay " + session.string() + " --check --out " + replayed.string());
+    ASSERT_EQ(replay.exitCode, 0) << replay.output;
+    EXPECT_NE(replay.output.find("CAO == LAO on 5 of 5 checked frames"), std::string::npos) << replay.output;
+    EXPECT_EQ(lineStartingWith(replay.output, "drilled "), drilled) << replay.output;
+    for (int frame = 0; frame < n; ++frame) {
+        char stem[32];
+        std::snprintf(stem, sizeof stem, "frame_%06d", frame);
+        curette::testing::Png left = readPng(out / (std::string(stem) + "_left.png"));
+        curette::testing::Png right = readPng(out / (std::string(stem) + "_right.png"));
+        curette::testing::Png pair = readPng(replayed / (std::string(stem) + ".png"));
+        ASSERT_EQ(pair.width, left.width + right.width) << stem;
+        ASSERT_EQ(pair.height, left.height) << stem;
+        EXPECT_TRUE(sideBySide(left, right) == pair.rgba) << stem << ": the replayed eyes differ from the submitted ones";
+    }
+
+    // Re-derived from the recorded hands: the same poses and drilling, bit for bit, and the same removal.
+    curette::testing::Invocation derived = curette::testing::runCurette("replay " + session.string() + " --from-reports --no-render");
+    ASSERT_EQ(derived.exitCode, 0) << derived.output;
+    EXPECT_NE(derived.output.find("poses from reports: identical to the recorded ones"), std::string::npos) << derived.output;
+    EXPECT_EQ(lineStartingWith(derived.output, "drilled "), drilled) << derived.output;
+
+    // A hand recorded elsewhere than it was, or a trigger not pulled, re-derives to other poses or drilling.
+    std::string text = curette::testing::readTextFile(session);
+    const std::string frame2 = recorded[2].dump();
+    struct Tamper {
+        const char* what;
+        std::function<void(nlohmann::ordered_json&)> change;
+    };
+    const Tamper tampers[] = {
+        {"the right grip 1 mm off", [](nlohmann::ordered_json& f) { f["xr"]["hands"][1]["position_m"][0] = f["xr"]["hands"][1]["position_m"][0].get<double>() + 0.001; }},
+        {"the trigger released", [](nlohmann::ordered_json& f) { f["xr"]["hands"][1]["trigger"] = 0.0; }},
+        {"the thumbstick at rest", [](nlohmann::ordered_json& f) { f["xr"]["hands"][0]["thumbstick"] = {0.0, 0.0}; }},
+    };
+    for (const Tamper& t : tampers) {
+        nlohmann::ordered_json changed = recorded[2];
+        t.change(changed);
+        std::string tampered = text;
+        tampered.replace(tampered.find(frame2), frame2.size(), changed.dump());
+        auto path = dir / "tampered.jsonl";
+        std::ofstream(path) << tampered;
+        curette::testing::Invocation r = curette::testing::runCurette("replay " + path.string() + " --from-reports --no-render");
+        EXPECT_EQ(r.exitCode, 1) << t.what << ": " << r.output;
+        EXPECT_NE(r.output.find("DIFFERENT"), std::string::npos) << t.what << ": " << r.output;
+    }
 }
 
 // Without XR_RUNTIME_JSON naming it, the test runtime is not what `view --xr` finds: it is registered nowhere

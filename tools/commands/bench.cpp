@@ -11,6 +11,7 @@
 #include "tools/bench/bench_view.h"
 #include "tools/bench/bench_drill.h"
 #include "tools/bench/bench_tracts.h"
+#include "tools/bench/bench_xr.h"
 #include "tools/bench/lao_options.h"
 #include "tools/command_line.h"
 #include "tools/commands/commands.h"
@@ -114,6 +115,15 @@ std::vector<Command> benchCommands() {
                 {"images", true, "folder to write each configuration's first frame to (PNG)"},
                 {"json", true, "JSON output file (default bench-tracts.json)"}})},
          &bench::benchTracts},
+        {{"bench xr", "[--scene S] [--test-runtime]", "a head-mounted display session: time per eye at the recommended size, CAO per frame, first frame, CAO == LAO",
+          {{"scene", true, "scene file (default assets/scenes/head-carved.json: two tools)"},
+           {"test-runtime", false, "curette's scripted OpenXR test runtime (tests/xr_runtime) instead of the active runtime; needs a display (xvfb-run)"},
+           {"size", true, "with --test-runtime: the eye size the runtime recommends (default 160x144)", "WxH"},
+           {"frames", true, "frames per run (default 6; the first runs step I)"},
+           {"runs", true, "runs, each with a fresh renderer (default 3)"},
+           {"drill", false, "with --test-runtime: the right trigger drills with its tool"},
+           {"json", true, "JSON output file (default bench-xr.json)"}}},
+         &bench::benchXr},
     };
 }
 

@@ -1,11 +1,15 @@
-// curette replay FILE: re-renders a recorded session headless, frame by frame, and checks it.
+// curette replay FILE: re-renders a recorded session headless, frame by frame, and checks it. A head-mounted
+// display session (`view --xr --record`, session version 6) renders each frame's two eyes from the recorded
+// views and fields of view, left and right side by side in one image.
 //   --out DIR        one PNG per rendered frame, and (with --check) frames.csv and frames.png (a plot)
 //   --every N        render every Nth frame (poses are still followed on every frame)
 //   --check          per frame: CAO equals full LAO (V_AO and image, for cao/lao frames), render time,
 //                    recompute fraction and image hash, as CSV and a plot
 //   --from-reports   re-derive every pose and light direction (and from session version 6 the drilling: which
 //                    meshes drilled, undo and redo) from the raw reports and keys through the parsers and the
-//                    recorded mapping, and check they equal the recorded ones exactly
+//                    recorded mapping (in a head-mounted display session also from the controllers' recorded grip
+//                    poses and action states through session/xr_hands.h), and check they equal the recorded ones
+//                    exactly
 //   --no-render      with --from-reports: check the poses only (no GL context)
 //   --lenient        replay the valid prefix of a session with a bad line instead of refusing it
 //   --mp4            with --out: DIR/replay.mp4 of the frames at the recorded rate (tools/movie.h; needs ffmpeg)
@@ -29,6 +33,9 @@
 #include "mesh/mesh_description.h"
 #include "input/pipeline.h"
 #include "render/renderer.h"
+#include "render/stereo_render.h"
+#include "session/xr_hands.h"
+#include "tools/xr_loop.h"
 
 #include <chrono>
 #include <cstdio>
@@ -109,6 +116,14 @@ int replay(const CommandLine& cl) {
     std::optional<plan::Report> lastReport;
     InteractionState lastReportState;
 
+    // A head-mounted display session (`view --xr --record`): both eyes from the recorded views, side by side;
+    // re-derived, the hands' actions from their recorded states.
+    const std::optional<SessionXr>& xr = session.header.xr;
+    std::optional<RoomAnchor> anchor;
+    if (xr) anchor = tableAnchor(geometry, xr->space);
+    XrHands xrHands;
+    const glm::vec4 background(loaded.scene.background);
+
     std::optional<input::InputPipeline> pipeline;
     if (fromReports) {
         pipeline.emplace(input::parseMapping(session.header.mappingJson, file.string() + " line 1: mapping"), session.header.keyboardMmPerSecond,
@@ -133,11 +148,14 @@ int replay(const CommandLine& cl) {
             input::KeyboardMouseState keys{f.keys, f.drag, f.lightDrag};
             step.frame().camera = f.camera;
             step.frame().size = f.size;
-            // From version 6 the drilling comes from the keys and devices (actions) like the poses, and the frame's
-            // "drill" records what they applied; before, it is the drilling input itself (no key or button drilled).
-            bool drillFromInput = session.header.version >= kDrillFromInputVersion;
-            step.apply(pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size()), f.holds), f.size.y, f.edits, where,
-                       drillFromInput ? DrillInput{} : DrillInput{f.drills, f.drillHistory});
+            std::vector<input::Action> actions = pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size()), f.holds);
+            if (f.xr)
+                for (input::Action& a : xrHands.step(f.xr->hands, *anchor, f.dt)) actions.push_back(std::move(a));
+            // From version 6 the drilling comes from the keys, devices and controllers (actions) like the poses, and
+            // the frame's "drill" records what they applied; before, it is the drilling input itself (no key or
+            // button drilled).
+            bool drillFromInput = session.header.version >= kDrillFromInputVersion || f.xr;
+            step.apply(actions, f.size.y, f.edits, where, drillFromInput ? DrillInput{} : DrillInput{f.drills, f.drillHistory});
             // The re-derived poses, lights (version 2), shading and drilling must be the recorded ones, bit for bit.
             bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights) &&
                         (!drillFromInput || (state.appliedDrills == f.drills && state.appliedDrillHistory == f.drillHistory));
@@ -153,25 +171,42 @@ int replay(const CommandLine& cl) {
         FrameDescription frame = step.frame();
         frame.size = size.value_or(f.size);
         frame.shading = f.shading;
+        const bool xrFrame = xr && f.xr && f.xr->views;
+        if (xr && !xrFrame) continue;   // a frame the runtime did not ask to render
+        std::array<TrackedEye, 2> eyes;
+        std::array<Image, 2> eyeImages;
         renderer->collectTimings();
         auto start = std::chrono::steady_clock::now();
-        renderer->render(frame);
-        renderer->finish();
+        Image image;
+        if (xrFrame) {
+            // Both eyes (one V_AO: the second reuses the first's), left and right side by side in one image.
+            eyes = xrEyes(frame, *f.xr->views, *anchor, size ? std::array<glm::ivec2, 2>{*size, *size} : xr->recommendedSize);
+            for (std::size_t e = 0; e < 2; ++e) eyeImages[e] = renderTrackedEye(*renderer, eyes[e]);
+            image = composeStereo(StereoMode::SideBySide, eyeImages[0], eyeImages[1], background);
+        } else {
+            renderer->render(frame);
+            renderer->finish();
+        }
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         double aoMs = renderer->collectTimings().ambientOcclusionMs();
-        Image image = renderer->readImage();
-        std::vector<std::uint8_t> rgba = toRgba8(image, glm::vec4(loaded.scene.background));
+        if (!xrFrame) image = renderer->readImage();
+        std::vector<std::uint8_t> rgba = toRgba8(image, background);
         std::string hash = imageHash(rgba);
         double fraction = renderer->ambientOcclusion() && usesAmbientOcclusion(frame.shading) ? renderer->ambientOcclusion()->lastStats().recomputedFraction() : 0.0;
         std::string equal = "-";
         if (check && usesAmbientOcclusion(frame.shading)) {
             // The exactness contract on this frame: the other AO mode under the same clipping.
-            std::vector<std::uint16_t> ambient = renderer->ambientOcclusion()->readAmbient();
-            FrameDescription other = frame;
-            other.shading = frame.shading == ShadingMode::Cao ? ShadingMode::Lao : ShadingMode::Cao;
-            renderer->render(other);
-            bool same = renderer->ambientOcclusion()->readAmbient() == ambient &&
-                        std::memcmp(renderer->readImage().pixels.data(), image.pixels.data(), image.pixels.size() * sizeof(glm::vec4)) == 0;
+            bool same = false;
+            if (xrFrame) {
+                same = xrCaoEqualsLao(*renderer, eyes, eyeImages);
+            } else {
+                std::vector<std::uint16_t> ambient = renderer->ambientOcclusion()->readAmbient();
+                FrameDescription other = frame;
+                other.shading = frame.shading == ShadingMode::Cao ? ShadingMode::Lao : ShadingMode::Cao;
+                renderer->render(other);
+                same = renderer->ambientOcclusion()->readAmbient() == ambient &&
+                       std::memcmp(renderer->readImage().pixels.data(), image.pixels.data(), image.pixels.size() * sizeof(glm::vec4)) == 0;
+            }
             equal = same ? "yes" : "NO";
             ++checked;
             if (!same) ++caoMismatches;
@@ -182,7 +217,7 @@ int replay(const CommandLine& cl) {
         csv += line;
         if (out) {
             movieFrames.push_back(movieFrameName(f.index));
-            writePng(*out / movieFrames.back(), image, glm::vec4(loaded.scene.background));
+            writePng(*out / movieFrames.back(), image, background);
         }
         if (reporter) {
             plan::Report report = reporter->compute(renderer->clipMeshes(), state);
@@ -247,7 +282,7 @@ Command replayCommand() {
              withGpuOption({{"out", true, "directory for PNGs, frames.csv and frames.png"},
               {"every", true, "render every Nth frame (default 1)"},
               {"check", false, "verify CAO == LAO per frame, write timing/recompute/hash CSV and a plot"},
-              {"from-reports", false, "re-derive poses from the raw reports and check them"},
+              {"from-reports", false, "re-derive poses from the raw reports (and XR controller states) and check them"},
               {"lenient", false, "replay the valid prefix of a damaged session"},
               {"size", true, "render at WxH instead of the recorded size", "WxH"},
               {"no-render", false, "with --from-reports: only check the poses, render nothing"},
