@@ -284,7 +284,7 @@ TEST(ViewXr, ARecordedTwoControllerSessionReplaysBitForBit) {
     // Re-derived from the recorded hands: the same poses and drilling, bit for bit, and the same removal.
     curette::testing::Invocation derived = curette::testing::runCurette("replay " + session.string() + " --from-reports --no-render");
     ASSERT_EQ(derived.exitCode, 0) << derived.output;
-    EXPECT_NE(derived.output.find("poses from reports: identical to the recorded ones"), std::string::npos) << derived.output;
+    EXPECT_NE(derived.output.find("poses and drilling from reports: identical to the recorded ones"), std::string::npos) << derived.output;
     EXPECT_EQ(lineStartingWith(derived.output, "drilled "), drilled) << derived.output;
 
     // A hand recorded elsewhere than it was, or a trigger not pulled, re-derives to other poses or drilling.
