@@ -20,12 +20,6 @@
 namespace curette::testing {
 namespace {
 
-std::string removalDigest(const std::string& output) {
-    std::smatch m;
-    if (!std::regex_search(output, m, std::regex("removal ([0-9a-f]{64})"))) return {};
-    return m[1];
-}
-
 // A 13 x 9 x 7 grid (bricks cut at the edges), oblique, with a drilled sphere and an erased slab in it.
 plan::RemovalVolume drilledSample() {
     glm::dmat4 affine(glm::dvec4(0.0, 1.1, 0.2, 0.0), glm::dvec4(-0.9, 0.0, 0.0, 0.0), glm::dvec4(0.0, 0.1, 1.7, 0.0), glm::dvec4(-4.0, 2.5, 1.0, 1.0));

@@ -3,6 +3,7 @@
 // poses or re-deriving them from the reports, to the removal `record` printed, with CAO == LAO on the rendered
 // frames and the same image hashes both ways; and the report counts the drilled removal at any frame.
 #include "tests/tools/run_curette.h"
+#include "tests/tools/tool_test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -12,12 +13,6 @@
 
 namespace curette::testing {
 namespace {
-
-std::string removalDigest(const std::string& output) {
-    std::smatch m;
-    if (!std::regex_search(output, m, std::regex("removal ([0-9a-f]{64})"))) return {};
-    return m[1];
-}
 
 std::vector<std::string> frameHashes(const std::string& output) {
     std::vector<std::string> hashes;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <regex>
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wconversion"
@@ -60,6 +61,12 @@ std::filesystem::path writeNoisyBallScene(const std::filesystem::path& dir, cons
     scene.merge_patch(changes);
     writeFileAtomically(dir / "scene.json", scene.dump(2));
     return dir / "scene.json";
+}
+
+std::string removalDigest(const std::string& output) {
+    std::smatch m;
+    if (!std::regex_search(output, m, std::regex("removal ([0-9a-f]{64})"))) return {};
+    return m[1];
 }
 
 }  // namespace curette::testing

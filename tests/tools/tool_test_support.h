@@ -1,10 +1,12 @@
 #pragma once
-// Shared by the tools tests: a PNG read back as RGBA, and the small noisy ball the session tests carve.
+// Shared by the tools tests: a PNG read back as RGBA, the small noisy ball the session tests carve, and the
+// removal digest a command prints.
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace curette::testing {
@@ -21,5 +23,8 @@ std::vector<std::uint8_t> noisyBallVoxels();
 // The noisy ball as dir/ball.raw (2 mm voxels) and dir/scene.json: an LAO scene at 48 x 48 with a TF that shows
 // core and shell and cheap AO settings, with `changes` merged in (JSON merge patch: clip meshes, shading, ...).
 std::filesystem::path writeNoisyBallScene(const std::filesystem::path& dir, const nlohmann::json& changes);
+
+// The removal's SHA-256 in a command's output ("removal <64 hex digits>": record, replay); empty when absent.
+std::string removalDigest(const std::string& output);
 
 }  // namespace curette::testing
