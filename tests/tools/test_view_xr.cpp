@@ -65,6 +65,29 @@ std::string xrEnvironment(const std::filesystem::path& script, const std::filesy
            " XR_CORE_VALIDATION_EXPORT_TYPE=text XR_CORE_VALIDATION_FILE_NAME=" + validation.string() + " XR_LOADER_DEBUG=info";
 }
 
+// `view --xr` of `scene` (with `arguments`) under Xvfb against the test runtime playing `script` (written to
+// dir/script.json), the core validation layer on: the run, the runtime's folder (eyes, runtime.log) and the
+// layer's report file.
+struct XrRun {
+    ShellRun shell;
+    std::filesystem::path eyes, validation;
+};
+XrRun runViewXr(const std::filesystem::path& dir, const nlohmann::json& script, const std::filesystem::path& scene, const std::string& arguments = "") {
+    auto scriptPath = dir / "script.json";
+    std::ofstream(scriptPath) << script.dump(2);
+    XrRun run{{}, dir / "eyes", dir / "validation.txt"};
+    run.shell = runShell("xvfb-run -a -s '-screen 0 640x480x24' " + xrEnvironment(scriptPath, run.eyes, run.validation) + " " + CURETTE_BINARY +
+                         " view --xr --scene " + scene.string() + arguments);
+    return run;
+}
+
+// The validation layer's report names no rule.
+void expectValidationSilent(const std::filesystem::path& validation) {
+    std::string report = curette::testing::readTextFile(validation);
+    EXPECT_EQ(report.find("VUID"), std::string::npos) << report;
+    EXPECT_EQ(report.find("[VALID_"), std::string::npos) << report;
+}
+
 std::vector<std::string> lines(const std::string& text, const std::string& prefix) {
     std::vector<std::string> out;
     std::istringstream in(text);
@@ -78,20 +101,15 @@ TEST(ViewXr, TheSessionRunsToExitUnderValidationAndSubmitsTheHeadlessStereoImage
     auto dir = scratch("session");
     auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "cao", "clip_meshes": [
         {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 12}, "position_mm": [32, 44, 40]}]})"));
-    auto script = dir / "script.json";
-    std::ofstream(script) << poseScript().dump(2);
-    auto out = dir / "eyes";
-    auto validation = dir / "validation.txt";
-    ShellRun run = runShell("xvfb-run -a -s '-screen 0 640x480x24' " + xrEnvironment(script, out, validation) + " " + CURETTE_BINARY +
-                       " view --xr --scene " + scene.string());
+    XrRun xr = runViewXr(dir, poseScript(), scene);
+    const ShellRun& run = xr.shell;
+    const std::filesystem::path& out = xr.eyes;
     ASSERT_EQ(run.exitCode, 0) << run.output;
 
     // The loader enabled the validation layer, and the layer found nothing to say.
     EXPECT_NE(run.output.find("XR_APILAYER_LUNARG_core_validation"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("Core Validation output type: text"), std::string::npos) << run.output;
-    std::string report = curette::testing::readTextFile(validation);
-    EXPECT_EQ(report.find("VUID"), std::string::npos) << report;
-    EXPECT_EQ(report.find("[VALID_"), std::string::npos) << report;
+    expectValidationSilent(xr.validation);
 
     // The state machine, as curette saw it and as the runtime drove it (OpenXR 9.3).
     const std::vector<std::string> walk{"IDLE", "READY", "SYNCHRONIZED", "VISIBLE", "FOCUSED", "VISIBLE", "SYNCHRONIZED", "STOPPING", "IDLE", "EXITING"};
@@ -158,16 +176,11 @@ TEST(ViewXr, AScriptedControllerCarriesItsToolThroughTheSessionStep) {
         frames.push_back(f);
     }
     script["frames"] = frames;
-    auto scriptPath = dir / "script.json";
-    std::ofstream(scriptPath) << script.dump(2);
-    auto out = dir / "eyes";
-    auto validation = dir / "validation.txt";
-    ShellRun run = runShell("xvfb-run -a -s '-screen 0 640x480x24' " + xrEnvironment(scriptPath, out, validation) + " " + CURETTE_BINARY +
-                            " view --xr --scene " + scene.string());
+    XrRun xr = runViewXr(dir, script, scene);
+    const ShellRun& run = xr.shell;
+    const std::filesystem::path& out = xr.eyes;
     ASSERT_EQ(run.exitCode, 0) << run.output;
-    std::string report = curette::testing::readTextFile(validation);
-    EXPECT_EQ(report.find("VUID"), std::string::npos) << report;
-    EXPECT_EQ(report.find("[VALID_"), std::string::npos) << report;
+    expectValidationSilent(xr.validation);
     std::string log = curette::testing::readTextFile(out / "runtime.log");
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/valve/index_controller: 10"), std::string::npos) << log;
     EXPECT_NE(run.output.find("xr session over: 5 frames rendered"), std::string::npos) << run.output;
@@ -222,17 +235,12 @@ TEST(ViewXr, ARecordedTwoControllerSessionReplaysBitForBit) {
         frames.push_back(f);
     }
     script["frames"] = frames;
-    auto scriptPath = dir / "script.json";
-    std::ofstream(scriptPath) << script.dump(2);
-    auto out = dir / "eyes";
-    auto validation = dir / "validation.txt";
     auto session = dir / "session.jsonl";
-    ShellRun live = runShell("xvfb-run -a -s '-screen 0 640x480x24' " + xrEnvironment(scriptPath, out, validation) + " " + CURETTE_BINARY +
-                             " view --xr --scene " + scene.string() + " --record " + session.string());
+    XrRun xr = runViewXr(dir, script, scene, " --record " + session.string());
+    const ShellRun& live = xr.shell;
+    const std::filesystem::path& out = xr.eyes;
     ASSERT_EQ(live.exitCode, 0) << live.output;
-    std::string report = curette::testing::readTextFile(validation);
-    EXPECT_EQ(report.find("VUID"), std::string::npos) << report;
-    EXPECT_EQ(report.find("[VALID_"), std::string::npos) << report;
+    expectValidationSilent(xr.validation);
     std::string log = curette::testing::readTextFile(out / "runtime.log");
     // The trigger is bound in every profile that has one: not the simple controller (its one button grabs).
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/oculus/touch_controller: 10"), std::string::npos) << log;
