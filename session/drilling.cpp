@@ -2,9 +2,16 @@
 
 #include "base/log.h"
 
+#include <algorithm>
 #include <set>
 
 namespace curette {
+
+void addDrill(std::vector<SessionDrill>& drills, SessionDrill drill) {
+    auto same = std::find_if(drills.begin(), drills.end(), [&](const SessionDrill& d) { return d.mesh == drill.mesh; });
+    if (same == drills.end()) drills.push_back(drill);
+    else same->erase = same->erase && drill.erase;
+}
 
 std::optional<plan::DrillTool> drillToolOf(const MeshState& mesh) {
     if (!mesh.geometry || !mesh.geometry->solid) return std::nullopt;

@@ -20,6 +20,10 @@ struct DrillInput {
     bool empty() const { return drills.empty() && history.empty(); }
 };
 
+// Adds a mesh's drill control to a frame's drilling: one entry per mesh, whichever controls hold it (keys,
+// devices, controllers, a script); drill wins over erase.
+void addDrill(std::vector<SessionDrill>& drills, SessionDrill drill);
+
 // The burr a mesh drills with, or none when its geometry has no analytic solid.
 std::optional<plan::DrillTool> drillToolOf(const MeshState& mesh);
 

@@ -3,6 +3,7 @@
 #include "base/error.h"
 #include "base/json_reader.h"
 #include "mesh/mesh_description.h"
+#include "session/drilling.h"
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -410,12 +411,7 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
         } else if (std::holds_alternative<input::Screenshot>(action)) {
             screenshot = true;
         } else if (auto* h = std::get_if<input::HoldDrill>(&action)) {
-            // One entry per mesh, whichever controls hold it (keyboard, devices); drill wins over erase.
-            if (MeshState* m = mesh(h->mesh)) {
-                auto same = std::find_if(heldDrills.begin(), heldDrills.end(), [&](const SessionDrill& held) { return held.mesh == m->id; });
-                if (same == heldDrills.end()) heldDrills.push_back({m->id, h->erase});
-                else same->erase = same->erase && h->erase;
-            }
+            if (MeshState* m = mesh(h->mesh)) addDrill(heldDrills, {m->id, h->erase});
         } else if (std::holds_alternative<input::UndoStroke>(action)) {
             drillHistoryPresses.push_back(DrillHistoryCommand::Undo);
         } else if (std::holds_alternative<input::RedoStroke>(action)) {

@@ -3,7 +3,6 @@
 #include "session/loaded_scene.h"
 #include "base/error.h"
 
-#include <algorithm>
 #include <set>
 
 namespace curette {
@@ -66,11 +65,9 @@ StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int vi
     Before before = begin();
     state_.apply(actions, frame_.camera, viewportHeight);
     state_.applyEdits(edits, source);
-    // Drilling from the caller (keys, a script) and from the actions (device controls): one mesh drills once.
+    // Drilling from the caller (a version-5 session's recorded drilling) and from the actions (keys, devices).
     DrillInput all = drill;
-    for (const SessionDrill& d : state_.heldDrills)
-        if (std::find_if(all.drills.begin(), all.drills.end(), [&](const SessionDrill& x) { return x.mesh == d.mesh; }) == all.drills.end())
-            all.drills.push_back(d);
+    for (const SessionDrill& d : state_.heldDrills) addDrill(all.drills, d);
     all.history.insert(all.history.end(), state_.drillHistoryPresses.begin(), state_.drillHistoryPresses.end());
     bool removal = applyDrilling(state_, before.poses, all);
     return compare(before, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty(), removal);
