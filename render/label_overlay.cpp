@@ -6,6 +6,7 @@
 #include "render/gpu_volume.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace curette {
@@ -41,56 +42,121 @@ void LabelOverlay::setStyles(const std::vector<glm::vec4>& styles) {
     }
     glTextureSubImage1D(stylesTexture_.name(), 0, 0, styleTexels_, GL_RGBA, GL_FLOAT, styles_.data());
     fieldStale_ = true;
+    build_.reset();   // a build under way was for the old styles
 }
 
-void LabelOverlay::uploadField() const {
-    // Per voxel (rgb * shown, shown) and opacity * shown of its style, blurred along x, y and z in turn.
-    const std::size_t n = ids_.size();
-    std::vector<glm::vec4> field(n), scratch(n);
-    std::vector<float> opacity(n), opacityScratch(n);
+LabelOverlay::~LabelOverlay() = default;
+
+struct LabelOverlay::FieldBuild {
+    enum Stage { Classify, BlurX, BlurY, BlurZ, Pack, Upload };
+    int stage = Classify;
+    int nextPlane = 0;
     bool anyShown = false;
-    for (std::size_t v = 0; v < n; ++v) {
-        const glm::vec4& style = styles_[ids_[v]];
-        float shown = style.a > 0.0f ? 1.0f : 0.0f;
-        field[v] = glm::vec4(glm::vec3(style) * shown, shown);
-        opacity[v] = style.a;
-        anyShown = anyShown || shown > 0.0f;
-    }
-    float weights[2 * kLabelSmoothingReach + 1], sum = 0.0f;
-    for (int d = -kLabelSmoothingReach; d <= kLabelSmoothingReach; ++d)
-        sum += weights[d + kLabelSmoothingReach] = static_cast<float>(std::exp(-0.5 * d * d / (kLabelSmoothingVoxels * kLabelSmoothingVoxels)));
-    for (float& w : weights) w /= sum;
-    const glm::ivec3 stride(1, dims_.x, dims_.x * dims_.y);
-    for (int axis = 0; axis < 3 && anyShown; ++axis) {
-        // Each output voxel reads only the last pass's arrays: planes of k split across threads.
-        splitAcrossThreads(static_cast<std::size_t>(dims_.z), [&](std::size_t kFirst, std::size_t kEnd) {
-            std::size_t v = kFirst * std::size_t(dims_.x) * std::size_t(dims_.y);
-            for (int k = static_cast<int>(kFirst); k < static_cast<int>(kEnd); ++k)
-                for (int j = 0; j < dims_.y; ++j)
-                    for (int i = 0; i < dims_.x; ++i, ++v) {
-                        int at = glm::ivec3(i, j, k)[axis];
-                        glm::vec4 acc(0.0f);
-                        float accOpacity = 0.0f;
-                        // Clamped at the grid's edge, as the textures are.
-                        for (int d = -kLabelSmoothingReach; d <= kLabelSmoothingReach; ++d) {
-                            int q = std::clamp(at + d, 0, dims_[axis] - 1);
-                            std::size_t u = v + static_cast<std::size_t>(static_cast<std::ptrdiff_t>(q - at) * stride[axis]);
-                            acc += weights[d + kLabelSmoothingReach] * field[u];
-                            accOpacity += weights[d + kLabelSmoothingReach] * opacity[u];
-                        }
-                        scratch[v] = acc;
-                        opacityScratch[v] = accOpacity;
-                    }
+    std::vector<glm::vec4> field, scratch;   // per voxel (rgb * shown, shown)
+    std::vector<float> opacity, opacityScratch;   // opacity * shown of its style
+    std::vector<std::uint8_t> rgba, alpha;
+};
+
+void LabelOverlay::runFieldPlanes(FieldBuild& b, int planes) const {
+    const std::size_t n = ids_.size(), plane = std::size_t(dims_.x) * std::size_t(dims_.y);
+    const int first = b.nextPlane, end = std::min(dims_.z, first + planes);
+    auto overPlanes = [&](const auto& voxel) {
+        splitAcrossThreads(static_cast<std::size_t>(end - first), [&](std::size_t a, std::size_t z) {
+            for (std::size_t v = (first + a) * plane; v < (first + z) * plane; ++v) voxel(v);
         });
-        field.swap(scratch);
-        opacity.swap(opacityScratch);
+    };
+    switch (b.stage) {
+        case FieldBuild::Classify:
+            if (b.field.empty()) b.field.resize(n), b.opacity.resize(n);
+            overPlanes([&](std::size_t v) {
+                const glm::vec4& style = styles_[ids_[v]];
+                float shown = style.a > 0.0f ? 1.0f : 0.0f;
+                b.field[v] = glm::vec4(glm::vec3(style) * shown, shown);
+                b.opacity[v] = style.a;
+            });
+            for (std::size_t v = first * plane; v < end * plane && !b.anyShown; ++v) b.anyShown = b.field[v].w > 0.0f;
+            break;
+        case FieldBuild::BlurX:
+        case FieldBuild::BlurY:
+        case FieldBuild::BlurZ: {
+            // A separable Gaussian, clamped at the grid's edge as the textures are. Each output voxel reads only the
+            // last stage's arrays, so planes can run in any order.
+            const int axis = b.stage - FieldBuild::BlurX;
+            if (b.scratch.empty()) b.scratch.resize(n), b.opacityScratch.resize(n);
+            float weights[2 * kLabelSmoothingReach + 1], sum = 0.0f;
+            for (int d = -kLabelSmoothingReach; d <= kLabelSmoothingReach; ++d)
+                sum += weights[d + kLabelSmoothingReach] = static_cast<float>(std::exp(-0.5 * d * d / (kLabelSmoothingVoxels * kLabelSmoothingVoxels)));
+            for (float& w : weights) w /= sum;
+            const glm::ivec3 stride(1, dims_.x, dims_.x * dims_.y);
+            splitAcrossThreads(static_cast<std::size_t>(end - first), [&](std::size_t a, std::size_t z) {
+                std::size_t v = (first + a) * plane;
+                for (int k = first + static_cast<int>(a); k < first + static_cast<int>(z); ++k)
+                    for (int j = 0; j < dims_.y; ++j)
+                        for (int i = 0; i < dims_.x; ++i, ++v) {
+                            const int at = glm::ivec3(i, j, k)[axis];
+                            glm::vec4 acc(0.0f);
+                            float accOpacity = 0.0f;
+                            for (int d = -kLabelSmoothingReach; d <= kLabelSmoothingReach; ++d) {
+                                int q = std::clamp(at + d, 0, dims_[axis] - 1);
+                                std::size_t u = v + static_cast<std::size_t>(static_cast<std::ptrdiff_t>(q - at) * stride[axis]);
+                                acc += weights[d + kLabelSmoothingReach] * b.field[u];
+                                accOpacity += weights[d + kLabelSmoothingReach] * b.opacity[u];
+                            }
+                            b.scratch[v] = acc;
+                            b.opacityScratch[v] = accOpacity;
+                        }
+            });
+            break;
+        }
+        case FieldBuild::Pack: {
+            if (b.rgba.empty()) b.rgba.resize(4 * n), b.alpha.resize(n);
+            auto byte = [](float x) { return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 255.0f)); };
+            overPlanes([&](std::size_t v) {
+                for (int c = 0; c < 4; ++c) b.rgba[4 * v + static_cast<std::size_t>(c)] = byte(b.field[v][c]);
+                b.alpha[v] = byte(b.opacity[v]);
+            });
+            break;
+        }
+        case FieldBuild::Upload:
+            uploadField(b);
+            b.nextPlane = dims_.z;
+            break;
     }
-    auto byte = [](float x) { return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 255.0f)); };
-    std::vector<std::uint8_t> rgba(4 * n), alpha(n);
-    for (std::size_t v = 0; v < n; ++v) {
-        for (int c = 0; c < 4; ++c) rgba[4 * v + static_cast<std::size_t>(c)] = byte(field[v][c]);
-        alpha[v] = byte(opacity[v]);
-    }
+    if (b.stage != FieldBuild::Upload) b.nextPlane = end;
+    if (b.nextPlane < dims_.z) return;
+    // The stage is done: a blur's output becomes the next stage's input; with no label shown there is nothing to blur.
+    if (b.stage >= FieldBuild::BlurX && b.stage <= FieldBuild::BlurZ) b.field.swap(b.scratch), b.opacity.swap(b.opacityScratch);
+    b.stage = b.stage == FieldBuild::Classify && !b.anyShown ? int(FieldBuild::Pack) : b.stage + 1;
+    b.nextPlane = 0;
+    if (b.stage == FieldBuild::Pack) b.scratch = {}, b.opacityScratch = {};
+}
+
+void LabelOverlay::advanceField(double budgetMs, int planesPerSlice) const {
+    if (!fieldStale_) return;
+    if (!build_) build_ = std::make_unique<FieldBuild>();
+    auto start = std::chrono::steady_clock::now();
+    // Slices of a few planes, until the budget is spent (planesPerSlice: one slice of that many).
+    const int planes = planesPerSlice > 0 ? planesPerSlice : std::max(1, dims_.z / 32);
+    do {
+        runFieldPlanes(*build_, planes);
+        if (build_->stage > FieldBuild::Upload) {
+            build_.reset();
+            fieldStale_ = false;
+            return;
+        }
+    } while (planesPerSlice == 0 && std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() < budgetMs);
+}
+
+double LabelOverlay::fieldProgress() const {
+    if (!fieldStale_) return 1.0;
+    if (!build_) return 0.0;
+    // Five stages over the planes and the upload, counted as one plane.
+    const double units = 5.0 * dims_.z + 1.0;
+    const int stage = std::min(build_->stage, int(FieldBuild::Upload));
+    return (stage * double(dims_.z) + build_->nextPlane) / units;
+}
+
+void LabelOverlay::uploadField(const FieldBuild& b) const {
     auto make = [&](gl::Texture& t, GLenum format, const char* label) {
         if (t) return;
         t = gl::createTexture(GL_TEXTURE_3D);
@@ -103,18 +169,15 @@ void LabelOverlay::uploadField() const {
     make(fieldTexture_, GL_RGBA8, "label field (smoothed shown colour, shown)");
     make(opacityTexture_, GL_R8, "label field (smoothed opacity)");
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(fieldTexture_.name(), 0, 0, 0, 0, dims_.x, dims_.y, dims_.z, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    glTextureSubImage3D(opacityTexture_.name(), 0, 0, 0, 0, dims_.x, dims_.y, dims_.z, GL_RED, GL_UNSIGNED_BYTE, alpha.data());
+    glTextureSubImage3D(fieldTexture_.name(), 0, 0, 0, 0, dims_.x, dims_.y, dims_.z, GL_RGBA, GL_UNSIGNED_BYTE, b.rgba.data());
+    glTextureSubImage3D(opacityTexture_.name(), 0, 0, 0, 0, dims_.x, dims_.y, dims_.z, GL_RED, GL_UNSIGNED_BYTE, b.alpha.data());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 }
 
 void LabelOverlay::addDefines(gl::Defines& defines) const { defines.emplace_back("LABELS", "1"); }
 
 void LabelOverlay::apply(gl::Program&) const {
-    if (fieldStale_) {
-        uploadField();
-        fieldStale_ = false;
-    }
+    while (fieldStale_) advanceField(1e300);
     glBindTextureUnit(binding::labelIds, idsTexture_.name());
     glBindTextureUnit(binding::labelStyles, stylesTexture_.name());
     glBindTextureUnit(binding::labelField, fieldTexture_.name());

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace curette {
@@ -28,12 +29,20 @@ public:
     // ids: dims.x * dims.y * dims.z label ids on the scan grid, i fastest. styles: one per id (index = id),
     // id 0 (no label) must be transparent.
     LabelOverlay(glm::ivec3 dims, const std::vector<std::uint16_t>& ids, const std::vector<glm::vec4>& styles);
+    ~LabelOverlay();
 
     void setStyles(const std::vector<glm::vec4>& styles);
     const std::vector<glm::vec4>& styles() const { return styles_; }
 
     void addDefines(gl::Defines& defines) const;
-    void apply(gl::Program& program) const;
+    void apply(gl::Program& program) const;   // finishes a field still to build, then binds
+
+    // The label field in slices: whether it is still to build for the current styles; advanceField runs the build
+    // for about budgetMs of wall time (planesPerSlice > 0: that many planes of one stage instead, for tests;
+    // at least one slice either way); how far it is, in [0, 1].
+    bool fieldPending() const { return fieldStale_; }
+    void advanceField(double budgetMs, int planesPerSlice = 0) const;
+    double fieldProgress() const;
 
     // For empty-space skipping: per brick of `brickSize` voxels (render/gpu_volume.h, grid `brickGrid`),
     // whether a shown label's smoothed field reaches into the brick or its one-voxel apron.
@@ -44,8 +53,13 @@ private:
     glm::ivec3 dims_;
     std::vector<std::uint16_t> ids_;
     std::vector<glm::vec4> styles_;
-    // The label field is a cache of the styles, drawn by apply() when stale: hence mutable.
-    void uploadField() const;
+    // The label field is a cache of the styles, built when stale: hence mutable. Its build runs in stages, each
+    // over the grid's planes of k: classify each voxel by its style, blur along x, y and z, pack to bytes; then
+    // the upload.
+    struct FieldBuild;
+    void runFieldPlanes(FieldBuild& build, int planes) const;
+    void uploadField(const FieldBuild& build) const;
+    mutable std::unique_ptr<FieldBuild> build_;
     gl::Texture idsTexture_, stylesTexture_;
     mutable gl::Texture fieldTexture_, opacityTexture_;
     mutable bool fieldStale_ = true;

@@ -61,6 +61,15 @@ void Renderer::setLabelStyles(const std::vector<glm::vec4>& styles) {
     updateOccupancy();
 }
 
+bool Renderer::labelFieldPending() const { return labels_ && labels_->fieldPending(); }
+
+double Renderer::advanceLabelField(double budgetMs, int planesPerSlice) {
+    if (labels_) labels_->advanceField(budgetMs, planesPerSlice);
+    return labelFieldProgress();
+}
+
+double Renderer::labelFieldProgress() const { return labels_ ? labels_->fieldProgress() : 1.0; }
+
 double Renderer::resolveStepMm(const RaycastSettings& settings) const {
     return settings.stepMm > 0 ? settings.stepMm : 0.5 * volume_.geometry().minSpacing();
 }

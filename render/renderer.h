@@ -130,6 +130,13 @@ public:
     double precomputeProgress() const;
     // What step I computes, in a planner's words ("occlusion of the scan"; PassInfo::activity).
     static const char* precomputeProgressLabel() { return passInfo(Pass::LaoPrecompute).activity; }
+    // The label field in slices (LabelOverlay::advanceField): the viewer runs it before it draws, so a new scene or
+    // a label style edit never freezes the window; a frame that binds the labels finishes whatever is left, so
+    // the image does not depend on it. advanceLabelField returns how far the field is, in [0, 1].
+    bool labelFieldPending() const;
+    double advanceLabelField(double budgetMs, int planesPerSlice = 0);
+    double labelFieldProgress() const;
+    static const char* labelFieldProgressLabel() { return "the labels' surfaces"; }
     // A number that changes whenever step I's inputs (volume, TF and labels, LAO settings) change: the frame loop
     // holds step I back while they are being edited (viewer/view_frame_loop.h).
     std::uint64_t precomputeInputsVersion() const { return versions_.volume + versions_.transferFunction + versions_.laoSettings; }

@@ -20,6 +20,8 @@
 //     never freezes for it; the decision stays "exact" until the renderer shows it. When no preview is on screen
 //     (the first frame of a scene, or a change that was no motion after an exact frame) a preview comes first, so
 //     the slices are never drawn over the image on screen.
+//   - in both, a label field still to build (a labelled scene's first frame, a label style edit) is built first
+//     in slices of `precomputeBudgetMs`, nothing drawn meanwhile (viewer/viewer_driver.h).
 //   - in both, while step I is to run, each frame runs slices of it for `precomputeBudgetMs` and shows a
 //     preview (phong: there is no AO yet) at the preview resolution (a full-size frame on llvmpipe would stall
 //     the window for seconds), so the window keeps presenting and the overlay shows the progress.
@@ -62,6 +64,8 @@ struct FrameLoopSettings {
                                        // computed; exact quality renders it whole
     std::uint32_t exactSliceUnits = 0; // > 0: the exact frame's slices have this many units each (tests; see
                                        // Renderer::advanceExact), 0: as many as fit the budget
+    int labelSlicePlanes = 0;          // > 0: the label field's slices have this many planes each (tests; see
+                                       // Renderer::advanceLabelField), 0: as many as fit precomputeBudgetMs
 };
 
 enum class FrameKind { None, Preview, Exact };

@@ -34,6 +34,17 @@ ViewerIteration stepViewer(ViewerState& viewer, Renderer& renderer, SessionStep&
     ViewerIteration it;
     it.precomputing = in.precomputePending;
     it.decision = viewer.loop.decide(in);
+    if (renderer.labelFieldPending()) {
+        // The label field first, in slices, the image on screen kept: a labelled scene's first frame, a label
+        // style edit. Nothing is drawn until it is done (the window presents the progress).
+        auto start = Clock::now();
+        renderer.advanceLabelField(viewer.loop.settings().precomputeBudgetMs, viewer.loop.settings().labelSlicePlanes);
+        it.decision = FrameDecision{};
+        it.preparing = true;
+        it.rendered = true;
+        it.ms = msSince(start);
+        return it;
+    }
     const FrameDecision& d = it.decision;
     double stepMm = renderer.resolveStepMm(frame.raycast);
     if (d.render != FrameKind::None) frame.size = d.size;

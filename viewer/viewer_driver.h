@@ -34,6 +34,8 @@ struct ViewerState {
 struct ViewerIteration {
     FrameDecision decision;
     bool precomputing = false;            // step I was pending when the loop decided
+    bool preparing = false;               // it ran a slice of the label field and drew nothing
+                                          // (Renderer::advanceLabelField)
     bool rendered = false;                // the image shown changed, or step I or an exact frame in slices advanced
                                           // (the window presents it: the progress bar moves)
     bool exactCompleted = false;          // an exact frame was finished by it (in slices: by its last)

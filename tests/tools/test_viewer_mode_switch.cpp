@@ -8,6 +8,7 @@
 #include "session/loaded_scene.h"
 #include "session/session_step.h"
 #include "viewer/viewer_driver.h"
+#include "render/label_overlay.h"
 #include "render/renderer.h"
 
 #include <gtest/gtest.h>
@@ -92,6 +93,82 @@ TEST(ViewerDriver, ASwitchToDosPresentsEveryIterationAndNeverRunsTheWholeSlabPas
     EXPECT_TRUE(std::equal(shown.pixels.begin(), shown.pixels.end(), expected.pixels.begin(),
                            [](const glm::vec4& a, const glm::vec4& b) { return a == b; }))
         << "the exact frame in slices differs from a fresh render";
+}
+
+
+// A labelled scene's first frame builds the label field in slices of a few planes, presenting each (the window
+// shows the progress, no image yet); then the preview and the exact frame follow, and the exact frame is what a
+// renderer that built the field whole shows. A label style edit builds it again in slices, the image kept.
+TEST(ViewerDriver, ALabelledScenesFirstFrameBuildsTheLabelFieldInSlices) {
+    LoadedScene loaded = loadSceneWithVolume(kSource + "/assets/scenes/head.json");
+    const glm::ivec3 dims = loaded.volume.dims;
+    std::vector<std::uint16_t> ids(std::size_t(dims.x) * dims.y * dims.z, 0);
+    for (int k = 0; k < dims.z; ++k)
+        for (int j = 0; j < dims.y; ++j)
+            for (int i = 0; i < dims.x; ++i)
+                if (glm::length(glm::dvec3(i, j, k) - glm::dvec3(dims) * 0.5) < 25.0) ids[(std::size_t(k) * dims.y + j) * dims.x + i] = 1;
+    const std::vector<glm::vec4> styles{glm::vec4(0), glm::vec4(0.9f, 0.2f, 0.2f, 0.6f)};
+    auto context = gl::createHeadlessContext();
+    Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, renderer);
+    renderer.setLabels(std::make_unique<LabelOverlay>(dims, ids, styles));
+    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+    FrameLoopSettings settings;
+    settings.quality = ViewQuality::Adaptive;
+    constexpr int kPlanes = 8;
+    settings.labelSlicePlanes = kPlanes;
+    ViewerState viewer(settings);
+    const glm::ivec2 size{64, 48};
+    const glm::vec4 background(loaded.scene.background);
+    double now = 0;
+    auto iterate = [&] {
+        now += 1.0;
+        return stepViewer(viewer, renderer, step, loaded.tracts, size, now, false, background);
+    };
+    // Classify, blur along x, y and z, pack: each over the planes of k; then one upload.
+    const int expectedSlices = 5 * ((dims.z + kPlanes - 1) / kPlanes) + 1;
+    auto buildInSlices = [&](const char* when) {
+        int slices = 0;
+        double progress = renderer.labelFieldProgress();
+        while (renderer.labelFieldPending()) {
+            ASSERT_LT(++slices, 10 * expectedSlices);
+            ViewerIteration it = iterate();
+            EXPECT_TRUE(it.preparing) << when;
+            EXPECT_TRUE(it.rendered) << when << ": slice " << slices << " presented nothing";
+            EXPECT_EQ(it.decision.render, FrameKind::None) << when << ": nothing is drawn while the field is built";
+            EXPECT_LE(renderer.labelFieldProgress() - progress, double(kPlanes) / (5.0 * dims.z + 1.0) + 1e-9) << when;
+            progress = renderer.labelFieldProgress();
+        }
+        EXPECT_EQ(slices, expectedSlices) << when << ": one slice an iteration";
+    };
+    ASSERT_TRUE(renderer.labelFieldPending());
+    buildInSlices("first frame");
+    EXPECT_FALSE(renderer.showsAnImage());
+    ViewerIteration first = iterate();
+    EXPECT_EQ(first.decision.render, FrameKind::Preview) << "the first image after the field is a preview";
+    for (int i = 0; i < 1000 && !viewer.shownExact; ++i) ASSERT_FALSE(iterate().preparing);
+    ASSERT_TRUE(viewer.shownExact);
+
+    auto renderWhole = [&](const std::vector<glm::vec4>& s) {
+        Renderer fresh(*context, loaded.volume, loaded.scene.transferFunction);
+        configureRenderer(loaded, fresh);
+        fresh.setLabels(std::make_unique<LabelOverlay>(dims, ids, s));
+        fresh.render(viewerFrame(viewer, step, size));
+        return fresh.readImage();
+    };
+    auto same = [](const Image& a, const Image& b) {
+        return a.pixels.size() == b.pixels.size() &&
+               std::equal(a.pixels.begin(), a.pixels.end(), b.pixels.begin(), [](const glm::vec4& x, const glm::vec4& y) { return x == y; });
+    };
+    EXPECT_TRUE(same(renderer.readImage(), renderWhole(styles))) << "the field built in slices differs from one built whole";
+
+    // A style edit: built again in slices while the exact image stays on screen.
+    const std::vector<glm::vec4> green{glm::vec4(0), glm::vec4(0.1f, 0.9f, 0.2f, 0.8f)};
+    renderer.setLabelStyles(green);
+    buildInSlices("after a style edit");
+    EXPECT_TRUE(renderer.showsAnImage());
+    for (int i = 0; i < 1000 && !(viewer.shownExact && renderer.showing(viewerFrame(viewer, step, size))); ++i) iterate();
+    EXPECT_TRUE(same(renderer.readImage(), renderWhole(green)));
 }
 
 }  // namespace

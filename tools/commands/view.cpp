@@ -177,8 +177,8 @@ struct ViewWindow {
     double settledAt = -1;                // when the view first settled: the exact image, the report current, nothing to do
     bool exportRequested = false;
     bool idle = false;                    // the last iteration had nothing to render
-    bool renderedBefore = false;
-    bool welcomed = false;                // the window was drawn once before the first image was rendered          // the last iteration rendered: its side bar was drawn before the new image
+    bool renderedBefore = false;          // the last iteration rendered: its side bar was drawn before the new image
+    bool welcomed = false;                // the window was drawn once before the first image was rendered
 
     void message(std::string m) {
         std::printf("%s\n", m.c_str());
@@ -324,7 +324,7 @@ void ViewWindow::record(const Polled& p, const InputFrame& input) {
 
 // The status at the top of the side bar: what is on screen, what is being computed, recording, messages.
 void ViewWindow::statusLines() {
-    if (!welcomed) ImGui::TextWrapped("preparing the first image: shaders, the clip maps and the labels");
+    if (!renderer.showsAnImage()) ImGui::TextWrapped("preparing the first image: the labels, shaders and the clip maps");
     ImGui::Text("%s", shadingModeName(frame().shading));
     tooltip("the shading mode: keys 1-6 choose one, C the next");
     ImGui::SameLine();
@@ -336,6 +336,13 @@ void ViewWindow::statusLines() {
         char text[32];
         std::snprintf(text, sizeof text, "%.0f %%", 100 * renderer.exactProgress());
         ImGui::ProgressBar(static_cast<float>(renderer.exactProgress()), ImVec2(bar, 0), text);
+    }
+    if (renderer.labelFieldPending()) {   // built before anything is drawn (a new scene, a label style edit)
+        ImGui::TextWrapped("computing: %s", Renderer::labelFieldProgressLabel());
+        char text[32];
+        std::snprintf(text, sizeof text, "%.0f %%", 100 * renderer.labelFieldProgress());
+        ImGui::ProgressBar(static_cast<float>(renderer.labelFieldProgress()), ImVec2(bar, 0), text);
+        tooltip("the labels' smoothed colours, computed once per label style; the image follows when done");
     }
     if (renderer.precomputePending(frame())) {
         ImGui::TextWrapped("computing: %s", Renderer::precomputeProgressLabel());
@@ -498,6 +505,10 @@ bool ViewWindow::renderAndPresent(const Polled& p, bool moved, bool& presented) 
     presented = it.rendered || renderedBefore || p.now - lastEvent < kRedrawAfterEventSeconds || (play && playEndedAt < 0);   // a played session: until its last image
     renderedBefore = it.rendered;
     if (!presented) return true;
+    if (!renderer.showsAnImage() && !stereo) {   // no image yet (the label field is being built): the side bar alone
+        presenter.clear(window.framebufferSize(), background());
+        return true;
+    }
     presenter.present(stereo ? viewer.stereoView.texture() : renderer.outputTexture(), layout.view.origin, layout.view.size,
                       window.framebufferSize(), background());
     if (play && played == play->frames.size() && viewer.shownExact && playEndedAt < 0) {   // the last frame, exact
@@ -656,7 +667,7 @@ bool ViewWindow::iterate() {
             windowShotWritten = true;
         }
         window.swapBuffers();
-        logPresent(p.now, viewer.shownExact ? "exact" : "preview");
+        logPresent(p.now, !renderer.showsAnImage() ? "preparing" : viewer.shownExact ? "exact" : "preview");
     }
     if (presented && !play) settledAt = -1;   // live: each settling is logged
     if (settledAt < 0 && (!play || playEndedAt >= 0) && viewer.shownExact && report.current(renderer.clipMeshes(), state()) && idle) {
