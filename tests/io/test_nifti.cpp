@@ -244,7 +244,11 @@ TEST(Nifti, MalformedFilesNameTheirField) {
 
 TEST(Nifti, UnreadablePathsAreInputErrors) {
     EXPECT_THROW(io::readVolume("/nonexistent/head.nii.gz"), InputError);
-    EXPECT_THROW(io::readVolume(test::scratchDirectory()), InputError);
+    // A folder without a volume (its own: the shared scratch folder may hold another test's DICOM file).
+    const auto empty = test::scratchDirectory() / "nifti-empty-folder";
+    std::filesystem::remove_all(empty);
+    std::filesystem::create_directories(empty);
+    EXPECT_THROW(io::readVolume(empty), InputError);
     auto path = test::scratchDirectory() / "garbage.nii.gz";
     test::writeBytes(path, {0x1f, 0x8b, 8, 0, 1, 2, 3, 4, 5, 6, 7});
     EXPECT_THROW(io::readVolume(path), InputError);
