@@ -771,5 +771,21 @@ TEST(Replay, TheShippedDemoReproducesItsPosesFromItsReports) {
     EXPECT_EQ(r.exitCode, 0) << r.output;
 }
 
+
+// Every session that ships (the benches and the README play them) re-derives, from its device reports, keys and
+// drag alone, the poses it recorded: a session edited by hand so its reports no longer say what its poses do
+// (a pause spliced in while the device still reports motion) is caught here.
+TEST(ShippedSessions, EachReDerivesItsRecordedPosesFromItsReports) {
+    int sessions = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(CURETTE_SOURCE_DIR) + "/assets/sessions")) {
+        if (entry.path().extension() != ".jsonl") continue;
+        ++sessions;
+        Invocation r = run("replay " + entry.path().string() + " --from-reports --no-render");
+        EXPECT_EQ(r.exitCode, 0) << entry.path() << ": " << r.output;
+        EXPECT_NE(r.output.find("poses from reports: identical to the recorded ones"), std::string::npos) << entry.path() << ": " << r.output;
+    }
+    EXPECT_GE(sessions, 8);
+}
+
 }  // namespace
 }  // namespace curette
