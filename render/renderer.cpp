@@ -70,6 +70,13 @@ double Renderer::advanceLabelField(double budgetMs, int planesPerSlice) {
 
 double Renderer::labelFieldProgress() const { return labels_ ? labels_->fieldProgress() : 1.0; }
 
+int Renderer::clipMapsToDraw(const FrameDescription& frame) const { return clip_.meshesNeedingMaps(dilatedMapsWanted(frame.shading)); }
+
+void Renderer::advanceClipMaps(const FrameDescription& frame) {
+    clip_.setDilatedMapsNeeded(dilatedMapsWanted(frame.shading));
+    clip_.update(1);
+}
+
 double Renderer::resolveStepMm(const RaycastSettings& settings) const {
     return settings.stepMm > 0 ? settings.stepMm : 0.5 * volume_.geometry().minSpacing();
 }

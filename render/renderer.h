@@ -137,6 +137,11 @@ public:
     double advanceLabelField(double budgetMs, int planesPerSlice = 0);
     double labelFieldProgress() const;
     static const char* labelFieldProgressLabel() { return "the labels' surfaces"; }
+    // Steps II-III a mesh at a time (ClipMeshSet::update): how many meshes' clip maps `frame` still needs drawn,
+    // and drawing the next one's; a frame draws whatever is left.
+    int clipMapsToDraw(const FrameDescription& frame) const;
+    void advanceClipMaps(const FrameDescription& frame);
+    static const char* clipMapsProgressLabel() { return passInfo(Pass::ClipMaps).activity; }
     // A number that changes whenever step I's inputs (volume, TF and labels, LAO settings) change: the frame loop
     // holds step I back while they are being edited (viewer/view_frame_loop.h).
     std::uint64_t precomputeInputsVersion() const { return versions_.volume + versions_.transferFunction + versions_.laoSettings; }

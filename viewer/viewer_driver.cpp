@@ -34,17 +34,23 @@ ViewerIteration stepViewer(ViewerState& viewer, Renderer& renderer, SessionStep&
     ViewerIteration it;
     it.precomputing = in.precomputePending;
     it.decision = viewer.loop.decide(in);
-    if (renderer.labelFieldPending()) {
-        // The label field first, in slices, the image on screen kept: a labelled scene's first frame, a label
-        // style edit. Nothing is drawn until it is done (the window presents the progress).
+    // What a frame needs prepared, in slices before it, the image on screen kept and nothing drawn meanwhile (the
+    // window presents the progress): the label field (a labelled scene's first frame, a label style edit), then
+    // the clip maps while several meshes need them (a scene's first frame, meshes added) a mesh an iteration;
+    // the last mesh's are drawn with its frame, so dragging one mesh's size keeps its frame rate.
+    auto prepare = [&](auto work) {
         auto start = Clock::now();
-        renderer.advanceLabelField(viewer.loop.settings().precomputeBudgetMs, viewer.loop.settings().labelSlicePlanes);
+        work();
+        renderer.finish();
         it.decision = FrameDecision{};
         it.preparing = true;
         it.rendered = true;
         it.ms = msSince(start);
         return it;
-    }
+    };
+    if (renderer.labelFieldPending())
+        return prepare([&] { renderer.advanceLabelField(viewer.loop.settings().precomputeBudgetMs, viewer.loop.settings().labelSlicePlanes); });
+    if (!it.decision.inMotion && renderer.clipMapsToDraw(frame) > 1) return prepare([&] { renderer.advanceClipMaps(frame); });
     const FrameDecision& d = it.decision;
     double stepMm = renderer.resolveStepMm(frame.raycast);
     if (d.render != FrameKind::None) frame.size = d.size;

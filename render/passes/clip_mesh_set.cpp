@@ -202,13 +202,20 @@ bool ClipMeshSet::mapsCurrent(bool dilatedNeeded) const {
     return true;
 }
 
+int ClipMeshSet::meshesNeedingMaps(bool dilatedNeeded) const {
+    if (!depthProgram_ || needsReallocation(wantedResolution(), dilatedNeeded) || wantedResolution() != mapResolution_) return count();
+    int n = 0;
+    for (const Mesh& m : meshes_) n += m.mapsDirty || (dilatedNeeded && m.dilatedDirty);
+    return n;
+}
+
 std::size_t ClipMeshSet::geometryBytes() const {
     std::size_t bytes = 0;
     for (const Mesh& m : meshes_) bytes += static_cast<std::size_t>(m.vertexCount) * sizeof(CornerVertex);
     return bytes;
 }
 
-void ClipMeshSet::update() {
+void ClipMeshSet::update(int meshes) {
     if (!depthProgram_) {
         depthProgram_ = gl::Program::graphics("clip_depth.vert", "clip_depth.frag");
         reduceProgram_ = gl::Program::compute("clip_reduce.comp");
@@ -234,8 +241,10 @@ void ClipMeshSet::update() {
         mapResolution_ = wanted;
         for (Mesh& m : meshes_) m.mapsDirty = true;
     }
-    for (int i = 0; i < count(); ++i) {
+    int drawn = 0;
+    for (int i = 0; i < count() && drawn < meshes; ++i) {
         Mesh& m = meshes_[static_cast<std::size_t>(i)];
+        if (m.mapsDirty || (dilatedNeeded_ && m.dilatedDirty)) ++drawn;
         if (m.mapsDirty) {
             m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, mapResolution_, settings_.depthResolution);
             m.camera.hullRadiusMm = m.hullRadius;

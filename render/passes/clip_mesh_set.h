@@ -15,6 +15,7 @@
 #include "gl/program.h"
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -129,8 +130,11 @@ public:
     // Whether update() has nothing to draw: every mesh's depth maps (and, with `dilatedNeeded`, its dilated
     // maps) match its geometry, scale and the dilation radius, at a resolution that still fits.
     bool mapsCurrent(bool dilatedNeeded) const;
-    // Steps II and III for meshes that need them, and the per-mesh cameras into the uniform block.
-    void update();
+    int meshesNeedingMaps(bool dilatedNeeded) const;   // of them, those update() would draw (all, when the size changes)
+    // Steps II and III for meshes that need them, and the per-mesh cameras into the uniform block; at most
+    // `meshes` of them (the viewer draws them a mesh an iteration). Each mesh's maps depend on it alone, so the
+    // maps are the same however the meshes were spread over calls.
+    void update(int meshes = std::numeric_limits<int>::max());
     // Only the per-mesh cameras (a rigid motion needs nothing else).
     void uploadCameras();
     // The binder of shaders/clip_test.glsl: clipMeshCount, the uniform block of clipping cameras and the map

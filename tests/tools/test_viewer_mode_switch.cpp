@@ -171,5 +171,54 @@ TEST(ViewerDriver, ALabelledScenesFirstFrameBuildsTheLabelFieldInSlices) {
     EXPECT_TRUE(same(renderer.readImage(), renderWhole(green)));
 }
 
+
+// A scene with several tools draws their clip maps a mesh an iteration, presenting each; the last mesh's maps come
+// with the first image. The exact frame is a fresh render's.
+TEST(ViewerDriver, SeveralToolsClipMapsAreDrawnAMeshAnIteration) {
+    LoadedScene loaded = loadSceneWithVolume(kSource + "/assets/scenes/head-carved.json");
+    auto context = gl::createHeadlessContext();
+    Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, renderer);
+    SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+    step.state().shading = ShadingMode::Phong;   // no step I: the test is about the maps
+    ViewerState viewer(FrameLoopSettings{});
+    viewer.loop.setQuality(ViewQuality::Adaptive);
+    const glm::ivec2 size{64, 48};
+    const glm::vec4 background(loaded.scene.background);
+    double now = 0;
+    auto iterate = [&] {
+        now += 1.0;
+        return stepViewer(viewer, renderer, step, loaded.tracts, size, now, false, background);
+    };
+    ViewerIteration first = iterate();   // syncs the meshes, then draws the first mesh's maps
+    const int meshes = renderer.clipMeshes().count();
+    ASSERT_GE(meshes, 2);
+    EXPECT_TRUE(first.preparing);
+    EXPECT_TRUE(first.rendered);
+    EXPECT_EQ(renderer.clipMeshes().mapRenderCount(), 1u);
+    for (int m = 2; m < meshes; ++m) {
+        ViewerIteration it = iterate();
+        EXPECT_TRUE(it.preparing && it.rendered);
+        EXPECT_EQ(renderer.clipMeshes().mapRenderCount(), std::uint64_t(m));
+    }
+    EXPECT_EQ(renderer.clipMapsToDraw(viewerFrame(viewer, step, size)), 1);
+    ViewerIteration preview = iterate();
+    EXPECT_FALSE(preview.preparing);
+    EXPECT_EQ(preview.decision.render, FrameKind::Preview);
+    EXPECT_EQ(renderer.clipMeshes().mapRenderCount(), std::uint64_t(meshes));
+    for (int i = 0; i < 1000 && !viewer.shownExact; ++i) ASSERT_FALSE(iterate().preparing);
+    ASSERT_TRUE(viewer.shownExact);
+
+    Renderer fresh(*context, loaded.volume, loaded.scene.transferFunction);
+    configureRenderer(loaded, fresh);
+    syncClipMeshes(step.state(), fresh.clipMeshes());
+    fresh.render(viewerFrame(viewer, step, size));
+    Image shown = renderer.readImage(), expected = fresh.readImage();
+    ASSERT_EQ(shown.pixels.size(), expected.pixels.size());
+    EXPECT_TRUE(std::equal(shown.pixels.begin(), shown.pixels.end(), expected.pixels.begin(),
+                           [](const glm::vec4& a, const glm::vec4& b) { return a == b; }))
+        << "maps drawn a mesh an iteration give another image than maps drawn at once";
+}
+
 }  // namespace
 }  // namespace curette

@@ -344,6 +344,10 @@ void ViewWindow::statusLines() {
         ImGui::ProgressBar(static_cast<float>(renderer.labelFieldProgress()), ImVec2(bar, 0), text);
         tooltip("the labels' smoothed colours, computed once per label style; the image follows when done");
     }
+    if (int maps = renderer.clipMapsToDraw(frame()); maps > 1) {   // a mesh an iteration
+        ImGui::TextWrapped("computing: %s (%d tools to go)", Renderer::clipMapsProgressLabel(), maps);
+        tooltip("each tool's depth maps, drawn once per shape and size");
+    }
     if (renderer.precomputePending(frame())) {
         ImGui::TextWrapped("computing: %s", Renderer::precomputeProgressLabel());
         char text[32];
