@@ -29,7 +29,8 @@ volatile std::sig_atomic_t quitRequested = 0;
 void requestQuit(int) { quitRequested = 1; }
 
 // The views of a frame as `render --xr-views` reads them (tools/tracked_views_file.h).
-void saveViews(const std::filesystem::path& path, RoomSpace space, glm::ivec2 recommendedSize, const std::array<TrackedView, 2>& views) {
+void saveViews(const std::filesystem::path& path, RoomSpace space, glm::ivec2 recommendedSize, const std::array<TrackedView, 2>& views,
+               const RoomAnchor& anchor) {
     nlohmann::json list = nlohmann::json::array();
     for (const TrackedView& v : views)
         list.push_back({{"position_m", {v.positionM.x, v.positionM.y, v.positionM.z}},
@@ -38,6 +39,8 @@ void saveViews(const std::filesystem::path& path, RoomSpace space, glm::ivec2 re
     nlohmann::json doc = {{"space", space == RoomSpace::Stage ? "stage" : "local"},
                           {"recommended_size", {recommendedSize.x, recommendedSize.y}},
                           {"views", list}};
+    const glm::dquat& q = anchor.volumeTurnRoom;
+    doc["volume"] = {{"centre_m", {anchor.volumeCentreRoomM.x, anchor.volumeCentreRoomM.y, anchor.volumeCentreRoomM.z}}, {"turn", {q.x, q.y, q.z, q.w}}};
     writeFileAtomically(path, doc.dump(2) + "\n");
 }
 
@@ -49,6 +52,8 @@ SessionXrHand recordedHand(const xr::HandState& s) {
     h.trigger = s.trigger;
     h.thumbstick = s.thumbstick;
     h.shadingPressed = s.shadingPressed;
+    h.moveVolume = s.moveVolume;
+    h.erase = s.erase;
     return h;
 }
 
@@ -88,14 +93,14 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
     result.space = session.roomSpace();
     result.recommendedSize = {session.recommendedSize(0), session.recommendedSize(1)};
     result.anchor = tableAnchor(renderer.geometry(), session.roomSpace());
-    const RoomAnchor& anchor = result.anchor;
+    const RoomAnchor& anchor = result.anchor;   // on its table, until a hand moves it (hands.anchor())
     std::printf("xr runtime: %s; system: %s; eyes %dx%d and %dx%d; %s space; volume centre at %.3f, %.3f, %.3f m\n", session.runtimeName().c_str(),
                 session.systemName().c_str(), session.recommendedSize(0).x, session.recommendedSize(0).y, session.recommendedSize(1).x,
                 session.recommendedSize(1).y, session.roomSpace() == RoomSpace::Stage ? "stage" : "local", anchor.volumeCentreRoomM.x,
                 anchor.volumeCentreRoomM.y, anchor.volumeCentreRoomM.z);
     std::fflush(stdout);
     xr::ControllerActions controllers(session.instance(), session.session());
-    XrHands hands;
+    XrHands hands(anchor);
 
     // A recording: no HID devices take part in an XR session, so its input is the empty device set under the
     // default mapping (a valid header that `replay --from-reports` reads like any other) and the hands.
@@ -130,12 +135,13 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
         record.displayTimeNs = frame.displayTime;
         record.head = frame.head;
         for (std::size_t h = 0; h < 2; ++h) record.hands[h] = recordedHand(handStates[h]);
-        step.apply(hands.step(record.hands, anchor, dtSeconds), session.recommendedSize(0).y);
+        step.apply(hands.step(record.hands, dtSeconds), session.recommendedSize(0).y);
+        record.anchor = hands.anchor();
         step.syncTo(renderer, loaded.tracts);
         const std::size_t index = result.framesStepped++;
         if (frame.shouldRender && frame.viewsValid) {
             record.views = frame.views;
-            std::array<TrackedEye, 2> eyes = xrEyes(step.frame(), frame.views, anchor, result.recommendedSize);
+            std::array<TrackedEye, 2> eyes = xrEyes(step.frame(), frame.views, hands.anchor(), result.recommendedSize);
             XrFrameTiming timing;
             timing.frame = index;
             renderer.collectTimings();   // the times of this frame alone
@@ -148,7 +154,7 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
                 if (eye == 0) timing.firstEye = renderer.collectTimings();
             }
             result.rendered.push_back(timing);
-            if (options.saveViews) saveViews(*options.saveViews, session.roomSpace(), session.recommendedSize(0), frame.views);
+            if (options.saveViews) saveViews(*options.saveViews, session.roomSpace(), session.recommendedSize(0), frame.views, hands.anchor());
             // The mirror: the last eye's whole frame, fitted into the window.
             const glm::ivec2 fb = window.framebufferSize(), out = renderer.outputSize();
             const double scale = std::min(double(fb.x) / out.x, double(fb.y) / out.y);
@@ -163,6 +169,7 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
         }
         session.endFrame();
     }
+    result.finalAnchor = hands.anchor();
     if (recording) {
         recording->finish();
         std::printf("xr session recorded: %s, %zu frames\n", recording->path().c_str(), recording->frames());

@@ -3,8 +3,8 @@
 // each frame the controllers' states (xr/controller_actions.h) become actions through session/xr_hands.h and
 // the session step, then both eyes are rendered from the views the runtime located, through one renderer (one
 // V_AO a frame, both eyes read it), and submitted; a small window mirrors the last eye. With a recording path
-// every stepped frame is recorded (session version 6: head, eyes, hands, poses), so `replay` re-renders it
-// headless and re-derives its poses from the hands.
+// every stepped frame is recorded (session version 7: head, eyes, hands, the volume's place, poses), so `replay`
+// re-renders it headless and re-derives its poses and the volume's place from the hands.
 
 #include "gl/context.h"
 #include "render/model/frame_plan.h"
@@ -41,7 +41,8 @@ struct XrLoopResult {
     std::string runtime, system;
     RoomSpace space = RoomSpace::Stage;
     std::array<glm::ivec2, 2> recommendedSize{};
-    RoomAnchor anchor;
+    RoomAnchor anchor;        // the volume on its table, at the start
+    RoomAnchor finalAnchor;   // where the hands left it
     std::size_t framesStepped = 0;
     std::vector<XrFrameTiming> rendered;
 };

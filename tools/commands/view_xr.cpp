@@ -9,10 +9,12 @@
 //
 // The controllers are action sources like the hidapi devices (xr/controller_actions.h, session/xr_hands.h):
 // the left hand's squeeze holds tool 0, the right hand's tool 1, each following its grip, its thumbstick
-// scaling it, its trigger drilling with it; a button cycles the shading; their actions go through the session
+// scaling it, its trigger drilling and its erase button erasing with it; a thumbstick flick left undoes a
+// stroke, right redoes it; a hand holding its volume button carries the whole scene in the room (the carve
+// does not change: session/xr_hands.h); a button cycles the shading; their actions go through the session
 // step every command runs (session/session_step.h). --record F.jsonl records the session (head, eyes, hands
 // and poses per frame) for `replay`. Prints each session state as it changes and, at the end, the frames
-// rendered, the time per eye, where each tool was left and what was drilled.
+// rendered, the time per eye, each frame's passes, where each tool and the volume were left and what was drilled.
 #include "tools/commands/view_xr.h"
 
 #include "base/error.h"
@@ -83,6 +85,16 @@ int viewXr(const CommandLine& cl) {
         std::printf("xr %s eye: %zu frames, %.1f ms per frame (min %.1f, max %.1f)\n", eye == 0 ? "left" : "right", s.count, s.mean, s.min, s.max);
     }
     std::printf("xr session over: %zu frames rendered\n", result.rendered.size());
+    // The passes each frame ran for its first eye (the second reuses its V_AO): a moved volume runs no CAO step.
+    for (const XrFrameTiming& t : result.rendered) {
+        std::string passes;
+        for (const FrameTimings::Entry& e : t.firstEye.passes) passes += (passes.empty() ? "" : ", ") + std::string(passInfo(e.pass).name);
+        std::printf("xr frame %zu passes: %s\n", t.frame, passes.c_str());
+    }
+    const RoomAnchor& a = result.finalAnchor;
+    const glm::dvec3 c = a.volumeCentreRoomM + 0.0;           // + 0.0: a zero prints without its sign
+    const glm::dvec4 q = glm::dvec4(a.volumeTurnRoom.w, a.volumeTurnRoom.x, a.volumeTurnRoom.y, a.volumeTurnRoom.z) + 0.0;
+    std::printf("xr volume left at %.4f, %.4f, %.4f m in the room, turned by [%.4f, %.4f, %.4f, %.4f]\n", c.x, c.y, c.z, q.x, q.y, q.z, q.w);
     for (const MeshState& m : step.state().meshes)
         std::printf("xr tool %d \"%s\" left at %.3f, %.3f, %.3f mm\n", m.id, m.name.c_str(), m.pose.position.x, m.pose.position.y, m.pose.position.z);
     const InteractionState& state = step.state();
