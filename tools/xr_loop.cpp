@@ -79,13 +79,14 @@ bool xrCaoEqualsLao(Renderer& renderer, const std::array<TrackedEye, 2>& eyes, c
     return same;
 }
 
-XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionStep& step, const LoadedScene& loaded, const XrLoopOptions& options) {
+XrLoopResult runXrLoop(gl::Context& context, gl::WindowContext* mirror, Renderer& renderer, SessionStep& step, const LoadedScene& loaded,
+                       const XrLoopOptions& options) {
     XrLoopResult result;
     const glm::vec4 background(loaded.scene.background);
-    window.makeCurrent();
-    glfwSwapInterval(0);   // the runtime's xrWaitFrame paces the loop; the mirror must not wait for the monitor
+    context.makeCurrent();
+    if (mirror) glfwSwapInterval(0);   // the runtime's xrWaitFrame paces the loop; the mirror must not wait for the monitor
     const bool printStates = options.printStates;
-    xr::Session session("curette", [printStates](XrSessionState state) {
+    xr::Session session("curette", mirror ? xr::GlBinding::Glx : xr::GlBinding::Egl, [printStates](XrSessionState state) {
         if (printStates) std::printf("xr session state %s\n", xr::sessionStateName(state));
     });
     result.runtime = session.runtimeName();
@@ -117,8 +118,8 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
     Presenter presenter;
     XrTime firstDisplayTime = 0, lastDisplayTime = 0;   // the frame before's, for the hands' time step
     while (session.pollEvents()) {
-        glfwPollEvents();
-        const bool quit = window.shouldClose() || quitRequested;
+        if (mirror) glfwPollEvents();
+        const bool quit = (mirror && mirror->shouldClose()) || quitRequested;
         if (quit || (options.frameLimit && result.rendered.size() >= static_cast<std::size_t>(*options.frameLimit))) session.requestExit();
         if (!session.running()) {   // idle, ready to begin or stopped: the runtime's next event
             if (quit) break;        // never begun (no READY yet): nothing to walk down
@@ -155,12 +156,13 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
             }
             result.rendered.push_back(timing);
             if (options.saveViews) saveViews(*options.saveViews, session.roomSpace(), session.recommendedSize(0), frame.views, hands.anchor());
-            // The mirror: the last eye's whole frame, fitted into the window.
-            const glm::ivec2 fb = window.framebufferSize(), out = renderer.outputSize();
-            const double scale = std::min(double(fb.x) / out.x, double(fb.y) / out.y);
-            const glm::ivec2 shown = glm::max(glm::ivec2(glm::dvec2(out) * scale), glm::ivec2(1));
-            presenter.present(renderer.outputTexture(), (fb - shown) / 2, shown, fb, background);
-            window.swapBuffers();
+            if (mirror) {   // the last eye's whole frame, fitted into the window
+                const glm::ivec2 fb = mirror->framebufferSize(), out = renderer.outputSize();
+                const double scale = std::min(double(fb.x) / out.x, double(fb.y) / out.y);
+                const glm::ivec2 shown = glm::max(glm::ivec2(glm::dvec2(out) * scale), glm::ivec2(1));
+                presenter.present(renderer.outputTexture(), (fb - shown) / 2, shown, fb, background);
+                mirror->swapBuffers();
+            }
         }
         if (recording) {
             const double now = 1e-9 * static_cast<double>(frame.displayTime - firstDisplayTime);

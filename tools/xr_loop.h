@@ -48,8 +48,10 @@ struct XrLoopResult {
 };
 
 // Runs the session until the runtime ends it (or frameLimit frames, or the window closes, or SIGINT/SIGTERM).
-// `window` holds the GLX context `renderer` renders in.
-XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionStep& step, const LoadedScene& loaded, const XrLoopOptions& options);
+// `context` is the one `renderer` renders in: a window's GLX context (then `mirror` is that window, which
+// shows the last eye) or, with `mirror` null, a headless EGL context bound through XR_MNDX_egl_enable.
+XrLoopResult runXrLoop(gl::Context& context, gl::WindowContext* mirror, Renderer& renderer, SessionStep& step, const LoadedScene& loaded,
+                       const XrLoopOptions& options);
 
 // Eye `eye` of a frame rendered from `views` with the step's frame (render/model/tracked_view.h).
 std::array<TrackedEye, 2> xrEyes(const FrameDescription& base, const std::array<TrackedView, 2>& views, const RoomAnchor& anchor,

@@ -557,6 +557,47 @@ TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
     EXPECT_EQ(finalDigest, erased);
 }
 
+// Headless through XR_MNDX_egl_enable: with the test runtime offering the extension (its EGL mode, as Monado
+// does), `view --xr --headless` binds a headless EGL context (no X server: no xvfb-run), the runtime sees an EGL
+// binding, and every submitted eye pair is `render --xr-views --stereo` of its views. Without the extension
+// offered, --headless refuses and names it. The core validation layer is left out here: Debian's build
+// (openxr-layer-corevalidation 1.0.20) is compiled without XR_USE_PLATFORM_EGL, knows no
+// XrGraphicsBindingEGLMNDX and fails xrCreateSession on it ("VUID-XrSessionCreateInfo-next-next").
+TEST(ViewXr, HeadlessThroughEglWhereTheRuntimeOffersIt) {
+    auto dir = scratch("egl");
+    auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "cao", "clip_meshes": [
+        {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 12}, "position_mm": [32, 44, 40]}]})"));
+    auto scriptPath = dir / "script.json";
+    std::ofstream(scriptPath) << poseScript().dump(2);
+    auto out = dir / "eyes";
+    const std::string runtime = "env -u DISPLAY XR_RUNTIME_JSON=" + std::string(CURETTE_XR_TEST_RUNTIME_JSON) + " CURETTE_XR_TEST_SCRIPT=" +
+                                scriptPath.string() + " CURETTE_XR_TEST_OUT=" + out.string();
+    ShellRun run = runShell(runtime + " CURETTE_XR_TEST_EGL=1 " + CURETTE_BINARY + " view --xr --headless --scene " + scene.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("xr session over: 3 frames rendered"), std::string::npos) << run.output;
+    std::string log = curette::testing::readTextFile(out / "runtime.log");
+    EXPECT_NE(log.find("session binding: EGL"), std::string::npos) << log;
+    EXPECT_EQ(log.find("error"), std::string::npos) << log;
+    for (int frame = 0; frame < 3; ++frame) {
+        char stem[32];
+        std::snprintf(stem, sizeof stem, "frame_%06d", frame);
+        auto rendered = dir / (std::string(stem) + "_render.png");
+        curette::testing::Invocation r = curette::testing::runCurette("render --scene " + scene.string() + " --xr-views " +
+                                                                      (out / (std::string(stem) + "_views.json")).string() +
+                                                                      " --stereo side-by-side --out " + rendered.string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        curette::testing::Png left = readPng(out / (std::string(stem) + "_left.png"));
+        curette::testing::Png right = readPng(out / (std::string(stem) + "_right.png"));
+        curette::testing::Png pair = readPng(rendered);
+        ASSERT_EQ(pair.width, left.width + right.width) << stem;
+        EXPECT_TRUE(sideBySide(left, right) == pair.rgba) << stem << ": the submitted eyes differ from render --xr-views";
+        EXPECT_NE(std::count(left.rgba.begin(), left.rgba.end(), left.rgba[0]), static_cast<std::ptrdiff_t>(left.rgba.size())) << stem;
+    }
+    ShellRun refused = runShell(runtime + " " + CURETTE_BINARY + " view --xr --headless --scene " + scene.string());
+    EXPECT_NE(refused.exitCode, 0) << refused.output;
+    EXPECT_NE(refused.output.find("XR_MNDX_egl_enable"), std::string::npos) << refused.output;
+}
+
 // Without XR_RUNTIME_JSON naming it, the test runtime is not what `view --xr` finds: it is registered nowhere
 // (no active_runtime.json points at it), so the loader reports whatever the machine has, or no runtime.
 TEST(ViewXr, TheTestRuntimeIsNotFoundByDefault) {

@@ -118,7 +118,7 @@ int benchXr(const CommandLine& cl) {
         options.sceneInSession = std::filesystem::absolute(scenePath).string();
         options.printStates = false;
         if (!testRuntime) options.frameLimit = frames;
-        XrLoopResult result = runXrLoop(*window, renderer, step, loaded, options);
+        XrLoopResult result = runXrLoop(*window, window.get(), renderer, step, loaded, options);
         runtimeName = result.runtime;
         systemName = result.system;
         if (result.rendered.size() < 2) throw SystemError("bench xr: the runtime let " + std::to_string(result.rendered.size()) + " frames render (2 or more needed)");

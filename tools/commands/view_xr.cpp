@@ -4,7 +4,8 @@
 // and asymmetric fields of view the runtime located, through one renderer, so the ambient occlusion volume
 // (V_AO, CAO steps I-V) is computed once a frame and both eyes read it; the eye images go into the session's
 // swapchains (xr/xr_session.h). A small window holds the GLX context the runtime binds to and mirrors the
-// right eye's frame (rendered last). Every frame is an exact one (no preview loop yet: on a software renderer
+// right eye's frame (rendered last); with --headless there is no window: a headless EGL context is bound
+// through XR_MNDX_egl_enable, where the runtime offers it (Monado does). Every frame is an exact one (no preview loop yet: on a software renderer
 // this is slow). The loop is tools/xr_loop.h's.
 //
 // The controllers are action sources like the hidapi devices (xr/controller_actions.h, session/xr_hands.h):
@@ -61,6 +62,7 @@ std::string sceneFromSession(const std::filesystem::path& scene, const std::file
 int viewXr(const CommandLine& cl) {
     for (const char* option : {"play", "screenshot", "window-shot", "idle-seconds", "frame-log", "quality"})
         if (cl.value(option)) throw InputError("<command line>", std::string("--") + option, "not with --xr");
+    if (cl.flag("headless") && cl.value("size")) throw InputError("<command line>", "--size", "not with --headless (there is no mirror window)");
     XrLoopOptions options;
     if (auto n = cl.value("frames")) options.frameLimit = CommandLine::parseInt("frames", *n, 1, 100000000);
     if (auto v = cl.value("save-views")) options.saveViews = *v;
@@ -70,14 +72,22 @@ int viewXr(const CommandLine& cl) {
         options.sceneInSession = sceneFromSession(scenePath, *r);
     }
     LoadedScene loaded = loadSceneWithVolume(scenePath);
-    glm::ivec2 windowSize = CommandLine::parseSize("size", cl.valueOr("size", "320x240"));
-    auto window = gl::createWindowContext("curette - " + scenePath + " (OpenXR)", windowSize);
-    Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
+    // Headless: an EGL context the runtime binds through XR_MNDX_egl_enable (no window, no mirror).
+    const bool headless = cl.flag("headless");
+    std::unique_ptr<gl::WindowContext> window;
+    std::unique_ptr<gl::Context> context;
+    if (headless) {
+        context = gl::createHeadlessContext();
+    } else {
+        window = gl::createWindowContext("curette - " + scenePath + " (OpenXR)", CommandLine::parseSize("size", cl.valueOr("size", "320x240")));
+    }
+    gl::Context& gl = headless ? *context : *window;
+    Renderer renderer(gl, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
     step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, loaded.removal.get());   // the scene's drilling
 
-    XrLoopResult result = runXrLoop(*window, renderer, step, loaded, options);
+    XrLoopResult result = runXrLoop(gl, window.get(), renderer, step, loaded, options);
     for (std::size_t eye = 0; eye < 2; ++eye) {
         std::vector<double> ms;
         for (const XrFrameTiming& t : result.rendered) ms.push_back(t.eyeMs[eye]);
