@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -73,6 +74,12 @@ struct HoldDrill {
 };
 struct UndoStroke {};
 struct RedoStroke {};
+
+// A mesh's drill and erase controls (every device's, one rule): either held drills this frame, drill over erase.
+inline std::optional<HoldDrill> heldDrill(int mesh, bool drill, bool erase) {
+    if (!drill && !erase) return std::nullopt;
+    return HoldDrill{mesh, !drill};
+}
 
 using Action = std::variant<MoveMesh, GripMesh, ScaleMesh, DragMesh, SelectMesh, SetShading, CycleShading, ResetPose, AddMesh, RemoveMesh,
                             ToggleRecording, Screenshot, MoveLight, NextLight, HoldDrill, UndoStroke, RedoStroke>;

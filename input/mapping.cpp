@@ -257,7 +257,7 @@ std::vector<Action> Mapper::update(const std::vector<DeviceSnapshot>& devices, d
             return axis && processedAxis(device->state, device->family, axis->axis, MotionBinding{{}, 0.0, {}, 0.0}) >= axis->threshold;
         };
         bool drill = held("drill", binding.drillAxis), erase = held("erase", binding.eraseAxis);
-        if (drill || erase) actions.push_back(HoldDrill{held_[b], !drill});
+        if (auto d = heldDrill(held_[b], drill, erase)) actions.push_back(*d);
     }
     return actions;
 }

@@ -132,12 +132,21 @@ nlohmann::ordered_json xrFrameJson(const SessionXrFrame& f) {
         hand["trigger"] = h.trigger;
         hand["thumbstick"] = {h.thumbstick.x, h.thumbstick.y};
         hand["shading"] = h.shadingPressed;
+        hand["volume"] = h.moveVolume;
+        hand["erase"] = h.erase;
         j["hands"].push_back(hand);
     }
+    if (f.anchor) j["anchor"] = {{"volume_centre_m", vec(f.anchor->volumeCentreRoomM)}, {"volume_turn", quaternion(f.anchor->volumeTurnRoom)}};
     return j;
 }
 
-SessionXrFrame readXrFrame(const JsonReader& r) {
+// Keys of version 7 (moving the volume, erasing and undo/redo on the controllers).
+void requireVersion7(const JsonReader& r, int version) {
+    if (version < kXrVolumeVersion)
+        r.fail("nothing: session version " + std::to_string(version) + " has no volume moved by hand (it came with version 7)");
+}
+
+SessionXrFrame readXrFrame(const JsonReader& r, int version) {
     SessionXrFrame f;
     f.displayTimeNs = static_cast<std::int64_t>(r.at("display_time_ns").unsignedInteger(std::uint64_t(1) << 62));
     if (auto head = r.find("head")) {
@@ -162,7 +171,22 @@ SessionXrFrame readXrFrame(const JsonReader& r) {
         hand.trigger = h.at("trigger").number(0, 1);
         hand.thumbstick = h.at("thumbstick").vec2(-1, 1);
         hand.shadingPressed = h.at("shading").boolean();
+        if (auto v = h.find("volume")) {
+            requireVersion7(*v, version);
+            hand.moveVolume = v->boolean();
+        }
+        if (auto v = h.find("erase")) {
+            requireVersion7(*v, version);
+            hand.erase = v->boolean();
+        }
         h.finish();
+    }
+    if (auto a = r.find("anchor")) {
+        requireVersion7(*a, version);
+        f.anchor.emplace();
+        f.anchor->volumeCentreRoomM = a->at("volume_centre_m").vec3(-1e4, 1e4);
+        f.anchor->volumeTurnRoom = readQuaternion(a->at("volume_turn"));
+        a->finish();
     }
     r.finish();
     return f;
@@ -607,7 +631,7 @@ SessionFrame readFrame(std::string_view line, std::size_t number, FrameContext& 
     if (auto xr = r.find("xr")) {
         requireVersion6(*xr, context.version);
         if (!context.xr) xr->fail("nothing (line 1 has no \"xr\": this is not a head-mounted display session)");
-        f.xr = readXrFrame(*xr);
+        f.xr = readXrFrame(*xr, context.version);
     }
     readFrameDevices(r, f, context);
     r.finish();

@@ -4,7 +4,8 @@
 // mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, the panels' setting
 // edits (version 3, scene/setting_edit.h), the mesh panel's hold requests (version 4), the drilling applied
 // (version 5; from version 6 derived from the keys and devices, and the header names the removal at the start),
-// the head, eyes and controllers of a head-mounted display (version 6: `view --xr`), and the raw HID reports
+// the head, eyes and controllers of a head-mounted display (version 6: `view --xr`; 7: the controllers' volume
+// and erase buttons and the volume's place in the room), and the raw HID reports
 // received since the previous frame (hex). Poses are written with 17 significant digits, so they read back to
 // the same doubles.
 
@@ -26,10 +27,13 @@
 
 namespace curette {
 
-inline constexpr int kSessionVersion = 6;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
+inline constexpr int kSessionVersion = 7;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
                                             // 5: drilling and its undo/redo; 6: drilling from keys and devices (actions, so
                                             // --from-reports re-derives it; 64-bit keys), the removal at the start,
                                             // head-mounted display sessions
+                                            // 7: the controllers' volume and erase buttons, the volume's place in the room
+// The first version whose controllers move the volume, erase and undo/redo (session/xr_hands.h).
+inline constexpr int kXrVolumeVersion = 7;
 // The first version whose drilling comes from the recorded keys and devices: replay --from-reports re-derives
 // it and compares it with the frame's "drill"/"drill_history"; before, those are the input.
 inline constexpr int kDrillFromInputVersion = 6;
@@ -85,6 +89,7 @@ struct SessionXrHand {
     double squeeze = 0.0, trigger = 0.0;
     glm::dvec2 thumbstick{0.0};
     bool shadingPressed = false;      // the shading button went down at this sync
+    bool moveVolume = false, erase = false;   // held (version 7)
     bool operator==(const SessionXrHand&) const = default;
 };
 
@@ -95,6 +100,9 @@ struct SessionXrFrame {
     std::optional<TrackedView> head;                  // the view space in the room (fov unused)
     std::optional<std::array<TrackedView, 2>> views;  // left, right: pose and asymmetric field of view
     std::array<SessionXrHand, 2> hands{};             // left, right
+    // The volume's place in the room after the frame's hands (version 7; absent: on its table). Its world
+    // centre is the volume's own and is not recorded.
+    std::optional<RoomAnchor> anchor;
 };
 
 struct SessionAddedMesh {

@@ -32,8 +32,24 @@ TrackedViewsFile readTrackedViews(const std::filesystem::path& path) {
         v.find("image_rect");
         v.finish();
     }
+    if (auto volume = root.find("volume")) {
+        out.volumeCentreRoomM = volume->at("centre_m").vec3(-1e4, 1e4);
+        glm::dvec4 q = volume->at("turn").vec4(-1.0001, 1.0001);
+        if (glm::length(q) < 0.99 || glm::length(q) > 1.01) volume->at("turn").fail("a unit quaternion [x, y, z, w]");
+        out.volumeTurnRoom = glm::dquat(q.w, q.x, q.y, q.z);   // as written: the recorded bits, not renormalised
+        volume->finish();
+    }
     root.finish();
     return out;
+}
+
+RoomAnchor viewsAnchor(const TrackedViewsFile& file, const VolumeGeometry& geometry) {
+    RoomAnchor anchor = tableAnchor(geometry, file.space);
+    if (file.volumeCentreRoomM) {
+        anchor.volumeCentreRoomM = *file.volumeCentreRoomM;
+        anchor.volumeTurnRoom = file.volumeTurnRoom;
+    }
+    return anchor;
 }
 
 }  // namespace curette

@@ -29,7 +29,8 @@ volatile std::sig_atomic_t quitRequested = 0;
 void requestQuit(int) { quitRequested = 1; }
 
 // The views of a frame as `render --xr-views` reads them (tools/tracked_views_file.h).
-void saveViews(const std::filesystem::path& path, RoomSpace space, glm::ivec2 recommendedSize, const std::array<TrackedView, 2>& views) {
+void saveViews(const std::filesystem::path& path, RoomSpace space, glm::ivec2 recommendedSize, const std::array<TrackedView, 2>& views,
+               const RoomAnchor& anchor) {
     nlohmann::json list = nlohmann::json::array();
     for (const TrackedView& v : views)
         list.push_back({{"position_m", {v.positionM.x, v.positionM.y, v.positionM.z}},
@@ -38,6 +39,8 @@ void saveViews(const std::filesystem::path& path, RoomSpace space, glm::ivec2 re
     nlohmann::json doc = {{"space", space == RoomSpace::Stage ? "stage" : "local"},
                           {"recommended_size", {recommendedSize.x, recommendedSize.y}},
                           {"views", list}};
+    const glm::dquat& q = anchor.volumeTurnRoom;
+    doc["volume"] = {{"centre_m", {anchor.volumeCentreRoomM.x, anchor.volumeCentreRoomM.y, anchor.volumeCentreRoomM.z}}, {"turn", {q.x, q.y, q.z, q.w}}};
     writeFileAtomically(path, doc.dump(2) + "\n");
 }
 
@@ -49,6 +52,8 @@ SessionXrHand recordedHand(const xr::HandState& s) {
     h.trigger = s.trigger;
     h.thumbstick = s.thumbstick;
     h.shadingPressed = s.shadingPressed;
+    h.moveVolume = s.moveVolume;
+    h.erase = s.erase;
     return h;
 }
 
@@ -74,13 +79,14 @@ bool xrCaoEqualsLao(Renderer& renderer, const std::array<TrackedEye, 2>& eyes, c
     return same;
 }
 
-XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionStep& step, const LoadedScene& loaded, const XrLoopOptions& options) {
+XrLoopResult runXrLoop(gl::Context& context, gl::WindowContext* mirror, Renderer& renderer, SessionStep& step, const LoadedScene& loaded,
+                       const XrLoopOptions& options) {
     XrLoopResult result;
     const glm::vec4 background(loaded.scene.background);
-    window.makeCurrent();
-    glfwSwapInterval(0);   // the runtime's xrWaitFrame paces the loop; the mirror must not wait for the monitor
+    context.makeCurrent();
+    if (mirror) glfwSwapInterval(0);   // the runtime's xrWaitFrame paces the loop; the mirror must not wait for the monitor
     const bool printStates = options.printStates;
-    xr::Session session("curette", [printStates](XrSessionState state) {
+    xr::Session session("curette", mirror ? xr::GlBinding::Glx : xr::GlBinding::Egl, [printStates](XrSessionState state) {
         if (printStates) std::printf("xr session state %s\n", xr::sessionStateName(state));
     });
     result.runtime = session.runtimeName();
@@ -88,14 +94,14 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
     result.space = session.roomSpace();
     result.recommendedSize = {session.recommendedSize(0), session.recommendedSize(1)};
     result.anchor = tableAnchor(renderer.geometry(), session.roomSpace());
-    const RoomAnchor& anchor = result.anchor;
+    const RoomAnchor& anchor = result.anchor;   // on its table, until a hand moves it (hands.anchor())
     std::printf("xr runtime: %s; system: %s; eyes %dx%d and %dx%d; %s space; volume centre at %.3f, %.3f, %.3f m\n", session.runtimeName().c_str(),
                 session.systemName().c_str(), session.recommendedSize(0).x, session.recommendedSize(0).y, session.recommendedSize(1).x,
                 session.recommendedSize(1).y, session.roomSpace() == RoomSpace::Stage ? "stage" : "local", anchor.volumeCentreRoomM.x,
                 anchor.volumeCentreRoomM.y, anchor.volumeCentreRoomM.z);
     std::fflush(stdout);
     xr::ControllerActions controllers(session.instance(), session.session());
-    XrHands hands;
+    XrHands hands(anchor);
 
     // A recording: no HID devices take part in an XR session, so its input is the empty device set under the
     // default mapping (a valid header that `replay --from-reports` reads like any other) and the hands.
@@ -112,8 +118,8 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
     Presenter presenter;
     XrTime firstDisplayTime = 0, lastDisplayTime = 0;   // the frame before's, for the hands' time step
     while (session.pollEvents()) {
-        glfwPollEvents();
-        const bool quit = window.shouldClose() || quitRequested;
+        if (mirror) glfwPollEvents();
+        const bool quit = (mirror && mirror->shouldClose()) || quitRequested;
         if (quit || (options.frameLimit && result.rendered.size() >= static_cast<std::size_t>(*options.frameLimit))) session.requestExit();
         if (!session.running()) {   // idle, ready to begin or stopped: the runtime's next event
             if (quit) break;        // never begun (no READY yet): nothing to walk down
@@ -130,12 +136,13 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
         record.displayTimeNs = frame.displayTime;
         record.head = frame.head;
         for (std::size_t h = 0; h < 2; ++h) record.hands[h] = recordedHand(handStates[h]);
-        step.apply(hands.step(record.hands, anchor, dtSeconds), session.recommendedSize(0).y);
+        step.apply(hands.step(record.hands, dtSeconds), session.recommendedSize(0).y);
+        record.anchor = hands.anchor();
         step.syncTo(renderer, loaded.tracts);
         const std::size_t index = result.framesStepped++;
         if (frame.shouldRender && frame.viewsValid) {
             record.views = frame.views;
-            std::array<TrackedEye, 2> eyes = xrEyes(step.frame(), frame.views, anchor, result.recommendedSize);
+            std::array<TrackedEye, 2> eyes = xrEyes(step.frame(), frame.views, hands.anchor(), result.recommendedSize);
             XrFrameTiming timing;
             timing.frame = index;
             renderer.collectTimings();   // the times of this frame alone
@@ -148,13 +155,14 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
                 if (eye == 0) timing.firstEye = renderer.collectTimings();
             }
             result.rendered.push_back(timing);
-            if (options.saveViews) saveViews(*options.saveViews, session.roomSpace(), session.recommendedSize(0), frame.views);
-            // The mirror: the last eye's whole frame, fitted into the window.
-            const glm::ivec2 fb = window.framebufferSize(), out = renderer.outputSize();
-            const double scale = std::min(double(fb.x) / out.x, double(fb.y) / out.y);
-            const glm::ivec2 shown = glm::max(glm::ivec2(glm::dvec2(out) * scale), glm::ivec2(1));
-            presenter.present(renderer.outputTexture(), (fb - shown) / 2, shown, fb, background);
-            window.swapBuffers();
+            if (options.saveViews) saveViews(*options.saveViews, session.roomSpace(), session.recommendedSize(0), frame.views, hands.anchor());
+            if (mirror) {   // the last eye's whole frame, fitted into the window
+                const glm::ivec2 fb = mirror->framebufferSize(), out = renderer.outputSize();
+                const double scale = std::min(double(fb.x) / out.x, double(fb.y) / out.y);
+                const glm::ivec2 shown = glm::max(glm::ivec2(glm::dvec2(out) * scale), glm::ivec2(1));
+                presenter.present(renderer.outputTexture(), (fb - shown) / 2, shown, fb, background);
+                mirror->swapBuffers();
+            }
         }
         if (recording) {
             const double now = 1e-9 * static_cast<double>(frame.displayTime - firstDisplayTime);
@@ -163,6 +171,7 @@ XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionSte
         }
         session.endFrame();
     }
+    result.finalAnchor = hands.anchor();
     if (recording) {
         recording->finish();
         std::printf("xr session recorded: %s, %zu frames\n", recording->path().c_str(), recording->frames());

@@ -3,8 +3,8 @@
 // each frame the controllers' states (xr/controller_actions.h) become actions through session/xr_hands.h and
 // the session step, then both eyes are rendered from the views the runtime located, through one renderer (one
 // V_AO a frame, both eyes read it), and submitted; a small window mirrors the last eye. With a recording path
-// every stepped frame is recorded (session version 6: head, eyes, hands, poses), so `replay` re-renders it
-// headless and re-derives its poses from the hands.
+// every stepped frame is recorded (session version 7: head, eyes, hands, the volume's place, poses), so `replay`
+// re-renders it headless and re-derives its poses and the volume's place from the hands.
 
 #include "gl/context.h"
 #include "render/model/frame_plan.h"
@@ -41,14 +41,17 @@ struct XrLoopResult {
     std::string runtime, system;
     RoomSpace space = RoomSpace::Stage;
     std::array<glm::ivec2, 2> recommendedSize{};
-    RoomAnchor anchor;
+    RoomAnchor anchor;        // the volume on its table, at the start
+    RoomAnchor finalAnchor;   // where the hands left it
     std::size_t framesStepped = 0;
     std::vector<XrFrameTiming> rendered;
 };
 
 // Runs the session until the runtime ends it (or frameLimit frames, or the window closes, or SIGINT/SIGTERM).
-// `window` holds the GLX context `renderer` renders in.
-XrLoopResult runXrLoop(gl::WindowContext& window, Renderer& renderer, SessionStep& step, const LoadedScene& loaded, const XrLoopOptions& options);
+// `context` is the one `renderer` renders in: a window's GLX context (then `mirror` is that window, which
+// shows the last eye) or, with `mirror` null, a headless EGL context bound through XR_MNDX_egl_enable.
+XrLoopResult runXrLoop(gl::Context& context, gl::WindowContext* mirror, Renderer& renderer, SessionStep& step, const LoadedScene& loaded,
+                       const XrLoopOptions& options);
 
 // Eye `eye` of a frame rendered from `views` with the step's frame (render/model/tracked_view.h).
 std::array<TrackedEye, 2> xrEyes(const FrameDescription& base, const std::array<TrackedView, 2>& views, const RoomAnchor& anchor,

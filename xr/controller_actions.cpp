@@ -31,24 +31,29 @@ XrAction createAction(XrInstance instance, XrActionSet set, const char* name, co
     return action;
 }
 
-// The inputs of a profile for the actions besides the grip pose: squeeze (or the nearest: select on the simple
-// controller), the shading button per hand, the thumbstick and the trigger (nullptr: the profile has none; the
-// simple controller's one button, select, is its squeeze).
+// The inputs of a profile for the actions besides the grip pose (nullptr: the profile has none to spare):
+// squeeze (the simple controller's one button, select, is its squeeze), the shading button per hand, the
+// thumbstick (its y scales a held tool, a flick of its x undoes or redoes), the trigger, the volume button
+// per hand (held: the hand carries the volume) and the erase button (held: the tool erases). The simple
+// controller has two inputs, both taken; the Vive's trackpad click carries the volume, leaving it no erase.
 struct ProfileInputs {
     const char* profile;
     const char* squeeze;
     std::array<const char*, 2> shading;
     const char* thumbstick;
     const char* trigger;
+    std::array<const char*, 2> moveVolume;
+    const char* erase;
 };
 constexpr ProfileInputs kProfiles[] = {
-    {"/interaction_profiles/khr/simple_controller", "/input/select/click", {"/input/menu/click", "/input/menu/click"}, nullptr, nullptr},
+    {"/interaction_profiles/khr/simple_controller", "/input/select/click", {"/input/menu/click", "/input/menu/click"}, nullptr, nullptr,
+     {nullptr, nullptr}, nullptr},
     {"/interaction_profiles/valve/index_controller", "/input/squeeze/value", {"/input/a/click", "/input/a/click"}, "/input/thumbstick",
-     "/input/trigger/value"},
+     "/input/trigger/value", {"/input/b/click", "/input/b/click"}, "/input/thumbstick/click"},
     {"/interaction_profiles/oculus/touch_controller", "/input/squeeze/value", {"/input/x/click", "/input/a/click"}, "/input/thumbstick",
-     "/input/trigger/value"},
+     "/input/trigger/value", {"/input/y/click", "/input/b/click"}, "/input/thumbstick/click"},
     {"/interaction_profiles/htc/vive_controller", "/input/squeeze/click", {"/input/menu/click", "/input/menu/click"}, "/input/trackpad",
-     "/input/trigger/value"},
+     "/input/trigger/value", {"/input/trackpad/click", "/input/trackpad/click"}, nullptr},
 };
 
 }  // namespace
@@ -64,6 +69,8 @@ ControllerActions::ControllerActions(XrInstance instance, XrSession session) : i
     shading_ = createAction(instance, set_, "next_shading", "Next shading mode", XR_ACTION_TYPE_BOOLEAN_INPUT, hands_);
     thumbstick_ = createAction(instance, set_, "scale", "Scale the held tool", XR_ACTION_TYPE_VECTOR2F_INPUT, hands_);
     trigger_ = createAction(instance, set_, "drill", "Drill with the held tool", XR_ACTION_TYPE_FLOAT_INPUT, hands_);
+    moveVolume_ = createAction(instance, set_, "move_volume", "Move the volume", XR_ACTION_TYPE_BOOLEAN_INPUT, hands_);
+    erase_ = createAction(instance, set_, "erase", "Erase with the held tool", XR_ACTION_TYPE_BOOLEAN_INPUT, hands_);
 
     const char* sides[] = {"/user/hand/left", "/user/hand/right"};
     for (const ProfileInputs& p : kProfiles) {
@@ -75,6 +82,8 @@ ControllerActions::ControllerActions(XrInstance instance, XrSession session) : i
             bindings.push_back({shading_, path(instance, side + p.shading[static_cast<std::size_t>(h)])});
             if (p.thumbstick) bindings.push_back({thumbstick_, path(instance, side + p.thumbstick)});
             if (p.trigger) bindings.push_back({trigger_, path(instance, side + p.trigger)});
+            if (const char* volume = p.moveVolume[static_cast<std::size_t>(h)]) bindings.push_back({moveVolume_, path(instance, side + volume)});
+            if (p.erase) bindings.push_back({erase_, path(instance, side + p.erase)});
         }
         auto suggested = typed<XrInteractionProfileSuggestedBinding>(XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING);
         suggested.interactionProfile = path(instance, p.profile);
@@ -138,6 +147,12 @@ std::array<HandState, 2> ControllerActions::sync(XrTime time, XrSpace space) {
         auto stick = typed<XrActionStateVector2f>(XR_TYPE_ACTION_STATE_VECTOR2F);
         check(instance_, xrGetActionStateVector2f(session_, &get, &stick), "xrGetActionStateVector2f");
         if (stick.isActive) hand.thumbstick = {stick.currentState.x, stick.currentState.y};
+        get.action = moveVolume_;
+        check(instance_, xrGetActionStateBoolean(session_, &get, &button), "xrGetActionStateBoolean");
+        hand.moveVolume = button.isActive && button.currentState;
+        get.action = erase_;
+        check(instance_, xrGetActionStateBoolean(session_, &get, &button), "xrGetActionStateBoolean");
+        hand.erase = button.isActive && button.currentState;
     }
     return hands;
 }

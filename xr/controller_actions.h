@@ -1,6 +1,6 @@
 #pragma once
 // The controllers of `view --xr` as OpenXR actions (OpenXR 1.0, chapter 11): one action set with each hand's
-// grip pose, squeeze, trigger, thumbstick and shading button, suggested bindings for khr/simple_controller, valve/index_controller,
+// grip pose, squeeze, trigger, thumbstick, shading, volume and erase buttons, suggested bindings for khr/simple_controller, valve/index_controller,
 // oculus/touch_controller and htc/vive_controller (the runtime picks the profile of the controllers in hand),
 // and a pose space per hand. Each frame's sync gives both hands' states in the room space; input/tracked_hand.h
 // turns them into actions.
@@ -21,6 +21,8 @@ struct HandState {
     double trigger = 0.0;            // 0..1 (none on the simple controller)
     bool shadingPressed = false;     // the shading button went down since the last sync
     glm::dvec2 thumbstick{0.0};      // -1..1 (a trackpad on the Vive; none on the simple controller)
+    bool moveVolume = false;         // the volume button is held (none on the simple controller)
+    bool erase = false;              // the erase button is held (none on the simple controller or the Vive)
 };
 
 class ControllerActions {
@@ -39,7 +41,7 @@ private:
     XrSession session_;
     XrActionSet set_ = XR_NULL_HANDLE;
     XrAction grip_ = XR_NULL_HANDLE, squeeze_ = XR_NULL_HANDLE, shading_ = XR_NULL_HANDLE, thumbstick_ = XR_NULL_HANDLE,
-             trigger_ = XR_NULL_HANDLE;
+             trigger_ = XR_NULL_HANDLE, moveVolume_ = XR_NULL_HANDLE, erase_ = XR_NULL_HANDLE;
     std::array<XrPath, 2> hands_{};
     std::array<XrSpace, 2> gripSpaces_{XR_NULL_HANDLE, XR_NULL_HANDLE};
 };

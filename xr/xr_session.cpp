@@ -5,10 +5,12 @@
 #include "xr/xr_result.h"
 #include "xr/xr_struct.h"
 
+#include <epoxy/egl.h>
 #include <epoxy/gl.h>
 #include <epoxy/glx.h>
 
 #define XR_USE_PLATFORM_XLIB
+#define XR_USE_PLATFORM_EGL
 #define XR_USE_GRAPHICS_API_OPENGL
 #include <openxr/openxr_platform.h>
 
@@ -57,8 +59,28 @@ XrGraphicsBindingOpenGLXlibKHR currentGlxBinding() {
     return binding;
 }
 
+// The EGL binding of the context current on this thread (XR_MNDX_egl_enable, OpenXR 1.0 registry:
+// XrGraphicsBindingEGLMNDX { getProcAddress, display, config, context }; Debian's 1.0.20 headers define it
+// under XR_USE_PLATFORM_EGL). A context made without a config (EGL_KHR_no_config_context) binds none.
+XrGraphicsBindingEGLMNDX currentEglBinding() {
+    auto binding = typed<XrGraphicsBindingEGLMNDX>(XR_TYPE_GRAPHICS_BINDING_EGL_MNDX);
+    binding.getProcAddress = eglGetProcAddress;
+    binding.display = eglGetCurrentDisplay();
+    binding.context = eglGetCurrentContext();
+    if (binding.display == EGL_NO_DISPLAY || binding.context == EGL_NO_CONTEXT)
+        throw SystemError("OpenXR's EGL binding needs an EGL context: the current GL context is not one");
+    EGLint configId = 0, count = 0;
+    eglQueryContext(binding.display, binding.context, EGL_CONFIG_ID, &configId);
+    const EGLint attributes[] = {EGL_CONFIG_ID, configId, EGL_NONE};
+    EGLConfig config = nullptr;
+    if (configId > 0 && eglChooseConfig(binding.display, attributes, &config, 1, &count) && count == 1) binding.config = config;
+    return binding;
+}
+
+}  // namespace
+
 // Whether the runtime offers `name`; throws when the loader finds no runtime at all.
-bool hasExtension(const char* name) {
+bool runtimeOffers(const char* name) {
     std::uint32_t count = 0;
     XrResult r = xrEnumerateInstanceExtensionProperties(nullptr, 0, &count, nullptr);
     if (XR_FAILED(r))
@@ -69,8 +91,6 @@ bool hasExtension(const char* name) {
     return std::any_of(properties.begin(), properties.end(), [&](const XrExtensionProperties& p) { return std::strcmp(p.extensionName, name) == 0; });
 }
 
-}  // namespace
-
 TrackedView roomPose(const XrPosef& p) {
     TrackedView t;
     t.positionM = {p.position.x, p.position.y, p.position.z};
@@ -78,16 +98,20 @@ TrackedView roomPose(const XrPosef& p) {
     return t;
 }
 
-Session::Session(const std::string& applicationName, std::function<void(XrSessionState)> onState) : onState_(std::move(onState)) {
-    if (!hasExtension(XR_KHR_OPENGL_ENABLE_EXTENSION_NAME))
+Session::Session(const std::string& applicationName, GlBinding glBinding, std::function<void(XrSessionState)> onState)
+    : onState_(std::move(onState)) {
+    if (!runtimeOffers(XR_KHR_OPENGL_ENABLE_EXTENSION_NAME))
         throw SystemError("the OpenXR runtime offers no OpenGL binding (XR_KHR_opengl_enable), which curette renders with");
-    const char* extensions[] = {XR_KHR_OPENGL_ENABLE_EXTENSION_NAME};
+    if (glBinding == GlBinding::Egl && !runtimeOffers(XR_MNDX_EGL_ENABLE_EXTENSION_NAME))
+        throw SystemError("the OpenXR runtime offers no EGL binding (XR_MNDX_egl_enable): a headless session needs it; run with a window instead");
+    // The EGL binding's swapchain images are still XR_KHR_opengl_enable's GL textures.
+    const char* extensions[] = {XR_KHR_OPENGL_ENABLE_EXTENSION_NAME, XR_MNDX_EGL_ENABLE_EXTENSION_NAME};
     auto create = typed<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
     std::snprintf(create.applicationInfo.applicationName, sizeof create.applicationInfo.applicationName, "%s", applicationName.c_str());
     create.applicationInfo.applicationVersion = 1;
     std::snprintf(create.applicationInfo.engineName, sizeof create.applicationInfo.engineName, "curette");
     create.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
-    create.enabledExtensionCount = 1;
+    create.enabledExtensionCount = glBinding == GlBinding::Egl ? 2 : 1;
     create.enabledExtensionNames = extensions;
     check(XR_NULL_HANDLE, xrCreateInstance(&create, &instance_), "xrCreateInstance");
 
@@ -124,9 +148,16 @@ Session::Session(const std::string& applicationName, std::function<void(XrSessio
             throw SystemError("the OpenXR runtime needs OpenGL " + std::to_string(XR_VERSION_MAJOR(requirements.minApiVersionSupported)) + "." +
                               std::to_string(XR_VERSION_MINOR(requirements.minApiVersionSupported)) + "; curette's context is 4.5");
 
-        XrGraphicsBindingOpenGLXlibKHR binding = currentGlxBinding();
+        XrGraphicsBindingOpenGLXlibKHR glx{};
+        XrGraphicsBindingEGLMNDX egl{};
         auto sessionInfo = typed<XrSessionCreateInfo>(XR_TYPE_SESSION_CREATE_INFO);
-        sessionInfo.next = &binding;
+        if (glBinding == GlBinding::Egl) {
+            egl = currentEglBinding();
+            sessionInfo.next = &egl;
+        } else {
+            glx = currentGlxBinding();
+            sessionInfo.next = &glx;
+        }
         sessionInfo.systemId = system_;
         check(instance_, xrCreateSession(instance_, &sessionInfo, &session_), "xrCreateSession");
 

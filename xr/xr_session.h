@@ -1,8 +1,9 @@
 #pragma once
 // The OpenXR session of `curette view --xr` (OpenXR 1.0 through the Khronos loader): the instance with
 // XR_KHR_opengl_enable, the head-mounted system, a session bound to the GL context current on this thread
-// (a GLX one: the GLFW window's), the room space (stage, else local), a swapchain per eye at the runtime's
-// recommended size, and the frame loop. The session state machine (spec 9.3) is followed in pollEvents:
+// (a GLX one: the GLFW window's; or, headless, an EGL one through XR_MNDX_egl_enable where the runtime offers
+// it), the room space (stage, else local), a swapchain per eye at the runtime's recommended size, and the
+// frame loop. The session state machine (spec 9.3) is followed in pollEvents:
 // READY begins the session, STOPPING ends it, EXITING and LOSS_PENDING end the loop.
 
 #include "render/model/tracked_view.h"
@@ -24,11 +25,18 @@ const char* sessionStateName(XrSessionState state);
 // A runtime's pose (floats) in curette's doubles, its orientation normalised; fov left zero.
 TrackedView roomPose(const XrPosef& pose);
 
+// How the session reaches the current GL context: GLX (XR_KHR_opengl_enable's Xlib binding: a window) or EGL
+// (XR_MNDX_egl_enable's binding: a headless context; only where the runtime offers the extension).
+enum class GlBinding { Glx, Egl };
+
+// Whether the active runtime offers `extension`; throws SystemError when the loader finds no runtime.
+bool runtimeOffers(const char* extension);
+
 class Session {
 public:
-    // Throws SystemError naming the call that failed (no runtime, no HMD, no GLX context current, ...).
-    // `onState` hears every state change, in order.
-    Session(const std::string& applicationName, std::function<void(XrSessionState)> onState);
+    // Throws SystemError naming the call that failed (no runtime, no HMD, no GLX or EGL context current, no
+    // XR_MNDX_egl_enable for an EGL binding, ...). `onState` hears every state change, in order.
+    Session(const std::string& applicationName, GlBinding binding, std::function<void(XrSessionState)> onState);
     ~Session();
     Session(const Session&) = delete;
     Session& operator=(const Session&) = delete;

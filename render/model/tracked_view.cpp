@@ -17,8 +17,29 @@ glm::dquat RoomAnchor::roomOrientationToWorld(glm::dquat orientation) {
     return glm::normalize(glm::quat_cast(m * glm::mat3_cast(orientation) * glm::transpose(m)));
 }
 
+glm::dvec3 RoomAnchor::directionToWorld(glm::dvec3 d) const {
+    // Undo the volume's turn in the room, then the fixed axes. Unturned: the axes alone, so an unmoved
+    // volume's eyes and grips keep every bit (a rotation by the identity may flip a zero's sign).
+    if (volumeTurnRoom == glm::dquat(1.0, 0.0, 0.0, 0.0)) return roomDirectionToWorld(d);
+    return roomDirectionToWorld(glm::conjugate(volumeTurnRoom) * d);
+}
+
+glm::dquat RoomAnchor::orientationToWorld(glm::dquat orientation) const {
+    if (volumeTurnRoom == glm::dquat(1.0, 0.0, 0.0, 0.0)) return roomOrientationToWorld(orientation);
+    return roomOrientationToWorld(glm::conjugate(volumeTurnRoom) * orientation);
+}
+
 glm::dvec3 RoomAnchor::roomToWorldMm(glm::dvec3 roomM) const {
-    return volumeCentreWorldMm + 1000.0 * roomDirectionToWorld(roomM - volumeCentreRoomM);
+    return volumeCentreWorldMm + 1000.0 * directionToWorld(roomM - volumeCentreRoomM);
+}
+
+RoomAnchor RoomAnchor::carried(const TrackedView& before, const TrackedView& after) const {
+    // The grip's motion in the room, applied to the volume: turn about where the grip was, then move with it.
+    glm::dquat turn = after.orientation * glm::conjugate(before.orientation);
+    RoomAnchor a = *this;
+    a.volumeCentreRoomM = turn * (volumeCentreRoomM - before.positionM) + after.positionM;
+    a.volumeTurnRoom = glm::normalize(turn * volumeTurnRoom);
+    return a;
 }
 
 RoomAnchor tableAnchor(const VolumeGeometry& geometry, RoomSpace space) {
@@ -51,8 +72,8 @@ TrackedEye trackedEye(const FrameDescription& base, const TrackedView& view, con
     eye.renderedFov = {std::atan(left * pitch), std::atan(right * pitch), std::atan(up * pitch), std::atan(down * pitch)};
 
     // The eye's axes in the room (OpenXR views look along -z, up +y), then in RAS.
-    const glm::dvec3 forward = glm::normalize(RoomAnchor::roomDirectionToWorld(view.orientation * glm::dvec3(0, 0, -1)));
-    const glm::dvec3 upAxis = glm::normalize(RoomAnchor::roomDirectionToWorld(view.orientation * glm::dvec3(0, 1, 0)));
+    const glm::dvec3 forward = glm::normalize(anchor.directionToWorld(view.orientation * glm::dvec3(0, 0, -1)));
+    const glm::dvec3 upAxis = glm::normalize(anchor.directionToWorld(view.orientation * glm::dvec3(0, 1, 0)));
     const glm::dvec3 position = anchor.roomToWorldMm(view.positionM);
 
     eye.frame = base;

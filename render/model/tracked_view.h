@@ -39,13 +39,23 @@ struct TrackedView {
 enum class RoomSpace { Stage, Local };
 
 // Where the volume stands in the room: a table top kTableHeightM above the floor carries the volume box's
-// lowest corner, its centre kTableDistanceM in front of the space's origin.
+// lowest corner, its centre kTableDistanceM in front of the space's origin (tableAnchor), the volume's axes as
+// the header says. A hand moving the volume (session/xr_hands.h) carries it, turned by volumeTurnRoom, about
+// the room: the scene moves rigidly in the room, nothing in world (RAS) space moves.
 struct RoomAnchor {
     glm::dvec3 volumeCentreRoomM{0.0};
     glm::dvec3 volumeCentreWorldMm{0.0};
-    glm::dvec3 roomToWorldMm(glm::dvec3 roomM) const;   // a point
+    glm::dquat volumeTurnRoom{1.0, 0.0, 0.0, 0.0};   // the volume's turn in the room since the table (identity there)
+    glm::dvec3 roomToWorldMm(glm::dvec3 roomM) const;               // a point
+    glm::dvec3 directionToWorld(glm::dvec3 roomDirection) const;    // a direction
+    glm::dquat orientationToWorld(glm::dquat roomOrientation) const;   // a tracked object's (a grip's)
+    // The anchor after the volume followed a grip rigidly from `before` to `after` (room poses): the grip keeps
+    // its place on the anatomy.
+    RoomAnchor carried(const TrackedView& before, const TrackedView& after) const;
+    // The fixed axes: room (x right, y up, z towards the user) to RAS, the volume unturned.
     static glm::dvec3 roomDirectionToWorld(glm::dvec3 direction);
-    static glm::dquat roomOrientationToWorld(glm::dquat orientation);   // a tracked object's (a grip's)
+    static glm::dquat roomOrientationToWorld(glm::dquat orientation);
+    bool operator==(const RoomAnchor&) const = default;
 };
 
 inline constexpr double kTableHeightM = 0.9;      // an operating or standing work table

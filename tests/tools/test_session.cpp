@@ -283,6 +283,7 @@ TEST(Session, HoldRequestsRoundTripAndNameABadBinding) {
 
 // A head-mounted display session (version 6): the header's room and eye sizes and each frame's head, eyes
 // (pose and asymmetric field of view) and hands read back to the same doubles; an untracked hand has no pose.
+// Version 7's volume and erase buttons and the volume's place too, and a version 6 file has none of them.
 // A version 5 file still loads; "xr" in a version 5 file, a frame's "xr" without the header's, and bad views
 // or hands are InputErrors naming the line, the field and the expected form.
 TEST(Session, HeadMountedDisplayRecordsRoundTripAndNameABadField) {
@@ -304,8 +305,11 @@ TEST(Session, HeadMountedDisplayRecordsRoundTripAndNameABadField) {
     views[0].fov = {-0.30000001192092896, 0.2199999988079071, 0.28, -0.3};
     views[1].fov = {-0.22, 0.30000001192092896, 0.28, -1.0 / 3.0};
     f.xr->views = views;
-    f.xr->hands[0] = {true, pose(), 0.75, 1.0 / 3.0, {0.1, -0.9}, true};
-    f.xr->hands[1] = {false, {}, 0.0, 0.25, {0.0, 0.0}, false};
+    f.xr->hands[0] = {true, pose(), 0.75, 1.0 / 3.0, {0.1, -0.9}, true, true, false};
+    f.xr->hands[1] = {false, {}, 0.0, 0.25, {0.0, 0.0}, false, false, true};
+    f.xr->anchor = RoomAnchor{};
+    f.xr->anchor->volumeCentreRoomM = {0.1 / 3.0, 0.93, -0.5};
+    f.xr->anchor->volumeTurnRoom = glm::normalize(glm::dquat(u(random), u(random), u(random), u(random)));
     SessionFrame unrendered = exampleFrame(1, random);
     unrendered.xr = SessionXrFrame{};
     unrendered.xr->displayTimeNs = 1234567891011 + 11111111;
@@ -322,6 +326,9 @@ TEST(Session, HeadMountedDisplayRecordsRoundTripAndNameABadField) {
     EXPECT_EQ(x.head, f.xr->head);
     EXPECT_EQ(x.views, f.xr->views);
     EXPECT_EQ(x.hands, f.xr->hands);
+    ASSERT_TRUE(x.anchor);   // version 7: the volume's place in the room, its world centre not recorded
+    EXPECT_EQ(x.anchor->volumeCentreRoomM, f.xr->anchor->volumeCentreRoomM);
+    EXPECT_EQ(x.anchor->volumeTurnRoom, f.xr->anchor->volumeTurnRoom);
     EXPECT_EQ(frameLine.find("\"position_m\"", frameLine.find("\"tracked\":false")), std::string::npos) << "an untracked hand has no pose";
     ASSERT_TRUE(s.frames[1].xr);
     EXPECT_FALSE(s.frames[1].xr->head);
@@ -333,7 +340,14 @@ TEST(Session, HeadMountedDisplayRecordsRoundTripAndNameABadField) {
     };
     const std::string v5 = replaced(headerLine, "\"version\":" + std::to_string(kSessionVersion), "\"version\":5");
     const std::string plainHeader = sessionHeaderLine(exampleHeader());
+    const std::string v6 = replaced(headerLine, "\"version\":" + std::to_string(kSessionVersion), "\"version\":6");
+    const std::string frameV6 = frameLine.substr(0, frameLine.find(",\"anchor\"")) + "}" + frameLine.substr(frameLine.find("},\"reports\"") + 1);
     const Case cases[] = {
+        {"a moved volume in a version 6 session", v6, replaced(replaced(frameV6, ",\"volume\":true", ""), ",\"volume\":false", ""), "line 2: xr.hands[0].erase",
+         "version 7"},
+        {"a volume place in a version 6 session", v6, replaced(replaced(replaced(replaced(frameLine, ",\"volume\":true", ""), ",\"volume\":false", ""),
+                                                                    ",\"erase\":true", ""), ",\"erase\":false", ""),
+         "line 2: xr.anchor", "version 7"},
         {"xr in a version 5 session", v5, frameLine, "line 1: xr", "version 6"},
         {"a frame's xr without the header's", plainHeader, frameLine, "line 2: xr", "line 1 has no \"xr\""},
         {"one view", headerLine, replaced(frameLine, "\"views\":[{", "\"views\":[{\"x\":1},{"), "line 2: xr.views", "2"},
@@ -420,7 +434,7 @@ TEST(Session, CorruptSessionsAreNamedByLineAndTheLenientModeKeepsThePrefix) {
     }
     {
         auto t = v;
-        t[0] = replaced(t[0], "\"version\":" + std::to_string(kSessionVersion), "\"version\":7");
+        t[0] = replaced(t[0], "\"version\":" + std::to_string(kSessionVersion), "\"version\":" + std::to_string(kSessionVersion + 1));
         cases.push_back({"wrong version", t, "version", -1});
     }
     {

@@ -2,9 +2,12 @@
 // while squeezed, the held mesh moves rigidly with the grip, turns about it, and stays put otherwise.
 #include "input/tracked_hand.h"
 #include "session/interaction.h"
+#include "session/xr_hands.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <optional>
 #include <random>
 
 namespace curette {
@@ -141,6 +144,109 @@ TEST(TrackedHand, TheTriggerDrillsWithTheHeldMesh) {
     s.trigger = 1.0;
     s.squeeze = 0.0;   // let go of the mesh: no drilling with it
     EXPECT_EQ(drills(hand.step(s)), 0);
+}
+
+
+// The erase button erases with the mesh in hand (HoldDrill with erase), the trigger winning when both are held
+// (the gamepad's rule, input::heldDrill); an empty hand erases nothing.
+TEST(TrackedHand, TheEraseButtonErasesWithTheHeldMesh) {
+    input::TrackedHand hand(0);
+    auto drill = [](const std::vector<input::Action>& actions) -> std::optional<input::HoldDrill> {
+        for (const input::Action& a : actions)
+            if (auto* d = std::get_if<input::HoldDrill>(&a)) return *d;
+        return std::nullopt;
+    };
+    input::HandSample s = sample({0, 0, 0}, glm::dquat(1, 0, 0, 0), 0.0);
+    s.erase = true;
+    EXPECT_FALSE(drill(hand.step(s))) << "nothing in hand";
+    s.squeeze = 1.0;
+    std::optional<input::HoldDrill> d = drill(hand.step(s));
+    ASSERT_TRUE(d);
+    EXPECT_TRUE(d->erase);
+    EXPECT_EQ(d->mesh, 0);
+    s.trigger = 1.0;
+    d = drill(hand.step(s));
+    ASSERT_TRUE(d);
+    EXPECT_FALSE(d->erase) << "drill over erase";
+    s.trigger = 0.0;
+    s.erase = false;
+    EXPECT_FALSE(drill(hand.step(s)));
+}
+
+// A sideways flick of the thumbstick undoes (left) or redoes (right) once, until the stick comes back towards
+// the centre; a push mostly up or down scales and undoes nothing; sessions before version 7 have no flicks.
+TEST(TrackedHand, AThumbstickFlickUndoesOrRedoesOnce) {
+    auto history = [](const std::vector<input::Action>& actions) {
+        std::string h;
+        for (const input::Action& a : actions) {
+            if (std::holds_alternative<input::UndoStroke>(a)) h += "u";
+            if (std::holds_alternative<input::RedoStroke>(a)) h += "r";
+        }
+        return h;
+    };
+    input::TrackedHand hand(0);
+    input::HandSample s = sample({0, 0, 0}, glm::dquat(1, 0, 0, 0), 0.0);
+    std::string seen;
+    for (double x : {0.0, -0.5, -0.8, -1.0, -0.5, -0.9, -0.2, -0.9, 0.0, 0.75, 0.4, 0.25, 0.8}) {
+        s.thumbstickX = x;
+        seen += history(hand.step(s));
+    }
+    EXPECT_EQ(seen, "uurr");
+    s.thumbstickX = 0.0;
+    hand.step(s);
+    s.thumbstickX = -0.8;
+    s.thumbstickY = 0.9;   // mostly up: a scale, not a flick
+    EXPECT_EQ(history(hand.step(s)), "");
+    input::TrackedHand old(0, false);
+    s.thumbstickY = 0.0;
+    EXPECT_EQ(history(old.step(s)), "") << "a version 6 recording";
+}
+
+// A hand holding its volume button carries the whole scene in the room (session/xr_hands.h): its grip keeps
+// its place on the anatomy (the same world point and turn, to rounding), a point fixed in the world moves in
+// the room with the grip, and neither hand's mesh moves in world space, so nothing of the carve changes.
+TEST(XrHands, TheVolumeButtonCarriesTheSceneAndNothingMovesInWorld) {
+    VolumeGeometry g{glm::ivec3(64, 64, 48), glm::dmat4(1.0)};
+    const RoomAnchor table = tableAnchor(g, RoomSpace::Stage);
+    XrHands hands(table);
+    std::array<SessionXrHand, 2> h{};
+    h[0].tracked = true;
+    h[0].grip.positionM = {-0.1, 1.0, -0.4};
+    h[0].moveVolume = true;
+    h[0].squeeze = 1.0;   // holding its tool too: the tool rides along, it does not move on the anatomy
+    h[1].tracked = true;
+    h[1].grip.positionM = {0.1, 1.0, -0.4};
+    const glm::dvec3 world = table.roomToWorldMm(glm::dvec3(0.02, 0.95, -0.45));
+    auto gripMoves = [](const std::vector<input::Action>& actions) {
+        return std::count_if(actions.begin(), actions.end(), [](const input::Action& a) { return std::holds_alternative<input::GripMesh>(a); });
+    };
+    EXPECT_EQ(gripMoves(hands.step(h, 0.0)), 0);
+    EXPECT_EQ(hands.anchor(), table) << "a grab's first frame moves nothing";
+    const glm::dvec3 gripWorld = table.roomToWorldMm(h[0].grip.positionM);
+    glm::dquat turn(1, 0, 0, 0);
+    glm::dvec3 roomPoint = glm::dvec3(0.02, 0.95, -0.45);
+    for (int i = 1; i <= 6; ++i) {
+        const TrackedView before = h[0].grip;
+        h[0].grip.positionM += glm::dvec3(0.01 * i, -0.005, 0.02);
+        const glm::dquat step = glm::angleAxis(0.1, glm::normalize(glm::dvec3(0.2, 1.0, 0.3)));
+        h[0].grip.orientation = glm::normalize(step * h[0].grip.orientation);
+        turn = step * turn;
+        roomPoint = step * (roomPoint - before.positionM) + h[0].grip.positionM;
+        EXPECT_EQ(gripMoves(hands.step(h, 1.0 / 90.0)), 0) << i;
+        ASSERT_EQ(hands.volumeHand(), 0);
+        const RoomAnchor& a = hands.anchor();
+        EXPECT_LT(glm::length(a.roomToWorldMm(h[0].grip.positionM) - gripWorld), 1e-9) << i;
+        EXPECT_LT(glm::length(a.roomToWorldMm(roomPoint) - world), 1e-9) << i << ": a world point rides with the grip";
+        EXPECT_GT(std::abs(glm::dot(a.volumeTurnRoom, turn)), 1.0 - 1e-12) << i;
+        EXPECT_EQ(a.volumeCentreWorldMm, table.volumeCentreWorldMm);
+    }
+    // Let go: the volume stays where it was left; the other hand's button now carries it.
+    const RoomAnchor left = hands.anchor();
+    h[0].moveVolume = false;
+    h[1].moveVolume = true;
+    hands.step(h, 1.0 / 90.0);
+    EXPECT_EQ(hands.anchor(), left);
+    EXPECT_EQ(hands.volumeHand(), 1);
 }
 
 }  // namespace

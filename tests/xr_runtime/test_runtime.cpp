@@ -10,14 +10,17 @@
 // Negotiation"); every other function is reached through xrGetInstanceProcAddr.
 //
 // Environment: CURETTE_XR_TEST_SCRIPT (the pose script, required), CURETTE_XR_TEST_OUT (the folder for the
-// PNGs, the views and runtime.log; required).
+// PNGs, the views and runtime.log; required), CURETTE_XR_TEST_EGL=1 (also offer XR_MNDX_egl_enable and take
+// an EGL context's binding, as Monado does for headless applications).
 
 #include "pose_script.h"
 
+#include <epoxy/egl.h>
 #include <epoxy/gl.h>
 #include <epoxy/glx.h>
 
 #define XR_USE_PLATFORM_XLIB
+#define XR_USE_PLATFORM_EGL
 #define XR_USE_GRAPHICS_API_OPENGL
 #include <openxr/openxr.h>
 #include <openxr/openxr_platform.h>
@@ -148,6 +151,7 @@ struct Runtime {
     std::filesystem::path out;
     std::ofstream log;
     bool instance = false, requirementsQueried = false;
+    bool eglEnabled = false;   // the application enabled XR_MNDX_egl_enable
     XrInstance instanceHandle = XR_NULL_HANDLE;
     std::uint64_t nextHandle = 1;
     std::vector<std::string> paths;   // XrPath p is paths[p - 1]
@@ -394,13 +398,20 @@ XrResult fill(std::uint32_t capacity, std::uint32_t* count, T* out, std::size_t 
     return XR_SUCCESS;
 }
 
-const char* const kExtensions[] = {XR_KHR_OPENGL_ENABLE_EXTENSION_NAME};
+// The extensions offered: XR_KHR_opengl_enable, and in the EGL mode XR_MNDX_egl_enable.
+std::vector<const char*> offeredExtensions() {
+    std::vector<const char*> names{XR_KHR_OPENGL_ENABLE_EXTENSION_NAME};
+    const char* egl = std::getenv("CURETTE_XR_TEST_EGL");
+    if (egl && std::strcmp(egl, "1") == 0) names.push_back(XR_MNDX_EGL_ENABLE_EXTENSION_NAME);
+    return names;
+}
 
 XrResult XRAPI_CALL enumerateInstanceExtensionProperties(const char* layerName, std::uint32_t capacity, std::uint32_t* count,
                                                          XrExtensionProperties* properties) {
     if (layerName) return XR_ERROR_API_LAYER_NOT_PRESENT;
-    return fill(capacity, count, properties, std::size(kExtensions), [](XrExtensionProperties& p, std::size_t i) {
-        std::snprintf(p.extensionName, sizeof p.extensionName, "%s", kExtensions[i]);
+    const std::vector<const char*> names = offeredExtensions();
+    return fill(capacity, count, properties, names.size(), [&](XrExtensionProperties& p, std::size_t i) {
+        std::snprintf(p.extensionName, sizeof p.extensionName, "%s", names[i]);
         p.extensionVersion = 1;
     });
 }
@@ -408,8 +419,13 @@ XrResult XRAPI_CALL enumerateInstanceExtensionProperties(const char* layerName, 
 XrResult XRAPI_CALL createInstance(const XrInstanceCreateInfo* info, XrInstance* instance) {
     if (!info || !instance) return XR_ERROR_VALIDATION_FAILURE;
     if (runtime && runtime->instance) return XR_ERROR_LIMIT_REACHED;
-    for (std::uint32_t i = 0; i < info->enabledExtensionCount; ++i)
-        if (std::strcmp(info->enabledExtensionNames[i], XR_KHR_OPENGL_ENABLE_EXTENSION_NAME) != 0) return XR_ERROR_EXTENSION_NOT_PRESENT;
+    const std::vector<const char*> offered = offeredExtensions();
+    bool eglEnabled = false;
+    for (std::uint32_t i = 0; i < info->enabledExtensionCount; ++i) {
+        const char* name = info->enabledExtensionNames[i];
+        if (std::none_of(offered.begin(), offered.end(), [&](const char* o) { return std::strcmp(o, name) == 0; })) return XR_ERROR_EXTENSION_NOT_PRESENT;
+        eglEnabled = eglEnabled || std::strcmp(name, XR_MNDX_EGL_ENABLE_EXTENSION_NAME) == 0;
+    }
     const char* scriptPath = std::getenv("CURETTE_XR_TEST_SCRIPT");
     const char* outPath = std::getenv("CURETTE_XR_TEST_OUT");
     if (!scriptPath || !outPath) {
@@ -424,6 +440,7 @@ XrResult XRAPI_CALL createInstance(const XrInstanceCreateInfo* info, XrInstance*
         return XR_ERROR_INITIALIZATION_FAILED;
     }
     r->out = outPath;
+    r->eglEnabled = eglEnabled;
     std::error_code ec;
     std::filesystem::create_directories(r->out, ec);
     r->log.open(r->out / "runtime.log");
@@ -560,11 +577,29 @@ XrResult XRAPI_CALL createSession(XrInstance instance, const XrSessionCreateInfo
     if (info->systemId != kSystemId) return XR_ERROR_SYSTEM_INVALID;
     if (!runtime->requirementsQueried) return XR_ERROR_GRAPHICS_REQUIREMENTS_CALL_MISSING;
     if (runtime->session) return XR_ERROR_LIMIT_REACHED;
-    const auto* binding = static_cast<const XrGraphicsBindingOpenGLXlibKHR*>(info->next);
-    if (!binding || binding->type != XR_TYPE_GRAPHICS_BINDING_OPENGL_XLIB_KHR) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+    const auto* header = static_cast<const XrBaseInStructure*>(info->next);
+    if (!header) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
     // The swapchain images are made in, and read back from, the application's context: it must be current.
-    if (!binding->glxContext || glXGetCurrentContext() != binding->glxContext) {
-        runtime->note("error: the binding's GLX context is not current");
+    if (header->type == XR_TYPE_GRAPHICS_BINDING_OPENGL_XLIB_KHR) {
+        const auto* binding = reinterpret_cast<const XrGraphicsBindingOpenGLXlibKHR*>(header);
+        if (!binding->glxContext || glXGetCurrentContext() != binding->glxContext) {
+            runtime->note("error: the binding's GLX context is not current");
+            return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+        }
+        runtime->note("session binding: GLX");
+    } else if (header->type == XR_TYPE_GRAPHICS_BINDING_EGL_MNDX) {
+        if (!runtime->eglEnabled) {
+            runtime->note("error: an EGL binding without XR_MNDX_egl_enable enabled");
+            return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+        }
+        const auto* binding = reinterpret_cast<const XrGraphicsBindingEGLMNDX*>(header);
+        if (!binding->getProcAddress || !binding->display || !binding->context || eglGetCurrentContext() != binding->context ||
+            eglGetCurrentDisplay() != binding->display) {
+            runtime->note("error: the binding's EGL context is not current");
+            return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+        }
+        runtime->note("session binding: EGL");
+    } else {
         return XR_ERROR_GRAPHICS_DEVICE_INVALID;
     }
     runtime->session = true;

@@ -19,6 +19,7 @@
 #include "session/session.h"
 #include "session/session_step.h"
 #include "tools/bench/report.h"
+#include "session/xr_hands.h"
 #include "tools/xr_loop.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -117,7 +118,7 @@ int benchXr(const CommandLine& cl) {
         options.sceneInSession = std::filesystem::absolute(scenePath).string();
         options.printStates = false;
         if (!testRuntime) options.frameLimit = frames;
-        XrLoopResult result = runXrLoop(*window, renderer, step, loaded, options);
+        XrLoopResult result = runXrLoop(*window, window.get(), renderer, step, loaded, options);
         runtimeName = result.runtime;
         systemName = result.system;
         if (result.rendered.size() < 2) throw SystemError("bench xr: the runtime let " + std::to_string(result.rendered.size()) + " frames render (2 or more needed)");
@@ -151,7 +152,7 @@ int benchXr(const CommandLine& cl) {
             again.follow(sf, scenePath.parent_path(), options.record->string() + " line " + std::to_string(n + 2));
             if (!sf.xr || !sf.xr->views || !usesAmbientOcclusion(sf.shading)) continue;
             again.syncTo(renderer, loaded.tracts);
-            std::array<TrackedEye, 2> eyes = xrEyes(again.frame(), *sf.xr->views, result.anchor, result.recommendedSize);
+            std::array<TrackedEye, 2> eyes = xrEyes(again.frame(), *sf.xr->views, recordedAnchor(result.anchor, *sf.xr), result.recommendedSize);
             std::array<Image, 2> images{renderTrackedEye(renderer, eyes[0]), renderTrackedEye(renderer, eyes[1])};
             ++f.checked;
             if (xrCaoEqualsLao(renderer, eyes, images)) ++f.equal;

@@ -154,7 +154,7 @@ int render(const CommandLine& cl) {
     if (showMeshes) meshOverlay.emplace(loaded.scene.clipMeshDisplay.display);
     if (xrViews) {
         TrackedViewsFile views = readTrackedViews(*xrViews);
-        RoomAnchor anchor = tableAnchor(renderer.geometry(), views.space);
+        RoomAnchor anchor = viewsAnchor(views, renderer.geometry());
         std::array<Image, 2> eyes;
         for (std::size_t eye = 0; eye < 2; ++eye)
             eyes[eye] = renderTrackedEye(renderer, trackedEye(frame, views.views[eye], anchor, views.recommendedSize));

@@ -8,8 +8,8 @@
 //   --from-reports   re-derive every pose and light direction (and from session version 6 the drilling: which
 //                    meshes drilled, undo and redo) from the raw reports and keys through the parsers and the
 //                    recorded mapping (in a head-mounted display session also from the controllers' recorded grip
-//                    poses and action states through session/xr_hands.h), and check they equal the recorded ones
-//                    exactly
+//                    poses and action states through session/xr_hands.h, and the volume's place in the room), and check
+//                    they equal the recorded ones exactly
 //   --no-render      with --from-reports: check the poses only (no GL context)
 //   --lenient        replay the valid prefix of a session with a bad line instead of refusing it
 //   --mp4            with --out: DIR/replay.mp4 of the frames at the recorded rate (tools/movie.h; needs ffmpeg)
@@ -119,9 +119,10 @@ int replay(const CommandLine& cl) {
     // A head-mounted display session (`view --xr --record`): both eyes from the recorded views, side by side;
     // re-derived, the hands' actions from their recorded states.
     const std::optional<SessionXr>& xr = session.header.xr;
+    // The volume's place in the room: followed from the recorded frames, or re-derived from the hands.
     std::optional<RoomAnchor> anchor;
     if (xr) anchor = tableAnchor(geometry, xr->space);
-    XrHands xrHands;
+    XrHands xrHands(anchor.value_or(RoomAnchor{}), session.header.version);
     const glm::vec4 background(loaded.scene.background);
 
     std::optional<input::InputPipeline> pipeline;
@@ -150,21 +151,26 @@ int replay(const CommandLine& cl) {
             step.frame().size = f.size;
             std::vector<input::Action> actions = pipeline->step(reports, keys, f.dt, static_cast<int>(state.meshes.size()), f.holds);
             if (f.xr)
-                for (input::Action& a : xrHands.step(f.xr->hands, *anchor, f.dt)) actions.push_back(std::move(a));
+                for (input::Action& a : xrHands.step(f.xr->hands, f.dt)) actions.push_back(std::move(a));
             // From version 6 the drilling comes from the keys, devices and controllers (actions) like the poses, and
             // the frame's "drill" records what they applied; before, it is the drilling input itself (no key or
             // button drilled).
             bool drillFromInput = session.header.version >= kDrillFromInputVersion || f.xr;
             step.apply(actions, f.size.y, f.edits, where, drillFromInput ? DrillInput{} : DrillInput{f.drills, f.drillHistory});
             // The re-derived poses, lights (version 2), shading and drilling must be the recorded ones, bit for bit.
+            // A head-mounted display's volume (version 7): where the re-derived hands put it is where it was recorded.
+            const bool sameVolume = !f.xr || !f.xr->anchor || (xrHands.anchor().volumeCentreRoomM == f.xr->anchor->volumeCentreRoomM &&
+                                                               xrHands.anchor().volumeTurnRoom == f.xr->anchor->volumeTurnRoom);
+            if (f.xr) anchor = xrHands.anchor();
             bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights) &&
-                        (!drillFromInput || (state.appliedDrills == f.drills && state.appliedDrillHistory == f.drillHistory));
+                        (!drillFromInput || (state.appliedDrills == f.drills && state.appliedDrillHistory == f.drillHistory)) && sameVolume;
             if (!same && poseMismatches++ == 0)
-                std::fprintf(stderr, "curette replay: %s: poses, lights or drilling re-derived from the reports differ from the recorded ones\n",
+                std::fprintf(stderr, "curette replay: %s: poses, lights, drilling or the volume's place re-derived from the reports differ from the recorded ones\n",
                              where.c_str());
         } else {
             // Follow the recorded poses: meshes added and removed, then every pose.
             step.follow(f, scenePath.parent_path(), where);
+            if (f.xr) anchor = recordedAnchor(*anchor, *f.xr);
         }
         if (!render || n % static_cast<std::size_t>(every) != 0) continue;
         step.syncTo(*renderer, loaded.tracts);

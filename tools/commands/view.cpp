@@ -695,6 +695,7 @@ int view(const CommandLine& cl) {
     if (cl.flag("xr")) return viewXr(cl);
     for (const char* option : {"frames", "save-views"})
         if (cl.value(option)) throw InputError("<command line>", std::string("--") + option, "together with --xr");
+    if (cl.flag("headless")) throw InputError("<command line>", "--headless", "together with --xr");
     glm::ivec2 windowSize = CommandLine::parseSize("size", cl.valueOr("size", "1024x768"));
     std::optional<Session> play;
     if (auto p = cl.value("play")) play = readSession(*p, false);
@@ -774,6 +775,7 @@ Command viewCommand() {
               {"frame-log", true, "write one JSON line per frame drawn to the window (and one when the view settles)"},
               {"xr", false, "in a head-mounted display through OpenXR (the active runtime; tools/commands/view_xr.cpp); --size is then the mirror window's"},
               {"frames", true, "with --xr: end the session after N rendered frames", "N"},
+              {"headless", false, "with --xr: no window; a headless EGL context bound through XR_MNDX_egl_enable (where the runtime offers it)"},
               {"save-views", true, "with --xr: write the last rendered frame's eye views (the JSON render --xr-views reads)", "F.json"}}},
             &view};
 }

@@ -4,15 +4,18 @@
 // and asymmetric fields of view the runtime located, through one renderer, so the ambient occlusion volume
 // (V_AO, CAO steps I-V) is computed once a frame and both eyes read it; the eye images go into the session's
 // swapchains (xr/xr_session.h). A small window holds the GLX context the runtime binds to and mirrors the
-// right eye's frame (rendered last). Every frame is an exact one (no preview loop yet: on a software renderer
+// right eye's frame (rendered last); with --headless there is no window: a headless EGL context is bound
+// through XR_MNDX_egl_enable, where the runtime offers it (Monado does). Every frame is an exact one (no preview loop yet: on a software renderer
 // this is slow). The loop is tools/xr_loop.h's.
 //
 // The controllers are action sources like the hidapi devices (xr/controller_actions.h, session/xr_hands.h):
 // the left hand's squeeze holds tool 0, the right hand's tool 1, each following its grip, its thumbstick
-// scaling it, its trigger drilling with it; a button cycles the shading; their actions go through the session
+// scaling it, its trigger drilling and its erase button erasing with it; a thumbstick flick left undoes a
+// stroke, right redoes it; a hand holding its volume button carries the whole scene in the room (the carve
+// does not change: session/xr_hands.h); a button cycles the shading; their actions go through the session
 // step every command runs (session/session_step.h). --record F.jsonl records the session (head, eyes, hands
 // and poses per frame) for `replay`. Prints each session state as it changes and, at the end, the frames
-// rendered, the time per eye, where each tool was left and what was drilled.
+// rendered, the time per eye, each frame's passes, where each tool and the volume were left and what was drilled.
 #include "tools/commands/view_xr.h"
 
 #include "base/error.h"
@@ -59,6 +62,7 @@ std::string sceneFromSession(const std::filesystem::path& scene, const std::file
 int viewXr(const CommandLine& cl) {
     for (const char* option : {"play", "screenshot", "window-shot", "idle-seconds", "frame-log", "quality"})
         if (cl.value(option)) throw InputError("<command line>", std::string("--") + option, "not with --xr");
+    if (cl.flag("headless") && cl.value("size")) throw InputError("<command line>", "--size", "not with --headless (there is no mirror window)");
     XrLoopOptions options;
     if (auto n = cl.value("frames")) options.frameLimit = CommandLine::parseInt("frames", *n, 1, 100000000);
     if (auto v = cl.value("save-views")) options.saveViews = *v;
@@ -68,14 +72,22 @@ int viewXr(const CommandLine& cl) {
         options.sceneInSession = sceneFromSession(scenePath, *r);
     }
     LoadedScene loaded = loadSceneWithVolume(scenePath);
-    glm::ivec2 windowSize = CommandLine::parseSize("size", cl.valueOr("size", "320x240"));
-    auto window = gl::createWindowContext("curette - " + scenePath + " (OpenXR)", windowSize);
-    Renderer renderer(*window, loaded.volume, loaded.scene.transferFunction);
+    // Headless: an EGL context the runtime binds through XR_MNDX_egl_enable (no window, no mirror).
+    const bool headless = cl.flag("headless");
+    std::unique_ptr<gl::WindowContext> window;
+    std::unique_ptr<gl::Context> context;
+    if (headless) {
+        context = gl::createHeadlessContext();
+    } else {
+        window = gl::createWindowContext("curette - " + scenePath + " (OpenXR)", CommandLine::parseSize("size", cl.valueOr("size", "320x240")));
+    }
+    gl::Context& gl = headless ? *context : *window;
+    Renderer renderer(gl, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
     step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, loaded.removal.get());   // the scene's drilling
 
-    XrLoopResult result = runXrLoop(*window, renderer, step, loaded, options);
+    XrLoopResult result = runXrLoop(gl, window.get(), renderer, step, loaded, options);
     for (std::size_t eye = 0; eye < 2; ++eye) {
         std::vector<double> ms;
         for (const XrFrameTiming& t : result.rendered) ms.push_back(t.eyeMs[eye]);
@@ -83,6 +95,16 @@ int viewXr(const CommandLine& cl) {
         std::printf("xr %s eye: %zu frames, %.1f ms per frame (min %.1f, max %.1f)\n", eye == 0 ? "left" : "right", s.count, s.mean, s.min, s.max);
     }
     std::printf("xr session over: %zu frames rendered\n", result.rendered.size());
+    // The passes each frame ran for its first eye (the second reuses its V_AO): a moved volume runs no CAO step.
+    for (const XrFrameTiming& t : result.rendered) {
+        std::string passes;
+        for (const FrameTimings::Entry& e : t.firstEye.passes) passes += (passes.empty() ? "" : ", ") + std::string(passInfo(e.pass).name);
+        std::printf("xr frame %zu passes: %s\n", t.frame, passes.c_str());
+    }
+    const RoomAnchor& a = result.finalAnchor;
+    const glm::dvec3 c = a.volumeCentreRoomM + 0.0;           // + 0.0: a zero prints without its sign
+    const glm::dvec4 q = glm::dvec4(a.volumeTurnRoom.w, a.volumeTurnRoom.x, a.volumeTurnRoom.y, a.volumeTurnRoom.z) + 0.0;
+    std::printf("xr volume left at %.4f, %.4f, %.4f m in the room, turned by [%.4f, %.4f, %.4f, %.4f]\n", c.x, c.y, c.z, q.x, q.y, q.z, q.w);
     for (const MeshState& m : step.state().meshes)
         std::printf("xr tool %d \"%s\" left at %.3f, %.3f, %.3f mm\n", m.id, m.name.c_str(), m.pose.position.x, m.pose.position.y, m.pose.position.z);
     const InteractionState& state = step.state();
