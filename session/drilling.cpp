@@ -45,8 +45,7 @@ bool applyDrilling(InteractionState& state, const std::vector<SessionMesh>& pose
         for (const SessionMesh& p : posesBefore)
             if (p.id == d.mesh) from = {p.position, p.orientation};
         plan::DrillSweep sweep(*tool, from, mesh.pose);
-        removal.apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal.voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), d.erase,
-                      history.before());
+        plan::applySweep(removal, sweep, d.erase, history.before());
         state.appliedDrills.push_back(d);
     }
     for (DrillHistoryCommand c : input.history) {

@@ -42,7 +42,7 @@ TEST(RemovalFile, ReadsBackBitForBit) {
     bool partial = false;
     for (int z = 0; z < 7; ++z)
         for (int y = 0; y < 9; ++y)
-            for (int x = 0; x < 13; ++x) partial = partial || (removal.mask({x, y, z}) != 0 && removal.mask({x, y, z}) != ~std::uint64_t(0));
+            for (int x = 0; x < 13; ++x) partial = partial || (!plan::isEmpty(removal.mask({x, y, z})) && removal.mask({x, y, z}) != plan::kFullVoxelMask);
     EXPECT_TRUE(partial) << "the sample has voxels drilled in part";
     EXPECT_EQ(removalFileBeside("/a/b/plan.json"), std::filesystem::path("/a/b/plan.removal.nii.gz"));
 }

@@ -54,8 +54,7 @@ int benchDrill(const CommandLine& cl) {
                 std::uint64_t version = removal.version();
                 auto t = Clock::now();
                 plan::DrillSweep sweep(tool, a, b);
-                changed += removal.apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal.voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()),
-                                         false, history.before());
+                changed += plan::applySweep(removal, sweep, false, history.before());
                 stepMs.push_back(msSince(t));
                 bricks += removal.bricksChangedSince(version).size();
             }
@@ -92,7 +91,7 @@ int benchDrill(const CommandLine& cl) {
         for (int f = 0; f < 10; ++f) {
             clip::RigidPose a{at, {}}, b{at + (40.0 / 30.0) * direction, {}};
             plan::DrillSweep sweep(burr, a, b);
-            removal->apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal->voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), false);
+            plan::applySweep(*removal, sweep, false);
             at = b.position;
         }
         renderer.collectTimings();
