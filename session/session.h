@@ -26,13 +26,17 @@
 
 namespace curette {
 
-inline constexpr int kSessionVersion = 6;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
+inline constexpr int kSessionVersion = 7;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
                                             // 5: drilling and its undo/redo; 6: drilling from keys and devices (actions, so
                                             // --from-reports re-derives it; 64-bit keys), the removal at the start,
-                                            // head-mounted display sessions
+                                            // head-mounted display sessions; 7: undo/redo of setting edits too
+                                            // ("history_edits")
 // The first version whose drilling comes from the recorded keys and devices: replay --from-reports re-derives
 // it and compares it with the frame's "drill"/"drill_history"; before, those are the input.
 inline constexpr int kDrillFromInputVersion = 6;
+// The first version whose undo history holds setting edits as well as strokes (the edits an undo or redo
+// applied are the frame's "history_edits").
+inline constexpr int kUndoEditsVersion = 7;
 inline constexpr int kOldestSessionVersion = 1;
 
 struct SessionDevice {
@@ -66,7 +70,7 @@ struct SessionDrill {
     bool erase = false;
     bool operator==(const SessionDrill&) const = default;
 };
-enum class DrillHistoryCommand { Undo, Redo };
+enum class HistoryCommand { Undo, Redo };   // of the last stroke or setting edit (only strokes before version 7)
 
 // A head-mounted display session (version 6, `view --xr`): the room space the runtime located everything in
 // (the volume's anchor follows from it: render/model/tracked_view.h) and each eye's recommended image size.
@@ -124,10 +128,13 @@ struct SessionFrame {
     // The hold requests the frame's input pipeline step applied, before its reports (version 4;
     // input::HoldRequest): {"binding": N | "keyboard", "mesh": index}.
     std::vector<input::HoldRequest> holds;
-    // The meshes drilling this frame, then the undo/redo commands applied after them (version 5). From version 6
-    // they are what the frame's actions applied (a record, re-derived from the keys and reports).
+    // The meshes drilling this frame, then the undo/redo commands applied after them (version 5; "drill" and
+    // "drill_history"). From version 6 they are what the frame's actions applied (a record, re-derived from the
+    // keys and reports). From version 7 an undo or redo may revert a setting edit: the edits it applied are
+    // "history_edits" (a record: replay re-derives them from the undo history and checks them; not in "edits").
     std::vector<SessionDrill> drills;
-    std::vector<DrillHistoryCommand> drillHistory;
+    std::vector<HistoryCommand> historyCommands;
+    std::vector<SettingEdit> historyEdits;
     std::optional<SessionXrFrame> xr;   // version 6, in sessions whose header has "xr"
     std::vector<SessionReport> reports;
 };

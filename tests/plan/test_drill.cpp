@@ -3,7 +3,7 @@
 // sampled union, erase, and undo/redo restoring the sub-voxel masks exactly.
 #include "mesh/primitives.h"
 #include "mesh/triangle_mesh.h"
-#include "plan/drill_history.h"
+#include "plan/undo_history.h"
 #include "plan/drill_sweep.h"
 #include "plan/removal_volume.h"
 #include "plan_test_support.h"
@@ -170,11 +170,11 @@ TEST(Drill, EraseRestoresWhatTheStrokeRemoved) {
 
 // Undo and redo give back the exact sub-voxel masks, a new stroke drops the redo steps, and the budget
 // forgets the oldest steps, never the removal.
-TEST(DrillHistory, UndoAndRedoRestoreTheMasksExactly) {
+TEST(UndoHistory, UndoAndRedoRestoreTheMasksExactly) {
     glm::ivec3 dims = dimsFor(glm::dvec3(1.0), 16.0);
     glm::dmat4 affine = gridAffine(glm::dvec3(1.0), dims);
     RemovalVolume removal(dims, affine);
-    DrillHistory history;
+    UndoHistory history;
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-10.0, 10.0);
     std::vector<std::vector<VoxelMask>> states;
@@ -213,7 +213,7 @@ TEST(DrillHistory, UndoAndRedoRestoreTheMasksExactly) {
     history.endStroke(removal);
     EXPECT_EQ(history.redoSteps(), 0u) << "a new stroke drops what could be redone";
 
-    DrillHistory small(1);   // a budget below one step: only the newest is kept
+    UndoHistory small(1);   // a budget below one step: only the newest is kept
     RemovalVolume other(dims, affine);
     for (int i = 0; i < 3; ++i) {
         small.beginStroke();

@@ -6,7 +6,7 @@
 #include "tools/bench/bench_drill.h"
 
 #include "gl/context.h"
-#include "plan/drill_history.h"
+#include "plan/undo_history.h"
 #include "plan/drill_sweep.h"
 #include "render/renderer.h"
 #include "session/loaded_scene.h"
@@ -42,7 +42,7 @@ int benchDrill(const CommandLine& cl) {
     for (double diameter : {2.0, 4.0, 6.0})
         for (double speed : {30.0, 50.0}) {
             plan::RemovalVolume removal(dims, affine);
-            plan::DrillHistory history;
+            plan::UndoHistory history;
             plan::DrillTool tool{clip::SolidShape{clip::SolidShape::Kind::Sphere, diameter / 2}};
             glm::dvec3 direction = glm::normalize(glm::dvec3(0.8, 0.5, 0.3));
             glm::dvec3 start = centre - 0.5 * speed * direction;

@@ -257,7 +257,7 @@ int record(const CommandLine& cl) {
     std::printf("wrote %s: %d frames, %zu synthetic devices, %zu meshes, scene %s\n", out.c_str(), frames, kinds.size(), state.meshes.size(),
                 sceneFromSession.c_str());
     if (state.removal && !state.removal->empty())
-        std::printf("drilled %.3f mL (%zu undo steps); removal %s\n", state.removal->drilledVolumeMm3() / 1000.0, state.drillHistory->undoSteps(),
+        std::printf("drilled %.3f mL (%zu undo steps); removal %s\n", state.removal->drilledVolumeMm3() / 1000.0, state.undoHistory->undoSteps(),
                     state.removal->digest().c_str());
     return 0;
 }

@@ -155,10 +155,11 @@ int replay(const CommandLine& cl) {
             // the frame's "drill" records what they applied; before, it is the drilling input itself (no key or
             // button drilled).
             bool drillFromInput = session.header.version >= kDrillFromInputVersion || f.xr;
-            step.apply(actions, f.size.y, f.edits, where, drillFromInput ? DrillInput{} : DrillInput{f.drills, f.drillHistory});
+            step.apply(actions, f.size.y, f.edits, where, drillFromInput ? DrillInput{} : DrillInput{f.drills, f.historyCommands});
             // The re-derived poses, lights (version 2), shading and drilling must be the recorded ones, bit for bit.
             bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights) &&
-                        (!drillFromInput || (state.appliedDrills == f.drills && state.appliedDrillHistory == f.drillHistory));
+                        (!drillFromInput || (state.appliedDrills == f.drills && state.appliedHistory == f.historyCommands &&
+                                              state.appliedHistoryEdits == f.historyEdits));
             if (!same && poseMismatches++ == 0)
                 std::fprintf(stderr, "curette replay: %s: poses, lights or drilling re-derived from the reports differ from the recorded ones\n",
                              where.c_str());
