@@ -26,12 +26,25 @@ void UndoHistory::endStroke(const RemovalVolume& removal) {
     push(std::move(step));
 }
 
-void UndoHistory::pushEdit(const RemovalVolume& removal, nlohmann::json undoEdits, nlohmann::json redoEdits) {
+void UndoHistory::pushEdit(const RemovalVolume& removal, nlohmann::json undoEdits, nlohmann::json redoEdits, const std::string& mergeKey) {
     endStroke(removal);
+    auto size = [](const Step& s) { return sizeof(Step) + s.undoEdits.dump().size() + s.redoEdits.dump().size(); };
+    if (!mergeKey.empty() && redo_.empty() && !undo_.empty() && undo_.back().mergeKey == mergeKey && undo_.back().frame + 1 == frame_) {
+        Step& last = undo_.back();   // the same drag: its undo stays, this redo replaces its own
+        bytes_ -= last.bytes;
+        last.redoEdits = std::move(redoEdits);
+        last.frame = frame_;
+        last.bytes = size(last);
+        bytes_ += last.bytes;
+        enforceBudget();
+        return;
+    }
     Step step;
-    step.bytes = sizeof(Step) + undoEdits.dump().size() + redoEdits.dump().size();
     step.undoEdits = std::move(undoEdits);
     step.redoEdits = std::move(redoEdits);
+    step.mergeKey = mergeKey;
+    step.frame = frame_;
+    step.bytes = size(step);
     push(std::move(step));
 }
 

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <deque>
 #include <optional>
+#include <string>
 
 namespace curette::plan {
 
@@ -39,8 +40,12 @@ public:
     void endStroke(const RemovalVolume& removal);
 
     // A setting edit (one frame's panel edits): the edits that undo it, in the order to apply them, and those
-    // that redo it (JSON arrays). Ends an open stroke first; clears the redo steps.
-    void pushEdit(const RemovalVolume& removal, nlohmann::json undoEdits, nlohmann::json redoEdits);
+    // that redo it (JSON arrays). Ends an open stroke first; clears the redo steps. One drag of a panel's
+    // slider edits a setting every frame: an edit with a `mergeKey` (the setting and its target) made the frame
+    // after the last step, an edit with the same key, joins it (keeps its undo, takes this redo), so the drag
+    // is one step. Frames are counted by endFrame(); a frame without this edit (the release) ends the drag.
+    void pushEdit(const RemovalVolume& removal, nlohmann::json undoEdits, nlohmann::json redoEdits, const std::string& mergeKey = {});
+    void endFrame() { ++frame_; }
 
     // Undo / redo the last step. An open stroke is ended first.
     UndoResult undo(RemovalVolume& removal);
@@ -55,6 +60,8 @@ private:
     struct Step {
         BrickMaskMap before, after;                 // a stroke
         nlohmann::json undoEdits, redoEdits;        // an edit (arrays; null for a stroke)
+        std::string mergeKey;                       // an edit's, when a next frame's may join it
+        std::uint64_t frame = 0;                    // when it was made or last joined
         std::size_t bytes = 0;
     };
     void push(Step step);
@@ -63,6 +70,7 @@ private:
     std::optional<BrickMaskMap> open_;
     std::deque<Step> undo_, redo_;
     std::size_t bytes_ = 0, lastStrokeBytes_ = 0;
+    std::uint64_t frame_ = 0;
 };
 
 }  // namespace curette::plan

@@ -66,10 +66,12 @@ bool applyDrilling(InteractionState& state, const std::vector<SessionMesh>& pose
         state.appliedHistoryEdits.insert(state.appliedHistoryEdits.end(), applied, state.appliedEdits.end());
         state.appliedEdits.erase(applied, state.appliedEdits.end());
     }
+    history.endFrame();
     return removal.version() != version;
 }
 
 void applyUndoableEdits(InteractionState& state, const std::vector<SettingEdit>& edits, const std::string& source) {
+    // (applyDrilling, once a frame after this, ends the history's frame.)
     if (edits.empty()) return;
     bool undoable = state.historyHoldsEdits && state.undoHistory && state.removal;
     std::vector<SettingEdit> undo;
@@ -80,7 +82,12 @@ void applyUndoableEdits(InteractionState& state, const std::vector<SettingEdit>&
     auto session = [](const SettingEdit& e) { return nlohmann::json::parse(settingEditJson(e).dump()); };   // as a session has it
     for (const SettingEdit& e : undo) undoJson.push_back(session(e));
     for (std::size_t i = first; i < state.appliedEdits.size(); ++i) redoJson.push_back(session(state.appliedEdits[i]));
-    state.undoHistory->pushEdit(*state.removal, std::move(undoJson), std::move(redoJson));
+    // A drag: one edit of a value setting (not adding or removing), joined with the last frame's of it.
+    std::string mergeKey;
+    if (edits.size() == 1 && edits[0].setting != Setting::MeshAdd && edits[0].setting != Setting::MeshRemove &&
+        edits[0].setting != Setting::LightAdd && edits[0].setting != Setting::LightRemove)
+        mergeKey = std::string(settingInfo(edits[0].setting).key) + "#" + std::to_string(edits[0].target);
+    state.undoHistory->pushEdit(*state.removal, std::move(undoJson), std::move(redoJson), mergeKey);
 }
 
 }  // namespace curette

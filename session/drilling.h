@@ -38,7 +38,8 @@ bool applyDrilling(InteractionState& state, const std::vector<SessionMesh>& pose
 
 // Applies a frame's setting edits (the panels', or a session's "edits") and, when the state's history holds
 // edits (InteractionState::historyHoldsEdits), makes them one undo step: the frame's edits together, undone
-// by their inverses (InteractionState::inverseOf) in reverse order.
+// by their inverses (InteractionState::inverseOf) in reverse order. One edit of the same value setting on
+// consecutive frames (a slider dragged) joins the last step (plan::UndoHistory::pushEdit).
 void applyUndoableEdits(InteractionState& state, const std::vector<SettingEdit>& edits, const std::string& source);
 
 }  // namespace curette

@@ -147,6 +147,34 @@ TEST(UndoHistory, StrokesAndSettingEditsUndoAndRedoInOrder) {
     EXPECT_EQ(differences(snapshot(s), states[states.size() - 3]), "");
 }
 
+// A slider dragged over consecutive frames (one edit of one setting a frame) is one step: undo gives back the
+// value before the drag, redo the last; a frame without the edit (the release) ends the drag, and an edit of
+// another setting is its own step.
+TEST(UndoHistory, ADragIsOneStep) {
+    HistoryRun run;
+    InteractionState& s = run.state;
+    const LaoSettings start = s.lao;
+    auto samples = [&](int n) {
+        nlohmann::json ao = s.keyJson("ambient_occlusion");
+        ao["samples"] = n;
+        return std::vector<SettingEdit>{{Setting::AmbientOcclusion, -1, ao}};
+    };
+    for (int n = 3; n <= 7; ++n) run.frame(samples(n));
+    EXPECT_EQ(s.undoHistory->undoSteps(), 1u);
+    run.frame({});   // released
+    run.frame(samples(9));
+    run.frame({{Setting::Shading, -1, "dos"}});
+    EXPECT_EQ(s.undoHistory->undoSteps(), 3u);
+    run.undo();
+    run.undo();
+    EXPECT_EQ(s.lao.samples, 7);
+    run.undo();
+    EXPECT_EQ(s.lao.samples, start.samples);
+    EXPECT_TRUE(s.lao == start);
+    run.redo();
+    EXPECT_EQ(s.lao.samples, 7);
+}
+
 // A removed mesh comes back with its id, name, shape, pose, scale and clips_tubes; the edits undo recorded are
 // session edits, read back strictly.
 TEST(UndoHistory, ARemovedMeshComesBackAsItWas) {

@@ -281,7 +281,7 @@ Command recordCommand() {
               {"drill", true, "FIRST-LAST[,...]: frames over which the mesh --drill-mesh drills (as B held at the window)", "RANGES"},
               {"erase", true, "FIRST-LAST[,...]: frames over which it erases (N held)", "RANGES"},
               {"drill-mesh", true, "index of the mesh that drills: the keyboard holds it from frame 0 (default: the keyboard's, 0)"},
-              {"undo", true, "FRAME[,...]: undo the last stroke there (Ctrl+Z pressed)"},
+              {"undo", true, "FRAME[,...]: undo the last stroke or setting edit there (Ctrl+Z pressed)"},
               {"redo", true, "FRAME[,...]: redo there (Ctrl+Shift+Z pressed)"}}},
             &record};
 }
