@@ -104,8 +104,10 @@ TEST(NiftiUint64, OtherFilesAreRefusedNamingTheField) {
     refused(b, "vox_offset");   // a voxel short
     b = good, b[254] = 0, b[255] = 0;
     refused(b, "sform_code");
-    b = good, b[40] = 4;
+    b = good, b[40] = 5;
     refused(b, "dim[0]");
+    b = good, b[40] = 4, b[48] = 0;   // 4-D with no words per voxel
+    refused(b, "dim[4]");
     b = good, b[72] = 32;
     refused(b, "bitpix");
     b = good, b[344] = 'x';
