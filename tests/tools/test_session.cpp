@@ -420,7 +420,7 @@ TEST(Session, CorruptSessionsAreNamedByLineAndTheLenientModeKeepsThePrefix) {
     }
     {
         auto t = v;
-        t[0] = replaced(t[0], "\"version\":" + std::to_string(kSessionVersion), "\"version\":7");
+        t[0] = replaced(t[0], "\"version\":" + std::to_string(kSessionVersion), "\"version\":" + std::to_string(kSessionVersion + 1));
         cases.push_back({"wrong version", t, "version", -1});
     }
     {
