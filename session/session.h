@@ -4,7 +4,8 @@
 // mesh's pose, the keyboard/mouse state, the devices and meshes that appeared or went, the panels' setting
 // edits (version 3, scene/setting_edit.h), the mesh panel's hold requests (version 4), the drilling applied
 // (version 5; from version 6 derived from the keys and devices, and the header names the removal at the start),
-// the head, eyes and controllers of a head-mounted display (version 6: `view --xr`), and the raw HID reports
+// the head, eyes and controllers of a head-mounted display (version 6: `view --xr`), the edits an undo or redo of a
+// setting edit applied (version 7, "history_edits"), and the raw HID reports
 // received since the previous frame (hex). Poses are written with 17 significant digits, so they read back to
 // the same doubles.
 
