@@ -66,14 +66,14 @@ struct NextLight {};
 struct ToggleRecording {};
 struct Screenshot {};
 // Drilling (session/drilling.h): a device emits HoldDrill every frame the mesh's drill control is down (erase:
-// its restore control); the session removes what the mesh sweeps that frame. A stroke is undone or redone on
-// the press of UndoStroke / RedoStroke.
+// its restore control); the session removes what the mesh sweeps that frame. On the press of Undo / Redo the
+// session undoes or redoes the last step of its history: a stroke or a frame's setting edits.
 struct HoldDrill {
     int mesh = 0;
     bool erase = false;
 };
-struct UndoStroke {};
-struct RedoStroke {};
+struct Undo {};
+struct Redo {};
 
 // A mesh's drill and erase controls (every device's, one rule): either held drills this frame, drill over erase.
 inline std::optional<HoldDrill> heldDrill(int mesh, bool drill, bool erase) {
@@ -82,6 +82,6 @@ inline std::optional<HoldDrill> heldDrill(int mesh, bool drill, bool erase) {
 }
 
 using Action = std::variant<MoveMesh, GripMesh, ScaleMesh, DragMesh, SelectMesh, SetShading, CycleShading, ResetPose, AddMesh, RemoveMesh,
-                            ToggleRecording, Screenshot, MoveLight, NextLight, HoldDrill, UndoStroke, RedoStroke>;
+                            ToggleRecording, Screenshot, MoveLight, NextLight, HoldDrill, Undo, Redo>;
 
 }  // namespace curette::input

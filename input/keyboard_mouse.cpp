@@ -21,8 +21,8 @@ std::vector<Action> KeyboardMapper::update(const KeyboardMouseState& s, double d
     if (edge(Key::Insert)) actions.push_back(AddMesh{});
     // Lights need no mesh.
     if (edge(Key::O)) actions.push_back(NextLight{});
-    if (edge(Key::Undo)) actions.push_back(UndoStroke{});
-    if (edge(Key::Redo)) actions.push_back(RedoStroke{});
+    if (edge(Key::Undo)) actions.push_back(Undo{});
+    if (edge(Key::Redo)) actions.push_back(Redo{});
     constexpr double degToRad = std::numbers::pi / 180.0;
     glm::dvec2 turn = glm::dvec2(held(Key::L) - held(Key::J), held(Key::I) - held(Key::K)) * (rotationSpeed_ * dt * degToRad);
     turn += glm::dvec2(s.lightDragPixels.x, -s.lightDragPixels.y) * (kLightDegPerPixel * degToRad);   // +y down on screen

@@ -6,7 +6,7 @@
 // PageUp/PageDown roll; right-drag moves in the view plane; Tab next mesh; R reset; Insert add; Delete
 // remove; 1-6 solid/phong/lao/cao/dos/ismos; C cycle shading; F9 recording; P or F12 screenshot; Shift fine steps.
 // Drilling (session/drilling.h) with the selected mesh: B held drills, N held erases (B wins when both are);
-// Ctrl+Z undoes the last stroke, Ctrl+Shift+Z or Ctrl+Y redoes it (on press; the viewer sets Undo / Redo for them).
+// Ctrl+Z undoes the last stroke or setting edit, Ctrl+Shift+Z or Ctrl+Y redoes it (on press; the viewer sets Undo / Redo for them).
 // Lights: J/L turn the selected light left/right (yaw about the camera's up axis), I/K raise/lower it, O selects
 // the next light, at the keyboard's degrees per second; a Shift + left drag turns it by kLightDegPerPixel
 // (right: towards the right of the screen, up: up).

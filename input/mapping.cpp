@@ -17,7 +17,7 @@ const std::vector<std::string> kGamepadAxes = {"left_x", "left_y", "right_x", "r
 const std::vector<std::string> kSixDofAxes = {"tx", "ty", "tz", "rx", "ry", "rz"};
 const std::vector<std::string> kActions = {"cycle_mesh", "cycle_shading", "reset_pose", "add_mesh", "remove_mesh", "toggle_recording",
                                            "screenshot", "shading:solid", "shading:phong", "shading:lao", "shading:cao", "shading:dos", "shading:ismos",
-                                           "drill", "erase", "undo_stroke", "redo_stroke"};
+                                           "drill", "erase", "undo", "redo", "undo_stroke", "redo_stroke"};
 const std::vector<std::string> kFamilies = {"gamepad", "dualshock4", "dualsense", "switch_pro", "xbox_bt", "spacemouse"};
 
 bool familyMatches(const std::string& wanted, DeviceFamily family) {
@@ -235,10 +235,10 @@ std::vector<Action> Mapper::update(const std::vector<DeviceSnapshot>& devices, d
                 actions.push_back(Screenshot{});
             } else if (action.rfind("shading:", 0) == 0) {
                 actions.push_back(SetShading{action.substr(8)});
-            } else if (action == "undo_stroke") {
-                actions.push_back(UndoStroke{});
-            } else if (action == "redo_stroke") {
-                actions.push_back(RedoStroke{});
+            } else if (action == "undo" || action == "undo_stroke") {
+                actions.push_back(Undo{});
+            } else if (action == "redo" || action == "redo_stroke") {
+                actions.push_back(Redo{});
             }
         }
         // Motion: axes -> rates -> this frame's step.

@@ -16,8 +16,8 @@
 // Axis names: gamepads left_x, left_y, right_x, right_y, left_trigger, right_trigger, triggers (right minus
 // left), shoulders (right minus left shoulder button); 6-DoF tx, ty, tz, rx, ry, rz; "-" inverts; "none".
 // Stick pairs take a radial dead zone, other axes a per-axis one. Actions: cycle_mesh, cycle_shading,
-// reset_pose, add_mesh, remove_mesh, toggle_recording, screenshot, shading:<mode>, undo_stroke, redo_stroke (on
-// press), and drill, erase (HoldDrill for the binding's held mesh every frame the button is down).
+// reset_pose, add_mesh, remove_mesh, toggle_recording, screenshot, shading:<mode>, undo, redo (on press: the
+// last stroke or setting edit; undo_stroke, redo_stroke are the older names), and drill, erase (HoldDrill for the binding's held mesh every frame the button is down).
 // "drill" / "erase" (optional): an axis that drills (erases) while its raw value (no dead zone or curve; "-"
 // inverts) is at or past `threshold` (0.05 .. 1), e.g. a gamepad trigger; a button or the axis, drill winning
 // over erase when both are held, as the keyboard's B over N.

@@ -33,8 +33,8 @@ std::vector<Action> TrackedHand::step(const HandSample& sample) {
         if (flick_ != 0 && !analogHeld(true, std::abs(x))) flick_ = 0;   // back towards the centre
         if (flick_ == 0 && analogHeld(false, std::abs(x)) && std::abs(x) > std::abs(sample.thumbstickY)) {
             flick_ = side;
-            if (side < 0) actions.push_back(UndoStroke{});
-            else actions.push_back(RedoStroke{});
+            if (side < 0) actions.push_back(Undo{});
+            else actions.push_back(Redo{});
         }
     }
     last_ = sample;

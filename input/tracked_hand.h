@@ -3,7 +3,7 @@
 // and the gamepad: while its squeeze is held the hand holds its clip mesh, which follows the grip rigidly
 // (each frame's motion of the grip, a GripMesh turning about the grip), its thumbstick scales it, its trigger
 // drills with it and its erase button erases with it (HoldDrill: session/drilling.h, the gamepad's rule); a
-// flick of the thumbstick left undoes a stroke, right redoes it; its button cycles the shading. A hand moving
+// flick of the thumbstick left undoes (a stroke or a setting edit), right redoes; its button cycles the shading. A hand moving
 // the volume (session/xr_hands.h) does not move its mesh: the mesh stays on the anatomy. It sees world poses
 // only: the caller places the room in the scene (render/model/tracked_view.h).
 

@@ -30,11 +30,17 @@ T load(std::span<const std::uint8_t> bytes, std::size_t offset, bool swap) {
 }  // namespace
 
 void writeNiftiUint64(const std::filesystem::path& path, const Uint64Volume& volume, const std::string& description) {
-    const std::size_t count = static_cast<std::size_t>(volume.dims.x) * volume.dims.y * volume.dims.z;
+    if (volume.words < 1 || volume.words > kMaxNiftiUint64Words)
+        throw InputError(path.string(), "words", "1.." + std::to_string(kMaxNiftiUint64Words), std::to_string(volume.words));
+    const std::size_t count = static_cast<std::size_t>(volume.dims.x) * volume.dims.y * volume.dims.z * volume.words;
     if (volume.values.size() != count)
-        throw InputError(path.string(), "values", std::to_string(count) + " values (dims)", std::to_string(volume.values.size()));
+        throw InputError(path.string(), "values", std::to_string(count) + " values (dims and words)", std::to_string(volume.values.size()));
     NiftiLayout layout{volume.dims, volume.indexToWorld, kDatatypeUint64, 64, 0, 0.0, description, ""};
     std::vector<std::uint8_t> bytes = niftiHeaderBytes(layout, count * 8, path.string());
+    if (volume.words > 1) {   // dim[0] 4, dim[4] the words (the header is little-endian)
+        bytes[40] = 4, bytes[41] = 0;
+        bytes[48] = static_cast<std::uint8_t>(volume.words), bytes[49] = 0;
+    }
     std::uint8_t* data = bytes.data() + kNiftiVoxOffset;
     for (std::size_t n = 0; n < count; ++n) {
         for (std::size_t k = 0; k < 8; ++k) data[8 * n + k] = static_cast<std::uint8_t>(volume.values[n] >> (8 * k));   // little-endian
@@ -51,15 +57,21 @@ Uint64Volume readNiftiUint64Bytes(std::span<const std::uint8_t> b, const std::st
         if (load<std::int32_t>(b, 0, true) != kHeaderBytes) throw InputError(source, "sizeof_hdr", "348 (a NIfTI-1 file)");
     }
     if (std::memcmp(b.data() + 344, "n+1", 4) != 0) throw InputError(source, "magic", "\"n+1\" (a single-file NIfTI-1)");
-    if (load<std::int16_t>(b, 40, swap) != 3) throw InputError(source, "dim[0]", "3 (one 3-D volume)", std::to_string(load<std::int16_t>(b, 40, swap)));
+    std::int16_t rank = load<std::int16_t>(b, 40, swap);
+    if (rank != 3 && rank != 4) throw InputError(source, "dim[0]", "3 or 4 (a 3-D volume, or its words per voxel in dim[4])", std::to_string(rank));
     Uint64Volume v;
+    if (rank == 4) {
+        v.words = load<std::int16_t>(b, 48, swap);
+        if (v.words < 1 || v.words > kMaxNiftiUint64Words)
+            throw InputError(source, "dim[4]", "1.." + std::to_string(kMaxNiftiUint64Words) + " words per voxel", std::to_string(v.words));
+    }
     for (int a = 0; a < 3; ++a) {
         int d = load<std::int16_t>(b, 42 + 2 * static_cast<std::size_t>(a), swap);
         if (d < 1) throw InputError(source, "dim[" + std::to_string(a + 1) + "]", "a size of at least 1", std::to_string(d));
         v.dims[a] = d;
     }
     std::int16_t datatype = load<std::int16_t>(b, 70, swap), bitpix = load<std::int16_t>(b, 72, swap);
-    if (datatype != kDatatypeUint64) throw InputError(source, "datatype", "1280 (DT_UINT64: 64 sub-cell bits per voxel)", std::to_string(datatype));
+    if (datatype != kDatatypeUint64) throw InputError(source, "datatype", "1280 (DT_UINT64: words of sub-cell bits)", std::to_string(datatype));
     if (bitpix != 64) throw InputError(source, "bitpix", "64 for datatype 1280", std::to_string(bitpix));
     float slope = load<float>(b, 112, swap), inter = load<float>(b, 116, swap);
     if (!(slope == 0.0f || slope == 1.0f) || inter != 0.0f)
@@ -68,7 +80,7 @@ Uint64Volume readNiftiUint64Bytes(std::span<const std::uint8_t> b, const std::st
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) v.indexToWorld[c][r] = load<float>(b, 280 + 16 * static_cast<std::size_t>(r) + 4 * static_cast<std::size_t>(c), swap);
     float offset = load<float>(b, 108, swap);
-    const std::size_t count = static_cast<std::size_t>(v.dims.x) * v.dims.y * v.dims.z;
+    const std::size_t count = static_cast<std::size_t>(v.dims.x) * v.dims.y * v.dims.z * v.words;
     if (!(offset >= static_cast<float>(kNiftiVoxOffset)) || offset != std::floor(offset) ||
         static_cast<std::size_t>(offset) + count * 8 > b.size())
         throw InputError(source, "vox_offset", "352 or more, with " + std::to_string(count * 8) + " bytes of voxels after it",
@@ -90,6 +102,7 @@ Uint64Volume readNiftiUint64(const std::filesystem::path& path) {
         if (head.size() >= kNiftiVoxOffset) {
             bool swap = load<std::int32_t>(head, 0, false) != kHeaderBytes;
             claimed = 8;
+            if (load<std::int16_t>(head, 40, swap) == 4) claimed *= static_cast<std::uint64_t>(std::clamp<std::int16_t>(load<std::int16_t>(head, 48, swap), 1, kMaxNiftiUint64Words));
             for (int a = 0; a < 3; ++a) claimed *= static_cast<std::uint64_t>(std::max<std::int16_t>(1, load<std::int16_t>(head, 42 + 2 * static_cast<std::size_t>(a), swap)));
         }
         bytes = gunzip(bytes, path.string(), kNiftiVoxOffset + claimed + (std::uint64_t(1) << 20));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace curette::plan {
 
@@ -21,6 +22,7 @@ double distanceToSegment(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
 DrillSweep::DrillSweep(const DrillTool& tool, const clip::RigidPose& from, const clip::RigidPose& to, double rotationToleranceMm)
     : tool_(tool) {
     boundingRadiusMm_ = glm::length(tool.shape.halfExtent() * glm::abs(tool.scale));
+    smallestScale_ = std::min({std::abs(tool.scale.x), std::abs(tool.scale.y), std::abs(tool.scale.z)});
     // Sub-steps: a turn by angle a moves a point at distance rho from the centre by at most a * rho.
     glm::dquat q0 = glm::normalize(from.orientation), q1 = glm::normalize(to.orientation);
     if (glm::dot(q0, q1) < 0) q1 = -q1;
@@ -77,6 +79,49 @@ bool DrillSweep::contains(glm::dvec3 world) const {
     for (const Step& step : steps_)
         if (insideStep(step, world)) return true;
     return false;
+}
+
+double DrillSweep::stepDistanceBound(const Step& step, glm::dvec3 world) const {
+    double far = distanceToSegment(world, step.worldFrom, step.worldTo) - boundingRadiusMm_;
+    if (far > 0.0) return far;
+    glm::dvec3 q = glm::dvec3(step.worldToLocal * glm::dvec4(world, 1.0));
+    auto f = [&](double t) { return tool_.shape.signedDistance(q - t * step.localMotion); };
+    double lipschitz = glm::length(step.localMotion);
+    double lo, hi;   // the minimum over t in [0, 1] lies in [lo, hi]
+    if (lipschitz == 0.0) {
+        lo = hi = f(0.0);
+    } else {
+        const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+        double a = 0.0, b = 1.0;
+        double c = b - g * (b - a), d = a + g * (b - a);
+        double fc = f(c), fd = f(d);
+        for (int i = 0; i < 200 && (b - a) * lipschitz > 1e-9; ++i) {
+            if (fc < fd) {
+                b = d, d = c, fd = fc;
+                c = b - g * (b - a), fc = f(c);
+            } else {
+                a = c, c = d, fc = fd;
+                d = a + g * (b - a), fd = f(d);
+            }
+        }
+        hi = std::min({fc, fd, f(0.0), f(1.0)});
+        lo = std::min(fc, fd) - (b - a) * lipschitz;   // the minimiser is in [a, b], within b - a of c and d
+    }
+    if (lo > 0.0) return lo * smallestScale_;
+    if (hi < 0.0) return hi * smallestScale_;
+    return 0.0;
+}
+
+double DrillSweep::distanceBound(glm::dvec3 world) const {
+    // Outside the union: outside every step (the least clearance); inside: inside one (the deepest).
+    double d = std::numeric_limits<double>::infinity();
+    for (const Step& step : steps_) d = std::min(d, stepDistanceBound(step, world));
+    return d;
+}
+
+std::size_t applySweep(RemovalVolume& removal, const DrillSweep& sweep, bool erase, BrickMaskMap* before) {
+    return removal.apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal.voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), erase,
+                         before, [&](glm::dvec3 w) { return sweep.distanceBound(w); });
 }
 
 }  // namespace curette::plan

@@ -17,8 +17,7 @@ double smallestStretchMm(const glm::dmat4& indexToWorld) {
 }
 
 std::uint8_t drilledByteFromBits(int bits) {
-    constexpr int cells = kRemovalCellsPerAxis * kRemovalCellsPerAxis * kRemovalCellsPerAxis;
-    return static_cast<std::uint8_t>((bits * 255 + cells / 2) / cells);
+    return static_cast<std::uint8_t>((bits * 255 + kRemovalCellsPerVoxel - 1) / kRemovalCellsPerVoxel);
 }
 
 RemovalVolume::RemovalVolume(glm::ivec3 dims, const glm::dmat4& indexToWorld)
@@ -26,6 +25,9 @@ RemovalVolume::RemovalVolume(glm::ivec3 dims, const glm::dmat4& indexToWorld)
     if (glm::any(glm::lessThan(dims, glm::ivec3(1)))) throw InputError("<removal>", "dims", "a grid of at least one voxel", "");
     bricks_ = (dims + kRemovalBrickSize - 1) / kRemovalBrickSize;
     brickVersion_.assign(static_cast<std::size_t>(bricks_.x) * bricks_.y * bricks_.z, 0);
+    glm::dmat3 a(indexToWorld);
+    for (int c = 0; c < 4; ++c)
+        halfDiagonalMm_ = std::max(halfDiagonalMm_, glm::length(a * glm::dvec3((c & 1) ? -0.5 : 0.5, (c & 2) ? -0.5 : 0.5, 0.5)));
 }
 
 std::uint32_t RemovalVolume::brickNumber(glm::ivec3 b) const {
@@ -41,20 +43,20 @@ namespace {
 int voxelInBrick(glm::ivec3 local) { return (local.z * kRemovalBrickSize + local.y) * kRemovalBrickSize + local.x; }
 }  // namespace
 
-std::uint64_t RemovalVolume::mask(glm::ivec3 v) const {
-    if (glm::any(glm::lessThan(v, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(v, dims_))) return 0;
+VoxelMask RemovalVolume::mask(glm::ivec3 v) const {
+    if (glm::any(glm::lessThan(v, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(v, dims_))) return {};
     auto it = masks_.find(brickNumber(v / kRemovalBrickSize));
-    return it == masks_.end() ? 0 : it->second[static_cast<std::size_t>(voxelInBrick(v % kRemovalBrickSize))];
+    return it == masks_.end() ? VoxelMask{} : it->second[static_cast<std::size_t>(voxelInBrick(v % kRemovalBrickSize))];
 }
 
 bool RemovalVolume::drilledAt(glm::dvec3 world) const {
     glm::dvec3 index = glm::dvec3(worldToIndex_ * glm::dvec4(world, 1.0));
     glm::ivec3 v(glm::floor(index + 0.5));
-    std::uint64_t m = mask(v);
-    if (m == 0) return false;
+    VoxelMask m = mask(v);
+    if (isEmpty(m)) return false;
     glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor((index - glm::dvec3(v) + 0.5) * double(kRemovalCellsPerAxis))), glm::ivec3(0),
                                  glm::ivec3(kRemovalCellsPerAxis - 1));
-    return (m >> ((cell.z * kRemovalCellsPerAxis + cell.y) * kRemovalCellsPerAxis + cell.x)) & 1u;
+    return (m[static_cast<std::size_t>(cell.z)] >> (cell.y * kRemovalCellsPerAxis + cell.x)) & 1u;
 }
 
 BrickMasks RemovalVolume::brickMasks(std::uint32_t brick) const {
@@ -64,7 +66,7 @@ BrickMasks RemovalVolume::brickMasks(std::uint32_t brick) const {
 
 void RemovalVolume::setBrick(std::uint32_t brick, const BrickMasks& masks) {
     if (brickMasks(brick) == masks) return;
-    if (std::all_of(masks.begin(), masks.end(), [](std::uint64_t m) { return m == 0; })) masks_.erase(brick);
+    if (std::all_of(masks.begin(), masks.end(), [](const VoxelMask& m) { return isEmpty(m); })) masks_.erase(brick);
     else masks_[brick] = masks;
     brickVersion_[brick] = ++version_;
 }
@@ -97,40 +99,73 @@ VoxelBox RemovalVolume::voxelBoxAround(glm::dvec3 worldMin, glm::dvec3 worldMax)
     return box;
 }
 
-std::size_t RemovalVolume::apply(const InsideTest& inside, VoxelBox box, bool erase, BrickMaskMap* before) {
+namespace {
+
+// The bits of a cube of s^3 sub-cells from `cell` (within one voxel), set in `m`.
+void setCube(VoxelMask& m, glm::ivec3 cell, int s) {
+    std::uint64_t row = ((std::uint64_t(1) << s) - 1) << cell.x, slice = 0;
+    for (int j = cell.y; j < cell.y + s; ++j) slice |= row << (j * kRemovalCellsPerAxis);
+    for (int k = cell.z; k < cell.z + s; ++k) m[static_cast<std::size_t>(k)] |= slice;
+}
+
+}  // namespace
+
+std::size_t RemovalVolume::apply(const InsideTest& inside, VoxelBox box, bool erase, BrickMaskMap* before, const DistanceBound& bound) {
     glm::ivec3 first = glm::max(box.origin, glm::ivec3(0));
     glm::ivec3 last = glm::min(box.origin + box.size, dims_) - 1;
     if (glm::any(glm::lessThan(last, first))) return 0;
     std::size_t changed = 0;
     constexpr int n = kRemovalCellsPerAxis;
+    auto world = [&](glm::ivec3 voxel, glm::dvec3 cellIndex) {
+        return glm::dvec3(indexToWorld_ * glm::dvec4(glm::dvec3(voxel) + cellIndex / double(n) - 0.5, 1.0));
+    };
+    // The sub-cells of the cube of s^3 from `cell` the region holds, into `covered`: settled whole when the
+    // bound at the cube's centre clears its farthest sub-cell centre ((s - 1) / n of the voxel's half
+    // diagonal; a micrometre spare for rounding), else split in octants down to single sub-cells, which
+    // `inside` decides, so the bits are those of testing every sub-cell.
+    auto cover = [&](auto& self, VoxelMask& covered, glm::ivec3 voxel, glm::ivec3 cell, int s) -> void {
+        if (s == 1) {
+            if (inside(world(voxel, glm::dvec3(cell) + 0.5))) setCube(covered, cell, 1);
+            return;
+        }
+        if (bound) {
+            double d = bound(world(voxel, glm::dvec3(cell) + 0.5 * s));
+            double reach = (s - 1) * halfDiagonalMm_ / n + 1e-6;
+            if (d > reach) return;
+            if (d < -reach) return setCube(covered, cell, s);
+        }
+        int h = s / 2;
+        for (int c = 0; c < 8; ++c) self(self, covered, voxel, cell + h * glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1), h);
+    };
     glm::ivec3 firstBrick = first / kRemovalBrickSize, lastBrick = last / kRemovalBrickSize;
     for (int bz = firstBrick.z; bz <= lastBrick.z; ++bz)
         for (int by = firstBrick.y; by <= lastBrick.y; ++by)
             for (int bx = firstBrick.x; bx <= lastBrick.x; ++bx) {
                 std::uint32_t brick = brickNumber({bx, by, bz});
-                BrickMasks masks = brickMasks(brick);
-                BrickMasks original = masks;
+                auto held = masks_.find(brick);
+                BrickMasks masks = held == masks_.end() ? BrickMasks{} : held->second;
+                bool brickChanged = false;
                 glm::ivec3 origin = glm::ivec3(bx, by, bz) * kRemovalBrickSize;
                 glm::ivec3 lo = glm::max(first, origin), hi = glm::min(last, origin + kRemovalBrickSize - 1);
                 for (int z = lo.z; z <= hi.z; ++z)
                     for (int y = lo.y; y <= hi.y; ++y)
                         for (int x = lo.x; x <= hi.x; ++x) {
-                            std::uint64_t& m = masks[static_cast<std::size_t>(voxelInBrick(glm::ivec3(x, y, z) - origin))];
+                            VoxelMask& m = masks[static_cast<std::size_t>(voxelInBrick(glm::ivec3(x, y, z) - origin))];
                             // Nothing to do where every sub-cell already is what this stroke would make it.
-                            if (erase ? m == 0 : m == ~std::uint64_t(0)) continue;
-                            std::uint64_t covered = 0;
-                            for (int k = 0; k < n; ++k)
-                                for (int j = 0; j < n; ++j)
-                                    for (int i = 0; i < n; ++i) {
-                                        glm::dvec3 index = glm::dvec3(x, y, z) + (glm::dvec3(i, j, k) + 0.5) / double(n) - 0.5;
-                                        if (inside(glm::dvec3(indexToWorld_ * glm::dvec4(index, 1.0))))
-                                            covered |= std::uint64_t(1) << ((k * n + j) * n + i);
-                                    }
-                            std::uint64_t next = erase ? (m & ~covered) : (m | covered);
-                            if (next != m) ++changed, m = next;
+                            if (erase ? isEmpty(m) : m == kFullVoxelMask) continue;
+                            VoxelMask covered{};
+                            cover(cover, covered, glm::ivec3(x, y, z), glm::ivec3(0), n);
+                            bool voxelChanged = false;
+                            for (std::size_t w = 0; w < m.size(); ++w) {
+                                std::uint64_t next = erase ? (m[w] & ~covered[w]) : (m[w] | covered[w]);
+                                voxelChanged = voxelChanged || next != m[w];
+                                m[w] = next;
+                            }
+                            changed += voxelChanged;
+                            brickChanged = brickChanged || voxelChanged;
                         }
-                if (masks != original) {
-                    if (before && !before->count(brick)) (*before)[brick] = original;
+                if (brickChanged) {
+                    if (before && !before->count(brick)) (*before)[brick] = brickMasks(brick);
                     setBrick(brick, masks);
                 }
             }
@@ -141,7 +176,7 @@ double RemovalVolume::drilledVolumeMm3() const {
     double voxelMm3 = std::abs(glm::determinant(glm::dmat3(indexToWorld_)));
     double sum = 0;
     for (const auto& [brick, masks] : masks_)
-        for (std::uint64_t m : masks) sum += drilledByteFromBits(std::popcount(m)) / 255.0;
+        for (const VoxelMask& m : masks) sum += drilledByteFromBits(drilledCells(m)) / 255.0;
     return sum * voxelMm3;
 }
 
@@ -160,7 +195,7 @@ std::array<std::uint8_t, kRemovalBrickVoxels> RemovalVolume::brickBytes(std::uin
     std::array<std::uint8_t, kRemovalBrickVoxels> bytes{};
     auto it = masks_.find(brick);
     if (it == masks_.end()) return bytes;
-    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = drilledByteFromBits(std::popcount(it->second[i]));
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = drilledByteFromBits(drilledCells(it->second[i]));
     return bytes;
 }
 
@@ -180,8 +215,9 @@ std::string RemovalVolume::digest() const {
     for (std::uint32_t b : bricks) {
         const BrickMasks& m = masks_.at(b);
         for (std::size_t i = 0; i < m.size(); ++i) {
-            if (m[i] == 0) continue;
-            std::uint64_t record[2] = {std::uint64_t(b) * kRemovalBrickVoxels + i, m[i]};
+            if (isEmpty(m[i])) continue;
+            std::uint64_t record[1 + kRemovalWordsPerVoxel] = {std::uint64_t(b) * kRemovalBrickVoxels + i};
+            std::copy(m[i].begin(), m[i].end(), record + 1);
             hash.update(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record), sizeof record));
         }
     }

@@ -1,5 +1,6 @@
 #include "session/drilling.h"
 
+#include "base/json_reader.h"
 #include "base/log.h"
 
 #include <algorithm>
@@ -20,13 +21,14 @@ std::optional<plan::DrillTool> drillToolOf(const MeshState& mesh) {
 
 bool applyDrilling(InteractionState& state, const std::vector<SessionMesh>& posesBefore, const DrillInput& input) {
     state.appliedDrills.clear();
-    state.appliedDrillHistory.clear();
-    if (!state.removal || !state.drillHistory) {
+    state.appliedHistory.clear();
+    state.appliedHistoryEdits.clear();
+    if (!state.removal || !state.undoHistory) {
         if (!input.empty()) log::warn("drilling needs the session's scan grid; this frame's drilling is ignored");
         return false;
     }
     plan::RemovalVolume& removal = *state.removal;
-    plan::DrillHistory& history = *state.drillHistory;
+    plan::UndoHistory& history = *state.undoHistory;
     std::uint64_t version = removal.version();
     if (input.drills.empty()) history.endStroke(removal);
     else history.beginStroke();
@@ -45,15 +47,47 @@ bool applyDrilling(InteractionState& state, const std::vector<SessionMesh>& pose
         for (const SessionMesh& p : posesBefore)
             if (p.id == d.mesh) from = {p.position, p.orientation};
         plan::DrillSweep sweep(*tool, from, mesh.pose);
-        removal.apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal.voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), d.erase,
-                      history.before());
+        plan::applySweep(removal, sweep, d.erase, history.before());
         state.appliedDrills.push_back(d);
     }
-    for (DrillHistoryCommand c : input.history) {
-        bool done = c == DrillHistoryCommand::Undo ? history.undo(removal) : history.redo(removal);
-        if (done) state.appliedDrillHistory.push_back(c);
+    for (HistoryCommand c : input.history) {
+        plan::UndoResult done = c == HistoryCommand::Undo ? history.undo(removal) : history.redo(removal);
+        if (!done) continue;
+        state.appliedHistory.push_back(c);
+        if (done.edits.is_null()) continue;   // a stroke: its masks are back
+        // A setting edit: its stored edits, read back as a session's are, applied as the panels' are, and
+        // recorded apart from the frame's own edits.
+        std::vector<SettingEdit> edits;
+        for (const JsonReader& e : JsonReader(done.edits, "<undo history>", "edits").elements(0, 1 << 20))
+            edits.push_back(readSettingEdit(e, state.sceneDirectory));
+        std::size_t first = state.appliedEdits.size();
+        state.applyEdits(edits, "<undo history>");
+        auto applied = state.appliedEdits.begin() + static_cast<std::ptrdiff_t>(first);
+        state.appliedHistoryEdits.insert(state.appliedHistoryEdits.end(), applied, state.appliedEdits.end());
+        state.appliedEdits.erase(applied, state.appliedEdits.end());
     }
+    history.endFrame();
     return removal.version() != version;
+}
+
+void applyUndoableEdits(InteractionState& state, const std::vector<SettingEdit>& edits, const std::string& source) {
+    // (applyDrilling, once a frame after this, ends the history's frame.)
+    if (edits.empty()) return;
+    bool undoable = state.historyHoldsEdits && state.undoHistory && state.removal;
+    std::vector<SettingEdit> undo;
+    std::size_t first = state.appliedEdits.size();
+    state.applyEdits(edits, source, undoable ? &undo : nullptr);
+    if (!undoable) return;
+    nlohmann::json undoJson = nlohmann::json::array(), redoJson = nlohmann::json::array();
+    auto session = [](const SettingEdit& e) { return nlohmann::json::parse(settingEditJson(e).dump()); };   // as a session has it
+    for (const SettingEdit& e : undo) undoJson.push_back(session(e));
+    for (std::size_t i = first; i < state.appliedEdits.size(); ++i) redoJson.push_back(session(state.appliedEdits[i]));
+    // A drag: one edit of a value setting (not adding or removing), joined with the last frame's of it.
+    std::string mergeKey;
+    if (edits.size() == 1 && edits[0].setting != Setting::MeshAdd && edits[0].setting != Setting::MeshRemove &&
+        edits[0].setting != Setting::LightAdd && edits[0].setting != Setting::LightRemove)
+        mergeKey = std::string(settingInfo(edits[0].setting).key) + "#" + std::to_string(edits[0].target);
+    state.undoHistory->pushEdit(*state.removal, std::move(undoJson), std::move(redoJson), mergeKey);
 }
 
 }  // namespace curette

@@ -3,6 +3,7 @@
 #include "base/error.h"
 #include "base/json_reader.h"
 #include "mesh/mesh_description.h"
+#include "io/transfer_function_file.h"
 #include "session/drilling.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -56,6 +57,7 @@ void adoptSceneSettings(const Scene& scene, InteractionState& s) {
         s.sceneLightKeys.push_back(key);
     }
     s.sceneDirectory = scene.file.parent_path().empty() ? std::filesystem::path(".") : scene.file.parent_path();
+    s.sceneJson = scene.json;
     s.fromSceneSettings = true;
 }
 
@@ -119,6 +121,7 @@ InteractionState InteractionState::fromSessionStart(const SessionHeader& header,
     // shading at the start (a header may carry a shading edit that a key overrode later).
     s.applyEdits(header.edits, source + " line 1: edits");
     s.appliedEdits.clear();
+    s.historyHoldsEdits = header.version >= kUndoEditsVersion;
     s.shading = header.shading;
     if (header.lights) {
         if (header.lights->size() != s.lights.size())
@@ -193,9 +196,104 @@ int InteractionState::indexOf(int meshId) const {
     return -1;
 }
 
-void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const std::string& source) {
+std::vector<SettingEdit> InteractionState::inverseOf(const SettingEdit& edit) const {
+    // A light's key as the panel starts from it (its direction now: MoveLight turns it without an edit).
+    auto lightEntry = [&](std::size_t i) {
+        nlohmann::json key = keyJson(lightKey(i));
+        if (key.is_null()) key = i < sceneLightKeys.size() ? sceneLightKeys[i] : lightJson(lights[i]);
+        key["direction"] = {lights[i].direction.x, lights[i].direction.y, lights[i].direction.z};
+        return key;
+    };
+    auto object = [&](const std::string& key) {
+        nlohmann::json j = keyJson(key);
+        return j.is_null() ? nlohmann::json::object() : j;   // a key the scene lacks: its defaults
+    };
+    auto mesh = [&]() -> const MeshState* {
+        int i = indexOf(edit.target);
+        return i < 0 ? nullptr : &meshes[static_cast<std::size_t>(i)];
+    };
+    auto pose = [](const clip::RigidPose& p) {
+        glm::dvec3 deg = clip::degreesFromOrientation(p.orientation);
+        return nlohmann::json{{"position_mm", {p.position.x, p.position.y, p.position.z}}, {"rotation_deg", {deg.x, deg.y, deg.z}}};
+    };
+    const int t = edit.target;
+    const bool light = t >= 0 && t < static_cast<int>(lights.size());
+    switch (edit.setting) {
+        case Setting::Shading: return {{Setting::Shading, -1, shadingModeName(shading)}};
+        case Setting::TransferFunction: {
+            nlohmann::json tf = keyJson("transfer_function");
+            if (!tf.is_object()) tf = nlohmann::json::parse(io::writeTransferFunctionJson(transferFunction));   // a path or preset in the scene
+            return {{Setting::TransferFunction, -1, tf}};
+        }
+        case Setting::AmbientOcclusion: return {{edit.setting, -1, object("ambient_occlusion")}};
+        case Setting::Raycast: return {{edit.setting, -1, object("raycast")}};
+        case Setting::Dos: return {{edit.setting, -1, object("dos")}};
+        case Setting::Ismos: return {{edit.setting, -1, object("ismos")}};
+        case Setting::TubeRendering: return {{edit.setting, -1, object("tube_rendering")}};
+        case Setting::ClipMeshDisplay: return {{edit.setting, -1, object("clip_mesh_display")}};
+        case Setting::Tubes: {
+            nlohmann::json entry = object("tubes[" + std::to_string(t) + "]");
+            entry.erase("path");
+            return {{Setting::Tubes, t, entry}};
+        }
+        case Setting::Light:
+            if (!light) return {};
+            return {{Setting::Light, t, lightEntry(static_cast<std::size_t>(t))}};
+        case Setting::LightAdd: return {{Setting::LightRemove, static_cast<int>(lights.size()), nullptr}};
+        case Setting::LightRemove: {
+            // Lights only append: add the last one back, then give each from the removed one on its old key.
+            if (!light || lights.size() < 2) return {};
+            std::vector<SettingEdit> out{{Setting::LightAdd, -1, lightEntry(lights.size() - 1)}};
+            for (std::size_t i = static_cast<std::size_t>(t); i + 1 < lights.size(); ++i) out.push_back({Setting::Light, static_cast<int>(i), lightEntry(i)});
+            return out;
+        }
+        case Setting::MeshAdd: return {};   // its id is known once applied: applyEdits makes the removal
+        case Setting::MeshRemove: {
+            const MeshState* m = mesh();
+            if (!m) return {};
+            nlohmann::json entry = pose(m->pose);
+            entry["name"] = m->name;
+            if (!m->description.empty()) {
+                entry["mesh"] = nlohmann::json::parse(m->description);
+            } else {   // a scene's mesh: its id is its index in the scene's "clip_meshes"
+                const nlohmann::json* scene = sceneJson.is_object() && sceneJson.contains("clip_meshes") ? &sceneJson.at("clip_meshes") : nullptr;
+                if (!scene || !scene->is_array() || m->id >= static_cast<int>(scene->size())) return {};
+                entry["mesh"] = (*scene)[static_cast<std::size_t>(m->id)].at("mesh");
+            }
+            entry["scale"] = {m->scale.x, m->scale.y, m->scale.z};
+            entry["clips_tubes"] = m->clipsTubes;
+            return {{Setting::MeshAdd, m->id, entry}};
+        }
+        case Setting::MeshShape:
+            if (const MeshState* m = mesh()) {
+                if (!m->description.empty()) return {{edit.setting, t, nlohmann::json::parse(m->description)}};
+                if (const auto* scene = sceneJson.is_object() && sceneJson.contains("clip_meshes") ? &sceneJson.at("clip_meshes") : nullptr;
+                    scene && scene->is_array() && t < static_cast<int>(scene->size()))
+                    return {{edit.setting, t, (*scene)[static_cast<std::size_t>(t)].at("mesh")}};
+            }
+            return {};
+        case Setting::MeshScale:
+            if (const MeshState* m = mesh()) return {{edit.setting, t, {m->scale.x, m->scale.y, m->scale.z}}};
+            return {};
+        case Setting::MeshClipsTubes:
+            if (const MeshState* m = mesh()) return {{edit.setting, t, m->clipsTubes}};
+            return {};
+        case Setting::MeshPose:
+            if (const MeshState* m = mesh()) return {{edit.setting, t, pose(m->pose)}};
+            return {};
+        case Setting::Count: break;
+    }
+    return {};
+}
+
+void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const std::string& source, std::vector<SettingEdit>* undo) {
     for (std::size_t k = 0; k < edits.size(); ++k) {
         SettingEdit edit = edits[k];
+        // What undoes this edit, before it (the last edit's inverse first); an added mesh's once it has its id.
+        if (undo) {
+            std::vector<SettingEdit> inverse = edit.setting == Setting::MeshAdd ? std::vector<SettingEdit>{} : inverseOf(edit);
+            undo->insert(undo->begin(), inverse.begin(), inverse.end());
+        }
         const SettingInfo& info = settingInfo(edit.setting);
         const std::string where = "edits[" + std::to_string(k) + "]";
         auto fail = [&](const std::string& expected) -> void {
@@ -308,6 +406,7 @@ void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const s
             case Setting::Count: break;
         }
         if (std::string key = editedKeyName(edit); !key.empty()) editedKeys[key] = edit.value;
+        if (undo && edit.setting == Setting::MeshAdd) undo->insert(undo->begin(), SettingEdit{Setting::MeshRemove, edit.target, nullptr});
         appliedEdits.push_back(edit);
     }
 }
@@ -333,12 +432,16 @@ std::vector<SettingEdit> InteractionState::settingEdits() const {
     return out;
 }
 
-nlohmann::json InteractionState::keyJson(const Scene& scene, const std::string& key) const {
+nlohmann::json InteractionState::keyJson(const Scene& scene, const std::string& key) const { return keyJson(key, scene.json); }
+
+nlohmann::json InteractionState::keyJson(const std::string& key) const { return keyJson(key, sceneJson); }
+
+nlohmann::json InteractionState::keyJson(const std::string& key, const nlohmann::json& sceneJson) const {
     if (auto it = editedKeys.find(key); it != editedKeys.end()) return it->second;
     std::size_t bracket = key.find('[');
     std::string name = key.substr(0, bracket);
-    if (!scene.json.is_object() || !scene.json.contains(name)) return nullptr;
-    const nlohmann::json& value = scene.json.at(name);
+    if (!sceneJson.is_object() || !sceneJson.contains(name)) return nullptr;
+    const nlohmann::json& value = sceneJson.at(name);
     if (bracket == std::string::npos) return value;
     std::size_t index = static_cast<std::size_t>(std::stoi(key.substr(bracket + 1)));
     return value.is_array() && index < value.size() ? value[index] : nlohmann::json();
@@ -354,7 +457,7 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
         return index >= 0 && index < static_cast<int>(meshes.size()) ? &meshes[static_cast<std::size_t>(index)] : nullptr;
     };
     heldDrills.clear();
-    drillHistoryPresses.clear();
+    historyPresses.clear();
     for (const input::Action& action : actions) {
         if (auto* a = std::get_if<input::MoveMesh>(&action)) {
             if (MeshState* m = mesh(a->mesh)) {
@@ -412,10 +515,10 @@ void InteractionState::apply(const std::vector<input::Action>& actions, const Or
             screenshot = true;
         } else if (auto* h = std::get_if<input::HoldDrill>(&action)) {
             if (MeshState* m = mesh(h->mesh)) addDrill(heldDrills, {m->id, h->erase});
-        } else if (std::holds_alternative<input::UndoStroke>(action)) {
-            drillHistoryPresses.push_back(DrillHistoryCommand::Undo);
-        } else if (std::holds_alternative<input::RedoStroke>(action)) {
-            drillHistoryPresses.push_back(DrillHistoryCommand::Redo);
+        } else if (std::holds_alternative<input::Undo>(action)) {
+            historyPresses.push_back(HistoryCommand::Undo);
+        } else if (std::holds_alternative<input::Redo>(action)) {
+            historyPresses.push_back(HistoryCommand::Redo);
         }
     }
 }

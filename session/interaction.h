@@ -10,7 +10,7 @@
 #include "mesh/limits.h"
 #include "mesh/rigid_pose.h"
 #include "mesh/triangle_mesh.h"
-#include "plan/drill_history.h"
+#include "plan/undo_history.h"
 #include "plan/removal_field.h"
 #include "plan/removal_volume.h"
 #include "input/actions.h"
@@ -74,21 +74,29 @@ struct InteractionState {
     // removal sets for a light no edit has set, and what settingEdits() compares the lights with.
     std::vector<nlohmann::json> sceneLightKeys;
     std::filesystem::path sceneDirectory = ".";   // glTF paths of edited meshes are relative to it
+    nlohmann::json sceneJson;                     // the scene's file (its keys, for inverseOf)
     bool fromSceneSettings = false;   // the settings above are a scene's (else SessionStep adopts its frame's)
     // One-shot requests the frame loop handles (and clears).
     bool toggleRecording = false, screenshot = false;
     std::vector<int> addedMeshIds, removedMeshIds;   // this frame's, for the session's mesh events
-    std::vector<SettingEdit> appliedEdits;           // this frame's, as applied (an added mesh with its id)
-    // Drilling (session/drilling.h): the accumulated removal on the scan grid and its undo steps, made when the
-    // session's scan is known (SessionStep::attachRemoval; null before); shared by copies of the state. And
-    // this frame's drilling meshes and undo/redo commands, as applied, for the session's frame.
+    // This frame's, as applied (an added mesh with its id): the panels' (or a session's "edits"); those its undo
+    // and redo applied are appliedHistoryEdits (a session's "history_edits").
+    std::vector<SettingEdit> appliedEdits;
+    // Drilling (session/drilling.h): the accumulated removal on the scan grid and the undo history of strokes and
+    // setting edits, made when the session's scan is known (SessionStep::attachRemoval; null before); shared by
+    // copies of the state. And this frame's drilling meshes and undo/redo commands, as applied, for the
+    // session's frame.
     std::shared_ptr<plan::RemovalVolume> removal;
-    std::shared_ptr<plan::DrillHistory> drillHistory;
+    std::shared_ptr<plan::UndoHistory> undoHistory;
+    // Whether setting edits are undo steps: live, and sessions from version 7 (kUndoEditsVersion); an older
+    // session's undo presses undid strokes only, and its replay must too.
+    bool historyHoldsEdits = true;
     std::vector<SessionDrill> appliedDrills;
-    std::vector<DrillHistoryCommand> appliedDrillHistory;
-    // This frame's drilling asked by actions (HoldDrill by mesh id, UndoStroke, RedoStroke), for applyDrilling.
+    std::vector<HistoryCommand> appliedHistory;
+    std::vector<SettingEdit> appliedHistoryEdits;
+    // This frame's drilling asked by actions (HoldDrill by mesh id, Undo, Redo), for applyDrilling.
     std::vector<SessionDrill> heldDrills;
-    std::vector<DrillHistoryCommand> drillHistoryPresses;
+    std::vector<HistoryCommand> historyPresses;
 
     static InteractionState fromScene(const Scene& scene);
     // The state a session starts from (its header), with geometry from the scene or the meshes' descriptions.
@@ -104,14 +112,24 @@ struct InteractionState {
     void apply(const std::vector<input::Action>& actions, const OrbitCamera& camera, int viewportHeight);
     // Applies setting edits (after the frame's actions): each value read by the scene reader's function for
     // its key (scene/setting_edit.h), then set where the scene's value was. `source` names them in errors
-    // (a session line, or "<panel>"). Appends each, as applied, to appliedEdits.
-    void applyEdits(const std::vector<SettingEdit>& edits, const std::string& source);
+    // (a session line, or "<panel>"). Appends each, as applied, to appliedEdits. With `undo`, puts before its
+    // contents the edits that undo them (inverseOf each, the last edit's first; an added mesh's removal).
+    void applyEdits(const std::vector<SettingEdit>& edits, const std::string& source, std::vector<SettingEdit>* undo = nullptr);
+    // The edits that would set back what `edit` changes, made from this state before it is applied: the
+    // setting's value now, as the JSON such an edit carries (an edited key's last value, else the scene's, else
+    // {} for a key the scene lacks: its defaults; a transfer function the scene names by path, written out).
+    // A removed mesh comes back with its id, name, shape, pose, scale and clips_tubes (added last; its rotation
+    // through rotation_deg, exact to double rounding); a removed light is added back and the lights after it
+    // set back on their keys. Empty when the edit would fail (applyEdits reports that).
+    std::vector<SettingEdit> inverseOf(const SettingEdit& edit) const;
     // The edits that turn the scene's settings into this state's (for a session header: a recording that
     // starts after edits), one per edited key; meshes are not among them (the header lists the meshes).
     std::vector<SettingEdit> settingEdits() const;
     // The scene file's current JSON of a key ("ambient_occlusion", "lights[0]", ...): the last edit's value,
     // else the scene's own (null when the scene does not have the key).
     nlohmann::json keyJson(const Scene& scene, const std::string& key) const;
+    nlohmann::json keyJson(const std::string& key) const;   // against the scene the state was made from
+    nlohmann::json keyJson(const std::string& key, const nlohmann::json& sceneJson) const;
     // The mesh AddMesh creates: a 15 mm sphere at the camera's target.
     static const char* addedMeshDescription();
 };

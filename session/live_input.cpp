@@ -82,7 +82,7 @@ SessionHeader headerNow(const std::filesystem::path& path, const std::string& sc
     }
     // A recording starts a new undo history: a replay starts from the removal above and could not undo the
     // strokes made before it, so neither can the live run from here on.
-    if (state.drillHistory) *state.drillHistory = plan::DrillHistory(state.drillHistory->budgetBytes());
+    if (state.undoHistory) *state.undoHistory = plan::UndoHistory(state.undoHistory->budgetBytes());
     h.xr = std::move(xr);
     return h;
 }
@@ -120,7 +120,8 @@ void LiveRecording::addFrame(double now, double dt, glm::ivec2 size, const Orbit
     f.edits = state.appliedEdits;
     f.holds = input.holds;
     f.drills = state.appliedDrills;
-    f.drillHistory = state.appliedDrillHistory;
+    f.historyCommands = state.appliedHistory;
+    f.historyEdits = state.appliedHistoryEdits;
     f.xr = std::move(xr);
     for (const input::RawReport& r : input.reports) f.reports.push_back({r.deviceId, std::max(0.0, r.timeSeconds - start_), r.bytes});
     recorder_.add(f);

@@ -2,6 +2,7 @@
 
 #include "base/error.h"
 #include "io/nifti_uint64.h"
+#include "base/sha256.h"
 
 #include <cmath>
 
@@ -27,26 +28,52 @@ std::filesystem::path removalFileBeside(const std::filesystem::path& owner) {
 }
 
 void writeRemovalFile(const std::filesystem::path& path, const plan::RemovalVolume& removal) {
-    io::Uint64Volume v{removal.dims(), removal.indexToWorld(), {}};
-    v.values.assign(static_cast<std::size_t>(v.dims.x) * v.dims.y * v.dims.z, 0);
+    io::Uint64Volume v{removal.dims(), removal.indexToWorld(), plan::kRemovalWordsPerVoxel, {}};
+    const std::size_t voxels = static_cast<std::size_t>(v.dims.x) * v.dims.y * v.dims.z;
+    v.values.assign(voxels * plan::kRemovalWordsPerVoxel, 0);
     plan::VoxelBox box = removal.drilledBox();
     for (int z = box.origin.z; z < box.origin.z + box.size.z; ++z)
         for (int y = box.origin.y; y < box.origin.y + box.size.y; ++y)
-            for (int x = box.origin.x; x < box.origin.x + box.size.x; ++x)
-                v.values[(static_cast<std::size_t>(z) * v.dims.y + y) * v.dims.x + x] = removal.mask({x, y, z});
-    io::writeNiftiUint64(path, v, "curette drilled removal: 4x4x4 bits");
+            for (int x = box.origin.x; x < box.origin.x + box.size.x; ++x) {
+                plan::VoxelMask m = removal.mask({x, y, z});
+                for (std::size_t w = 0; w < m.size(); ++w) v.values[w * voxels + (static_cast<std::size_t>(z) * v.dims.y + y) * v.dims.x + x] = m[w];
+            }
+    io::writeNiftiUint64(path, v, "curette drilled removal: 8x8x8 bits");
 }
 
+namespace {
+
+// A word of 4 x 4 x 4 sub-cell bits (bit i + 4 j + 16 k) as the 8 x 8 x 8 mask of the same region.
+plan::VoxelMask fromFourPerAxis(std::uint64_t word) {
+    static_assert(plan::kRemovalCellsPerAxis == 8);
+    plan::VoxelMask m{};
+    for (int k = 0; k < 4; ++k)
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i)
+                if ((word >> ((k * 4 + j) * 4 + i)) & 1u)
+                    for (int c = 0; c < 8; ++c)
+                        m[static_cast<std::size_t>(2 * k + (c >> 2))] |= std::uint64_t(1) << ((2 * j + ((c >> 1) & 1)) * 8 + 2 * i + (c & 1));
+    return m;
+}
+
+}  // namespace
+
 std::shared_ptr<plan::RemovalVolume> readRemovalFile(const std::filesystem::path& path, glm::ivec3 dims, const glm::dmat4& indexToWorld,
-                                                     const std::string& referrer, const std::string& key) {
+                                                     const std::string& referrer, const std::string& key, std::string* fileDigest) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw InputError(referrer, key, "a removal file (NIfTI-1, datatype 1280) that exists", "\"" + path.string() + "\": no such file");
     io::Uint64Volume v = io::readNiftiUint64(path);
     if (v.dims != dims) throw InputError(path.string(), "dim", dimsText(dims) + " (the scan's grid)", dimsText(v.dims));
     if (!sameAffine(v.indexToWorld, indexToWorld)) throw InputError(path.string(), "srow_x/y/z", "the scan's index-to-world affine (RAS mm)", "another grid");
+    const bool fourPerAxis = v.words == 1;
+    if (!fourPerAxis && v.words != plan::kRemovalWordsPerVoxel)
+        throw InputError(path.string(), "dim[4]", std::to_string(plan::kRemovalWordsPerVoxel) + " words per voxel (8 x 8 x 8 sub-cells; or a 3-D file of 4 x 4 x 4)",
+                         std::to_string(v.words));
+    const std::size_t voxels = static_cast<std::size_t>(dims.x) * dims.y * dims.z;
     auto removal = std::make_shared<plan::RemovalVolume>(dims, indexToWorld);
     plan::BrickMaskMap bricks;
+    Sha256 oldDigest;   // a 4 x 4 x 4 file's words as version 6 digested them: index and word, brick by brick
     glm::ivec3 grid = removal->brickGrid();
     for (int bz = 0; bz < grid.z; ++bz)
         for (int by = 0; by < grid.y; ++by)
@@ -60,13 +87,25 @@ std::shared_ptr<plan::RemovalVolume> readRemovalFile(const std::filesystem::path
                         for (int i = 0; i < plan::kRemovalBrickSize; ++i) {
                             glm::ivec3 p = origin + glm::ivec3(i, j, k);
                             if (glm::any(glm::greaterThanEqual(p, dims))) continue;
-                            std::uint64_t m = v.values[(static_cast<std::size_t>(p.z) * dims.y + p.y) * dims.x + p.x];
-                            masks[static_cast<std::size_t>((k * plan::kRemovalBrickSize + j) * plan::kRemovalBrickSize + i)] = m;
-                            any = any || m != 0;
+                            std::size_t n = (static_cast<std::size_t>(p.z) * dims.y + p.y) * dims.x + p.x;
+                            std::size_t inBrick = static_cast<std::size_t>((k * plan::kRemovalBrickSize + j) * plan::kRemovalBrickSize + i);
+                            plan::VoxelMask m{};
+                            if (fourPerAxis) {
+                                m = fromFourPerAxis(v.values[n]);
+                                if (v.values[n] != 0) {
+                                    std::uint64_t record[2] = {std::uint64_t(brick) * plan::kRemovalBrickVoxels + inBrick, v.values[n]};
+                                    oldDigest.update(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record), sizeof record));
+                                }
+                            } else {
+                                for (std::size_t w = 0; w < m.size(); ++w) m[w] = v.values[w * voxels + n];
+                            }
+                            masks[inBrick] = m;
+                            any = any || !plan::isEmpty(m);
                         }
                 if (any) bricks[brick] = masks;
             }
     removal->setBricks(bricks);
+    if (fileDigest) *fileDigest = fourPerAxis ? oldDigest.hexDigest() : removal->digest();
     return removal;
 }
 
@@ -76,11 +115,12 @@ std::shared_ptr<const plan::RemovalVolume> sessionStartRemoval(const Session& se
     std::filesystem::path path = session.header.removal;
     if (path.is_relative()) path = session.file.parent_path() / path;
     std::string where = session.file.string();
+    std::string digest;
     std::shared_ptr<plan::RemovalVolume> removal =
-        readRemovalFile(path, loaded.volume.dims, loaded.volume.indexToWorld, where, "line 1: removal.file");
-    if (removal->digest() != session.header.removalDigest)
+        readRemovalFile(path, loaded.volume.dims, loaded.volume.indexToWorld, where, "line 1: removal.file", &digest);
+    if (digest != session.header.removalDigest)
         throw InputError(path.string(), "voxels", "the removal the session started from (digest " + session.header.removalDigest + ")",
-                         "another one (digest " + removal->digest() + ")");
+                         "another one (digest " + digest + ")");
     return removal;
 }
 

@@ -335,9 +335,10 @@ std::string sessionFrameLine(const SessionFrame& f) {
         j["drill"] = nlohmann::ordered_json::array();
         for (const SessionDrill& d : f.drills) j["drill"].push_back({{"mesh", d.mesh}, {"erase", d.erase}});
     }
-    if (!f.drillHistory.empty()) {
+    if (!f.historyEdits.empty()) j["history_edits"] = editsJson(f.historyEdits);
+    if (!f.historyCommands.empty()) {
         j["drill_history"] = nlohmann::ordered_json::array();
-        for (DrillHistoryCommand c : f.drillHistory) j["drill_history"].push_back(c == DrillHistoryCommand::Undo ? "undo" : "redo");
+        for (HistoryCommand c : f.historyCommands) j["drill_history"].push_back(c == HistoryCommand::Undo ? "undo" : "redo");
     }
     if (!f.holds.empty()) {
         j["holds"] = nlohmann::ordered_json::array();
@@ -522,12 +523,13 @@ void readFrameMeshes(const JsonReader& r, SessionFrame& f, FrameContext& context
     }
 }
 
-void readFrameEdits(const JsonReader& edits, SessionFrame& f, FrameContext& context) {
+// A frame's "edits", or its "history_edits" (version 7), into `out`.
+void readFrameEdits(const JsonReader& edits, std::vector<SettingEdit>& out, FrameContext& context) {
     requireVersion3(edits, context.version);
     for (const JsonReader& e : edits.elements(0, 1024)) {
-        f.edits.push_back(readSettingEdit(e, context.directory));
-        Setting setting = f.edits.back().setting;
-        if (setting == Setting::MeshAdd && !context.meshIds.count(f.edits.back().target))
+        out.push_back(readSettingEdit(e, context.directory));
+        Setting setting = out.back().setting;
+        if (setting == Setting::MeshAdd && !context.meshIds.count(out.back().target))
             e.at("mesh").fail("the id of a mesh in this frame's meshes_added (where an added mesh is listed too)");
         if (setting == Setting::LightAdd || setting == Setting::LightRemove) {
             requireVersion4Lights(e.at("setting"), context.version);
@@ -604,7 +606,12 @@ SessionFrame readFrame(std::string_view line, std::size_t number, FrameContext& 
     if (!mode) r.at("shading").fail("one of " + shadingModeList());
     f.shading = *mode;
     readFrameMeshes(r, f, context);
-    if (auto edits = r.find("edits")) readFrameEdits(*edits, f, context);
+    if (auto edits = r.find("edits")) readFrameEdits(*edits, f.edits, context);
+    if (auto edits = r.find("history_edits")) {
+        if (context.version < kUndoEditsVersion)
+            edits->fail("nothing: session version " + std::to_string(context.version) + " undoes strokes only (edits came with version 7)");
+        readFrameEdits(*edits, f.historyEdits, context);
+    }
     if (auto lights = r.find("lights")) f.lights = readFrameLights(*lights, context);
     if (auto holds = r.find("holds")) f.holds = readHolds(*holds, context);
     if (auto drills = r.find("drill")) {
@@ -620,7 +627,7 @@ SessionFrame readFrame(std::string_view line, std::size_t number, FrameContext& 
     if (auto history = r.find("drill_history")) {
         if (context.version < 5) history->fail("nothing: session version " + std::to_string(context.version) + " has no drilling (it came with version 5)");
         for (const JsonReader& c : history->elements(0, 64))
-            f.drillHistory.push_back(c.oneOf({"undo", "redo"}) == "undo" ? DrillHistoryCommand::Undo : DrillHistoryCommand::Redo);
+            f.historyCommands.push_back(c.oneOf({"undo", "redo"}) == "undo" ? HistoryCommand::Undo : HistoryCommand::Redo);
     }
     f.keys = r.at("keys").unsignedInteger(maxKeys(context.version));
     f.drag = r.at("drag").vec2(-1e5, 1e5);

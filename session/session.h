@@ -5,7 +5,8 @@
 // edits (version 3, scene/setting_edit.h), the mesh panel's hold requests (version 4), the drilling applied
 // (version 5; from version 6 derived from the keys and devices, and the header names the removal at the start),
 // the head, eyes and controllers of a head-mounted display (version 6: `view --xr`; 7: the controllers' volume
-// and erase buttons and the volume's place in the room), and the raw HID reports
+// and erase buttons and the volume's place in the room), the edits an undo or redo of a setting edit applied
+// (version 7, "history_edits"), and the raw HID reports
 // received since the previous frame (hex). Poses are written with 17 significant digits, so they read back to
 // the same doubles.
 
@@ -30,13 +31,17 @@ namespace curette {
 inline constexpr int kSessionVersion = 7;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
                                             // 5: drilling and its undo/redo; 6: drilling from keys and devices (actions, so
                                             // --from-reports re-derives it; 64-bit keys), the removal at the start,
-                                            // head-mounted display sessions
-                                            // 7: the controllers' volume and erase buttons, the volume's place in the room
+                                            // head-mounted display sessions; 7: the controllers' volume and erase
+                                            // buttons, the volume's place in the room, undo/redo of setting edits
+                                            // too ("history_edits")
 // The first version whose controllers move the volume, erase and undo/redo (session/xr_hands.h).
 inline constexpr int kXrVolumeVersion = 7;
 // The first version whose drilling comes from the recorded keys and devices: replay --from-reports re-derives
 // it and compares it with the frame's "drill"/"drill_history"; before, those are the input.
 inline constexpr int kDrillFromInputVersion = 6;
+// The first version whose undo history holds setting edits as well as strokes (the edits an undo or redo
+// applied are the frame's "history_edits").
+inline constexpr int kUndoEditsVersion = 7;
 inline constexpr int kOldestSessionVersion = 1;
 
 struct SessionDevice {
@@ -70,7 +75,7 @@ struct SessionDrill {
     bool erase = false;
     bool operator==(const SessionDrill&) const = default;
 };
-enum class DrillHistoryCommand { Undo, Redo };
+enum class HistoryCommand { Undo, Redo };   // of the last stroke or setting edit (only strokes before version 7)
 
 // A head-mounted display session (version 6, `view --xr`): the room space the runtime located everything in
 // (the volume's anchor follows from it: render/model/tracked_view.h) and each eye's recommended image size.
@@ -132,10 +137,13 @@ struct SessionFrame {
     // The hold requests the frame's input pipeline step applied, before its reports (version 4;
     // input::HoldRequest): {"binding": N | "keyboard", "mesh": index}.
     std::vector<input::HoldRequest> holds;
-    // The meshes drilling this frame, then the undo/redo commands applied after them (version 5). From version 6
-    // they are what the frame's actions applied (a record, re-derived from the keys and reports).
+    // The meshes drilling this frame, then the undo/redo commands applied after them (version 5; "drill" and
+    // "drill_history"). From version 6 they are what the frame's actions applied (a record, re-derived from the
+    // keys and reports). From version 7 an undo or redo may revert a setting edit: the edits it applied are
+    // "history_edits" (a record: replay re-derives them from the undo history and checks them; not in "edits").
     std::vector<SessionDrill> drills;
-    std::vector<DrillHistoryCommand> drillHistory;
+    std::vector<HistoryCommand> historyCommands;
+    std::vector<SettingEdit> historyEdits;
     std::optional<SessionXrFrame> xr;   // version 6, in sessions whose header has "xr"
     std::vector<SessionReport> reports;
 };

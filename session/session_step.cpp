@@ -44,6 +44,7 @@ SessionStep::Before SessionStep::begin() {
     state_.addedMeshIds.clear();
     state_.removedMeshIds.clear();
     state_.appliedEdits.clear();
+    state_.appliedHistoryEdits.clear();
     return before;
 }
 
@@ -54,8 +55,9 @@ StepChanges SessionStep::compare(const Before& before, bool meshesChanged, bool 
     c.poses = !samePoses(before.poses, state_.sessionPoses());
     c.shading = state_.shading != before.shading;
     c.lights = state_.lights != before.lights;
-    c.settings = !state_.appliedEdits.empty();
-    for (const SettingEdit& e : state_.appliedEdits) c.meshes = c.meshes || e.setting == Setting::MeshShape;
+    c.settings = !state_.appliedEdits.empty() || !state_.appliedHistoryEdits.empty();
+    for (const auto* edits : {&state_.appliedEdits, &state_.appliedHistoryEdits})
+        for (const SettingEdit& e : *edits) c.meshes = c.meshes || e.setting == Setting::MeshShape;
     frameFromState(state_, frame_);
     return c;
 }
@@ -64,11 +66,11 @@ StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int vi
                                const std::string& source, const DrillInput& drill) {
     Before before = begin();
     state_.apply(actions, frame_.camera, viewportHeight);
-    state_.applyEdits(edits, source);
+    applyUndoableEdits(state_, edits, source);
     // Drilling from the caller (a version-5 session's recorded drilling) and from the actions (keys, devices).
     DrillInput all = drill;
     for (const SessionDrill& d : state_.heldDrills) addDrill(all.drills, d);
-    all.history.insert(all.history.end(), state_.drillHistoryPresses.begin(), state_.drillHistoryPresses.end());
+    all.history.insert(all.history.end(), state_.historyPresses.begin(), state_.historyPresses.end());
     bool removal = applyDrilling(state_, before.poses, all);
     return compare(before, !state_.addedMeshIds.empty() || !state_.removedMeshIds.empty(), removal);
 }
@@ -76,18 +78,20 @@ StepChanges SessionStep::apply(const std::vector<input::Action>& actions, int vi
 void SessionStep::attachRemoval(glm::ivec3 dims, const glm::dmat4& indexToWorld, const plan::RemovalVolume* start) {
     if (state_.removal) return;
     state_.removal = start ? std::make_shared<plan::RemovalVolume>(*start) : std::make_shared<plan::RemovalVolume>(dims, indexToWorld);
-    state_.drillHistory = std::make_shared<plan::DrillHistory>();
+    state_.undoHistory = std::make_shared<plan::UndoHistory>();
 }
 
 StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::path& sceneDirectory, const std::string& where) {
     Before before = begin();
     // Meshes an edit adds or removes are also in meshes_added/meshes_removed: the edit makes them (it
     // carries every key of the mesh), after the ones the frame's actions made, as live.
+    // The same for the edits an undo or redo makes (version 7), which the history applies below.
     std::set<int> addedByEdits, removedByEdits;
-    for (const SettingEdit& e : f.edits) {
-        if (e.setting == Setting::MeshAdd) addedByEdits.insert(e.target);
-        if (e.setting == Setting::MeshRemove) removedByEdits.insert(e.target);
-    }
+    for (const auto* edits : {&f.edits, &f.historyEdits})
+        for (const SettingEdit& e : *edits) {
+            if (e.setting == Setting::MeshAdd) addedByEdits.insert(e.target);
+            if (e.setting == Setting::MeshRemove) removedByEdits.insert(e.target);
+        }
     for (const SessionAddedMesh& a : f.meshesAdded) {
         if (addedByEdits.count(a.id)) continue;
         SceneClipMesh added{.name = a.name, .geometry = meshFromDescription(a.description, where + ": meshes_added.mesh", sceneDirectory)};
@@ -95,7 +99,19 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     }
     for (int id : f.meshesRemoved)
         if (int i = state_.indexOf(id); i >= 0 && !removedByEdits.count(id)) state_.meshes.erase(state_.meshes.begin() + i);
-    state_.applyEdits(f.edits, where);
+    applyUndoableEdits(state_, f.edits, where);
+    // An undo or redo of a setting edit (version 7) changes settings, lights and meshes: the history applies it
+    // here, re-derived from the recorded presses, before the recorded lights and poses (which are after it);
+    // the drilling's sweeps too, from the poses before the frame to the recorded ones.
+    for (const SessionMesh& r : f.meshes)
+        if (int i = state_.indexOf(r.id); i >= 0) {
+            state_.meshes[static_cast<std::size_t>(i)].pose = {r.position, r.orientation};
+            state_.meshes[static_cast<std::size_t>(i)].scale = r.scale;
+        }
+    bool removal = applyDrilling(state_, before.poses, DrillInput{f.drills, f.historyCommands});
+    if (state_.appliedHistoryEdits != f.historyEdits)
+        throw InputError(where, "history_edits", "the edits the frame's undo/redo applies (" + std::to_string(state_.appliedHistoryEdits.size()) + ")",
+                         std::to_string(f.historyEdits.size()) + " others");
     // The lights' directions as recorded, after the edits (which may add or remove lights; a light edit
     // carries the direction the light had then).
     if (f.lights) {
@@ -113,7 +129,6 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     state_.shading = f.shading;
     frame_.camera = f.camera;
     frame_.size = f.size;
-    bool removal = applyDrilling(state_, before.poses, DrillInput{f.drills, f.drillHistory});
     return compare(before, !f.meshesAdded.empty() || !f.meshesRemoved.empty(), removal);
 }
 

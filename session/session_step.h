@@ -65,7 +65,7 @@ public:
     // Live input, or input re-derived from recorded reports: the actions applied through the interaction
     // state with the frame's camera, for a viewport `viewportHeight` pixels high (drags).
     // Then the frame's setting edits (the panels', or a session's recorded ones), `source` naming them in errors.
-    // Then the frame's drilling (session/drilling.h): the actions' (HoldDrill, UndoStroke, RedoStroke) with
+    // Then the frame's drilling (session/drilling.h): the actions' (HoldDrill, Undo, Redo) with
     // `drill`, drilling given as input instead (a version 5 session replayed from its reports).
     StepChanges apply(const std::vector<input::Action>& actions, int viewportHeight, const std::vector<SettingEdit>& edits = {},
                       const std::string& source = "<panel>", const DrillInput& drill = {});

@@ -36,7 +36,7 @@ const KeyHelp kKeys[] = {
     {"Tab / R", "hold the next mesh / put it back where the scene had it"},
     {"Insert / Delete", "add a mesh / remove the held one"},
     {"B / N (hold)", "drill / erase with the held mesh: it removes what it sweeps (SpaceMouse: hold the right button; gamepad: R2 / L2)"},
-    {"Ctrl+Z / Ctrl+Shift+Z or Ctrl+Y", "undo / redo a drill stroke (a gamepad: D-pad left / right)"},
+    {"Ctrl+Z / Ctrl+Shift+Z or Ctrl+Y", "undo / redo a drill stroke or a panel edit (a gamepad: D-pad left / right)"},
     {"1 2 3 4 5 6, C", "shading: solid, phong, lao, cao, dos, ismos; C cycles"},
     {"O; I J K L; Shift + left drag", "next light; turn it"},
     {"Ctrl + left click", "put the slices' crosshair on the first visible surface under the cursor (and a ruler point when measuring)"},

@@ -16,8 +16,8 @@ std::string drills(const std::vector<Action>& actions) {
     std::string s;
     for (const Action& a : actions) {
         if (auto* h = std::get_if<HoldDrill>(&a)) s += (h->erase ? "E" : "D") + std::to_string(h->mesh) + " ";
-        if (std::holds_alternative<UndoStroke>(a)) s += "U ";
-        if (std::holds_alternative<RedoStroke>(a)) s += "R ";
+        if (std::holds_alternative<Undo>(a)) s += "U ";
+        if (std::holds_alternative<Redo>(a)) s += "R ";
     }
     return s;
 }

@@ -49,6 +49,25 @@ TEST(NiftiUint64, EveryBitReadsBackCompressedOrNot) {
     }
 }
 
+// Words per voxel as a 4-D file (dim[4]), the word slowest.
+TEST(NiftiUint64, SeveralWordsPerVoxelReadBackAsA4DFile) {
+    std::filesystem::path path = folder() / "words.nii.gz";
+    io::Uint64Volume v = sampleVolume();
+    v.words = 3;
+    std::mt19937_64 random(11);
+    for (int i = 0; i < 120; ++i) v.values.push_back(random());
+    io::writeNiftiUint64(path, v, "test");
+    io::Uint64Volume back = io::readNiftiUint64(path);
+    EXPECT_EQ(back.words, 3);
+    EXPECT_EQ(back.dims, v.dims);
+    EXPECT_EQ(back.values, v.values);
+    std::vector<std::uint8_t> bytes = io::gunzip(readFileBytes(path), "words", 1 << 20);
+    std::int16_t dim[5];
+    std::memcpy(dim, bytes.data() + 40, sizeof dim);
+    EXPECT_EQ(dim[0], 4);
+    EXPECT_EQ(dim[4], 3);
+}
+
 TEST(NiftiUint64, ABigEndianFileReadsTheSame) {
     io::Uint64Volume v = sampleVolume();
     std::filesystem::path little = folder() / "little.nii";
@@ -85,8 +104,10 @@ TEST(NiftiUint64, OtherFilesAreRefusedNamingTheField) {
     refused(b, "vox_offset");   // a voxel short
     b = good, b[254] = 0, b[255] = 0;
     refused(b, "sform_code");
-    b = good, b[40] = 4;
+    b = good, b[40] = 5;
     refused(b, "dim[0]");
+    b = good, b[40] = 4, b[48] = 0;   // 4-D with no words per voxel
+    refused(b, "dim[4]");
     b = good, b[72] = 32;
     refused(b, "bitpix");
     b = good, b[344] = 'x';

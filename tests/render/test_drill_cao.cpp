@@ -2,7 +2,7 @@
 // and redone, and a live mesh moving as well, CAO gives V_AO and images bit-identical to full LAO in a second
 // renderer that never runs CAO, after every stroke step; and CAO visits only part of the volume to do it.
 #include "mesh/primitives.h"
-#include "plan/drill_history.h"
+#include "plan/undo_history.h"
 #include "plan/drill_sweep.h"
 #include "render/renderer.h"
 #include "tests/render/gl_test_support.h"
@@ -72,7 +72,7 @@ TEST(DrillCao, EqualsFullLaoAfterEveryStrokeStepWithUndoAndRedo) {
 
     std::mt19937 random(11);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    plan::DrillHistory history;
+    plan::UndoHistory history;
     int compared = 0, partial = 0, undos = 0, redos = 0, recastPart = 0;
     auto compare = [&](const std::string& what) {
         DrillScene::Result c = cao.render(ShadingMode::Cao), l = lao.render(ShadingMode::Lao);
@@ -94,8 +94,7 @@ TEST(DrillCao, EqualsFullLaoAfterEveryStrokeStepWithUndoAndRedo) {
             next.position += 4.0 * glm::dvec3(u(random), u(random), u(random));
             next.orientation = glm::normalize(pose.orientation * glm::angleAxis(0.3 * u(random), glm::dvec3(1, 0, 0)));
             plan::DrillSweep sweep(tool, pose, next);
-            removal->apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal->voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()),
-                           erase, history.before());
+            plan::applySweep(*removal, sweep, erase, history.before());
             pose = next;
             if (step == 1) setLivePose(clip::RigidPose{10.0 * glm::dvec3(u(random), u(random), u(random)), {}});
             compare("stroke " + std::to_string(stroke) + " step " + std::to_string(step));
@@ -142,7 +141,7 @@ TEST(DrillCao, ExactFramesAfterDrillingCastOnlyTheReachedPixelsAndEqualFullCasts
         for (int step = 0; step < 8; ++step) {
             glm::dvec3 next = at + glm::dvec3(1.0, -0.5, 0.3);
             plan::DrillSweep sweep(burr, clip::RigidPose{at, {}}, clip::RigidPose{next, {}});
-            removal->apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal->voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), false);
+            plan::applySweep(*removal, sweep, false);
             at = next;
             DrillScene::Result r = region.render(mode), f = full.render(mode);
             if (step > 0) smallest = std::min(smallest, region.renderer->lastRecastShare());
@@ -166,7 +165,7 @@ TEST(DrillCao, ADrilledStrokeChangesTheImageInEveryMode) {
         Image before = scene.render(mode).image;
         plan::DrillSweep sweep({clip::SolidShape{clip::SolidShape::Kind::Sphere, 4.0}}, clip::RigidPose{glm::dvec3(-15, -3, 2), {}},
                                clip::RigidPose{glm::dvec3(15, 4, -3), {}});
-        removal->apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal->voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), false);
+        plan::applySweep(*removal, sweep, false);
         Image after = scene.render(mode).image;
         std::size_t changed = 0;
         for (std::size_t i = 0; i < before.pixels.size(); ++i) changed += before.pixels[i] != after.pixels[i];

@@ -9,12 +9,16 @@
 #include "session/session_step.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/sha256.h"
+#include "io/nifti_uint64.h"
 #include "input/hid/fake_backend.h"
 #include "tests/tools/run_curette.h"
 #include "tests/tools/tool_test_support.h"
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <random>
 #include <regex>
 
 namespace curette::testing {
@@ -42,9 +46,51 @@ TEST(RemovalFile, ReadsBackBitForBit) {
     bool partial = false;
     for (int z = 0; z < 7; ++z)
         for (int y = 0; y < 9; ++y)
-            for (int x = 0; x < 13; ++x) partial = partial || (removal.mask({x, y, z}) != 0 && removal.mask({x, y, z}) != ~std::uint64_t(0));
+            for (int x = 0; x < 13; ++x) partial = partial || (!plan::isEmpty(removal.mask({x, y, z})) && removal.mask({x, y, z}) != plan::kFullVoxelMask);
     EXPECT_TRUE(partial) << "the sample has voxels drilled in part";
     EXPECT_EQ(removalFileBeside("/a/b/plan.json"), std::filesystem::path("/a/b/plan.removal.nii.gz"));
+}
+
+// A file written with 4 x 4 x 4 sub-cells (3-D, a word per voxel: bit i + 4 j + 16 k) loads: each old
+// sub-cell is its 2 x 2 x 2 new ones, so every voxel keeps its fraction; the digest it reports for a session
+// header is the one written then (of the words).
+TEST(RemovalFile, AFileOfFourSubCellsPerAxisLoadsAsTheSameRegion) {
+    auto dir = freshScratchFolder("curette-removal", "four");
+    plan::RemovalVolume sample = drilledSample();
+    io::Uint64Volume old{sample.dims(), sample.indexToWorld(), 1, {}};
+    std::mt19937_64 random(5);
+    for (int i = 0; i < 13 * 9 * 7; ++i) old.values.push_back(i % 4 == 0 ? 0 : i % 4 == 1 ? ~std::uint64_t(0) : random());
+    io::writeNiftiUint64(dir / "old.removal.nii.gz", old, "curette drilled removal: 4x4x4 bits");
+    std::string digest;
+    auto back = readRemovalFile(dir / "old.removal.nii.gz", sample.dims(), sample.indexToWorld(), "scene.json", "removal", &digest);
+    for (int z = 0; z < 7; ++z)
+        for (int y = 0; y < 9; ++y)
+            for (int x = 0; x < 13; ++x) {
+                std::uint64_t word = old.values[static_cast<std::size_t>((z * 9 + y) * 13 + x)];
+                plan::VoxelMask m = back->mask({x, y, z});
+                ASSERT_EQ(plan::drilledCells(m), 8 * std::popcount(word));
+                for (int k = 0; k < 8; ++k)
+                    for (int j = 0; j < 8; ++j)
+                        for (int i = 0; i < 8; ++i)
+                            ASSERT_EQ((m[static_cast<std::size_t>(k)] >> (j * 8 + i)) & 1u, (word >> ((k / 2 * 4 + j / 2) * 4 + i / 2)) & 1u);
+            }
+    // Version 6's digest: each drilled voxel's brick-order index and word.
+    Sha256 hash;
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> records;
+    for (int z = 0; z < 7; ++z)
+        for (int y = 0; y < 9; ++y)
+            for (int x = 0; x < 13; ++x) {
+                std::uint64_t word = old.values[static_cast<std::size_t>((z * 9 + y) * 13 + x)];
+                glm::ivec3 v(x, y, z);
+                if (word) records.push_back({std::uint64_t(back->brickNumber(v / 4)) * 64 + static_cast<std::uint64_t>(((z % 4) * 4 + y % 4) * 4 + x % 4), word});
+            }
+    std::sort(records.begin(), records.end());
+    for (const auto& r : records) {
+        std::uint64_t record[2] = {r.first, r.second};
+        hash.update(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record), sizeof record));
+    }
+    EXPECT_EQ(digest, hash.hexDigest());
+    EXPECT_NE(digest, back->digest());
 }
 
 TEST(RemovalFile, AnotherGridOrNoFileIsAnInputErrorNamingIt) {
@@ -146,7 +192,7 @@ TEST(DrillPersistence, ARecordingStartedAfterDrillingStartsFromItsRemoval) {
             atStart = step.state().removal->digest();
         }
         if (f == 29) {
-            EXPECT_TRUE(step.state().appliedDrillHistory.empty()) << "the first stroke was made before the recording: not undone";
+            EXPECT_TRUE(step.state().appliedHistory.empty()) << "the first stroke was made before the recording: not undone";
         }
     }
     recording->finish();

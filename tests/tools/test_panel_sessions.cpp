@@ -117,6 +117,7 @@ LiveRun recordPanelSession(const std::filesystem::path& scene, const std::filesy
     Renderer renderer(*context, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
+    step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld);   // as the viewer: drilling and the undo history
     auto ports = std::make_shared<input::FakeHidBackend::Ports>();
     for (const input::HidDeviceDescription& d : script.devices) input::FakeHidBackend::plug(*ports, d);
     LiveInput input(std::make_unique<input::FakeHidBackend>(ports), input::defaultMapping(), 40.0, 60.0);
@@ -197,6 +198,60 @@ TEST(PanelSessions, EditsReplayToTheLiveImageHashes) {
     EXPECT_EQ(s.frames[5].edits[0].target, 2) << "the added mesh's edit is recorded with its id";
     EXPECT_EQ(s.frames[9].edits.size(), 2u);
     expectReplaysToTheLiveHashes(session, live.hashes);
+}
+
+// Strokes and setting edits in one undo history, recorded and replayed: B and W held on frames 1-2 drill a
+// path with mesh 0, frame 3 edits the transfer function, then Ctrl+Z on frames 4 and 6 undoes the edit and
+// then the stroke, Ctrl+Shift+Z on frames 8 and 10 redoes them. Undoing the edit shows the image from before
+// it, redoing shows the images after each step again; the session replays (--check), following the frames
+// and re-deriving from the reports, to the live images and removal.
+TEST(PanelSessions, UndoAndRedoOfStrokesAndEditsReplay) {
+    auto dir = scratch("undo");
+    auto scene = writeBallScene(dir);
+    auto session = dir / "undo.jsonl";
+    Script script;
+    script.frames = 12;
+    script.edits = [](int f, const InteractionState& state, const Scene& scene) {
+        if (f != 3) return std::vector<SettingEdit>{};
+        nlohmann::json tf = state.keyJson(scene, "transfer_function");
+        tf["opacity"][2] = {110, 0.45};
+        return std::vector<SettingEdit>{{Setting::TransferFunction, -1, tf}};
+    };
+    script.keys = [](int f) {
+        input::KeyboardMouseState keys;
+        auto press = [&](input::Key k) { keys.keys |= std::uint64_t(1) << static_cast<int>(k); };
+        if (f == 1 || f == 2) press(input::Key::Drill), press(input::Key::W);
+        if (f == 4 || f == 6) press(input::Key::Undo);
+        if (f == 8 || f == 10) press(input::Key::Redo);
+        return keys;
+    };
+    LiveRun live = recordPanelSession(scene, session, script);
+    const std::vector<std::string>& h = live.hashes;
+    ASSERT_EQ(h.size(), 12u);
+    EXPECT_NE(h[3], h[2]) << "the edit shows";
+    EXPECT_EQ(h[4], h[2]) << "the first Ctrl+Z undoes the edit, not the stroke before it";
+    EXPECT_NE(h[6], h[4]) << "the second undoes the stroke";
+    EXPECT_TRUE(h[5] == h[4] && h[7] == h[6] && h[9] == h[8] && h[11] == h[10]) << "one step a press";
+    EXPECT_EQ(h[8], h[2]) << "Ctrl+Shift+Z redoes the stroke";
+    EXPECT_EQ(h[10], h[3]) << "and then the edit";
+    std::string text = readText(session);
+    EXPECT_NE(text.find("\"history_edits\""), std::string::npos) << "the edits undo and redo applied are recorded";
+    for (const char* mode : {"", " --from-reports"}) {
+        std::filesystem::path out = dir / (std::string("replay") + (*mode ? "-reports" : ""));
+        Invocation r = runCurette("replay " + session.string() + " --check --out " + out.string() + mode);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        std::vector<std::string> replayed;
+        for (std::size_t f = 0; f < h.size(); ++f) {
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%06zu.png", f);
+            replayed.push_back(imageHash(readPng(out / name).rgba));
+        }
+        EXPECT_EQ(replayed, h) << "replay" << mode;
+        EXPECT_EQ(curette::testing::removalDigest(r.output), live.state.removal->digest()) << "replay" << mode;
+        if (*mode) {
+            EXPECT_NE(r.output.find("identical to the recorded ones"), std::string::npos) << r.output;
+        }
+    }
 }
 
 // The mesh panel's "which device holds it": a SpaceMouse (binding 0 of the default mapping, holding mesh 0)

@@ -179,8 +179,8 @@ TEST(TrackedHand, AThumbstickFlickUndoesOrRedoesOnce) {
     auto history = [](const std::vector<input::Action>& actions) {
         std::string h;
         for (const input::Action& a : actions) {
-            if (std::holds_alternative<input::UndoStroke>(a)) h += "u";
-            if (std::holds_alternative<input::RedoStroke>(a)) h += "r";
+            if (std::holds_alternative<input::Undo>(a)) h += "u";
+            if (std::holds_alternative<input::Redo>(a)) h += "r";
         }
         return h;
     };

@@ -3,6 +3,7 @@
 // XR_RUNTIME_JSON. The session walks through its states to EXITING, the layer reports nothing, and every eye
 // image the runtime read back from the swapchains is, pixel for pixel, what `render --xr-views --stereo
 // side-by-side` renders headless from the views the runtime located for that frame.
+#include "session/session.h"
 #include "tests/tools/run_curette.h"
 #include "tests/tools/tool_test_support.h"
 
@@ -257,7 +258,7 @@ TEST(ViewXr, ARecordedTwoControllerSessionReplaysBitForBit) {
     std::string headerLine;
     std::getline(in, headerLine);
     nlohmann::ordered_json header = nlohmann::ordered_json::parse(headerLine);
-    EXPECT_EQ(header["version"], 7);
+    EXPECT_EQ(header["version"], kSessionVersion);
     EXPECT_EQ(header["xr"]["space"], "stage");
     EXPECT_EQ(header["xr"]["recommended_size"], nlohmann::ordered_json::parse("[[40, 36], [40, 36]]"));
     std::vector<nlohmann::ordered_json> recorded;   // ordered: dumped again, a line reads as in the file

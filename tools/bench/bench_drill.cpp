@@ -6,7 +6,7 @@
 #include "tools/bench/bench_drill.h"
 
 #include "gl/context.h"
-#include "plan/drill_history.h"
+#include "plan/undo_history.h"
 #include "plan/drill_sweep.h"
 #include "render/renderer.h"
 #include "session/loaded_scene.h"
@@ -42,7 +42,7 @@ int benchDrill(const CommandLine& cl) {
     for (double diameter : {2.0, 4.0, 6.0})
         for (double speed : {30.0, 50.0}) {
             plan::RemovalVolume removal(dims, affine);
-            plan::DrillHistory history;
+            plan::UndoHistory history;
             plan::DrillTool tool{clip::SolidShape{clip::SolidShape::Kind::Sphere, diameter / 2}};
             glm::dvec3 direction = glm::normalize(glm::dvec3(0.8, 0.5, 0.3));
             glm::dvec3 start = centre - 0.5 * speed * direction;
@@ -54,8 +54,7 @@ int benchDrill(const CommandLine& cl) {
                 std::uint64_t version = removal.version();
                 auto t = Clock::now();
                 plan::DrillSweep sweep(tool, a, b);
-                changed += removal.apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal.voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()),
-                                         false, history.before());
+                changed += plan::applySweep(removal, sweep, false, history.before());
                 stepMs.push_back(msSince(t));
                 bricks += removal.bricksChangedSince(version).size();
             }
@@ -92,7 +91,7 @@ int benchDrill(const CommandLine& cl) {
         for (int f = 0; f < 10; ++f) {
             clip::RigidPose a{at, {}}, b{at + (40.0 / 30.0) * direction, {}};
             plan::DrillSweep sweep(burr, a, b);
-            removal->apply([&](glm::dvec3 w) { return sweep.contains(w); }, removal->voxelBoxAround(sweep.boundsMin(), sweep.boundsMax()), false);
+            plan::applySweep(*removal, sweep, false);
             at = b.position;
         }
         renderer.collectTimings();

@@ -257,7 +257,7 @@ int record(const CommandLine& cl) {
     std::printf("wrote %s: %d frames, %zu synthetic devices, %zu meshes, scene %s\n", out.c_str(), frames, kinds.size(), state.meshes.size(),
                 sceneFromSession.c_str());
     if (state.removal && !state.removal->empty())
-        std::printf("drilled %.3f mL (%zu undo steps); removal %s\n", state.removal->drilledVolumeMm3() / 1000.0, state.drillHistory->undoSteps(),
+        std::printf("drilled %.3f mL (%zu undo steps); removal %s\n", state.removal->drilledVolumeMm3() / 1000.0, state.undoHistory->undoSteps(),
                     state.removal->digest().c_str());
     return 0;
 }
@@ -281,7 +281,7 @@ Command recordCommand() {
               {"drill", true, "FIRST-LAST[,...]: frames over which the mesh --drill-mesh drills (as B held at the window)", "RANGES"},
               {"erase", true, "FIRST-LAST[,...]: frames over which it erases (N held)", "RANGES"},
               {"drill-mesh", true, "index of the mesh that drills: the keyboard holds it from frame 0 (default: the keyboard's, 0)"},
-              {"undo", true, "FRAME[,...]: undo the last stroke there (Ctrl+Z pressed)"},
+              {"undo", true, "FRAME[,...]: undo the last stroke or setting edit there (Ctrl+Z pressed)"},
               {"redo", true, "FRAME[,...]: redo there (Ctrl+Shift+Z pressed)"}}},
             &record};
 }

@@ -156,14 +156,16 @@ int replay(const CommandLine& cl) {
             // the frame's "drill" records what they applied; before, it is the drilling input itself (no key or
             // button drilled).
             bool drillFromInput = session.header.version >= kDrillFromInputVersion || f.xr;
-            step.apply(actions, f.size.y, f.edits, where, drillFromInput ? DrillInput{} : DrillInput{f.drills, f.drillHistory});
+            step.apply(actions, f.size.y, f.edits, where, drillFromInput ? DrillInput{} : DrillInput{f.drills, f.historyCommands});
             // The re-derived poses, lights (version 2), shading and drilling must be the recorded ones, bit for bit.
             // A head-mounted display's volume (version 7): where the re-derived hands put it is where it was recorded.
             const bool sameVolume = !f.xr || !f.xr->anchor || (xrHands.anchor().volumeCentreRoomM == f.xr->anchor->volumeCentreRoomM &&
                                                                xrHands.anchor().volumeTurnRoom == f.xr->anchor->volumeTurnRoom);
             if (f.xr) anchor = xrHands.anchor();
             bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights) &&
-                        (!drillFromInput || (state.appliedDrills == f.drills && state.appliedDrillHistory == f.drillHistory)) && sameVolume;
+                        (!drillFromInput || (state.appliedDrills == f.drills && state.appliedHistory == f.historyCommands &&
+                                              state.appliedHistoryEdits == f.historyEdits)) &&
+                        sameVolume;
             if (!same && poseMismatches++ == 0)
                 std::fprintf(stderr, "curette replay: %s: poses, lights, drilling or the volume's place re-derived from the reports differ from the recorded ones\n",
                              where.c_str());
