@@ -43,6 +43,7 @@ ViewerIteration stepViewer(ViewerState& viewer, Renderer& renderer, SessionStep&
         work();
         renderer.finish();
         it.decision = FrameDecision{};
+        viewer.shownExact = false;   // the image kept is of the state before (a played session's end waits for the new one)
         it.preparing = true;
         it.rendered = true;
         it.ms = msSince(start);
