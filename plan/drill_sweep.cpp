@@ -17,6 +17,28 @@ double distanceToSegment(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
     return glm::length(p - (a + t * ab));
 }
 
+// Golden-section search for the minimum of a convex f on [0, 1]: [a, b] holds the minimiser, c < d its inner
+// points with their values; narrowed until `done` says so, at most `iterations` times.
+struct Bracket {
+    double a, b, c, d, fc, fd;
+};
+template <typename F, typename Done>
+Bracket goldenSection(const F& f, int iterations, const Done& done) {
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    Bracket r{0.0, 1.0, 1.0 - g, g, 0.0, 0.0};
+    r.fc = f(r.c), r.fd = f(r.d);
+    for (int i = 0; i < iterations && !done(r); ++i) {
+        if (r.fc < r.fd) {
+            r.b = r.d, r.d = r.c, r.fd = r.fc;
+            r.c = r.b - g * (r.b - r.a), r.fc = f(r.c);
+        } else {
+            r.a = r.c, r.c = r.d, r.fc = r.fd;
+            r.d = r.a + g * (r.b - r.a), r.fd = f(r.d);
+        }
+    }
+    return r;
+}
+
 }  // namespace
 
 DrillSweep::DrillSweep(const DrillTool& tool, const clip::RigidPose& from, const clip::RigidPose& to, double rotationToleranceMm)
@@ -58,21 +80,9 @@ bool DrillSweep::insideStep(const Step& step, glm::dvec3 world) const {
     auto f = [&](double t) { return tool_.shape.signedDistance(q - t * step.localMotion); };
     if (f(0.0) <= 0.0 || f(1.0) <= 0.0) return true;
     if (glm::dot(step.localMotion, step.localMotion) == 0.0) return false;
-    // Golden-section search for the minimum of a convex function on [0, 1]; stop as soon as it is <= 0.
-    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-    double a = 0.0, b = 1.0;
-    double c = b - g * (b - a), d = a + g * (b - a);
-    double fc = f(c), fd = f(d);
-    for (int i = 0; i < 60 && fc > 0.0 && fd > 0.0; ++i) {
-        if (fc < fd) {
-            b = d, d = c, fd = fc;
-            c = b - g * (b - a), fc = f(c);
-        } else {
-            a = c, c = d, fc = fd;
-            d = a + g * (b - a), fd = f(d);
-        }
-    }
-    return fc <= 0.0 || fd <= 0.0;
+    // Stop as soon as the tool holds the point somewhere along the step.
+    auto touches = [](const Bracket& r) { return r.fc <= 0.0 || r.fd <= 0.0; };
+    return touches(goldenSection(f, 60, touches));
 }
 
 bool DrillSweep::contains(glm::dvec3 world) const {
@@ -91,21 +101,9 @@ double DrillSweep::stepDistanceBound(const Step& step, glm::dvec3 world) const {
     if (lipschitz == 0.0) {
         lo = hi = f(0.0);
     } else {
-        const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-        double a = 0.0, b = 1.0;
-        double c = b - g * (b - a), d = a + g * (b - a);
-        double fc = f(c), fd = f(d);
-        for (int i = 0; i < 200 && (b - a) * lipschitz > 1e-9; ++i) {
-            if (fc < fd) {
-                b = d, d = c, fd = fc;
-                c = b - g * (b - a), fc = f(c);
-            } else {
-                a = c, c = d, fc = fd;
-                d = a + g * (b - a), fd = f(d);
-            }
-        }
-        hi = std::min({fc, fd, f(0.0), f(1.0)});
-        lo = std::min(fc, fd) - (b - a) * lipschitz;   // the minimiser is in [a, b], within b - a of c and d
+        const Bracket r = goldenSection(f, 200, [&](const Bracket& r) { return (r.b - r.a) * lipschitz <= 1e-9; });
+        hi = std::min({r.fc, r.fd, f(0.0), f(1.0)});
+        lo = std::min(r.fc, r.fd) - (r.b - r.a) * lipschitz;   // the minimiser is in [a, b], within b - a of c and d
     }
     if (lo > 0.0) return lo * smallestScale_;
     if (hi < 0.0) return hi * smallestScale_;
