@@ -74,35 +74,55 @@ std::vector<std::uint8_t> inflateRaw(std::span<const std::uint8_t> bytes, const 
     return inflateStream(bytes, source, maxBytes, 0, false);
 }
 
-std::vector<std::uint8_t> gzipCompress(std::span<const std::uint8_t> bytes, int level) {
-    z_stream stream{};
+struct GzipCompressor::Stream {
+    z_stream z{};
+};
+
+GzipCompressor::GzipCompressor(int level) : stream_(std::make_unique<Stream>()) {
     // 16 + MAX_WBITS: write a gzip header and trailer rather than zlib's.
-    if (deflateInit2(&stream, std::clamp(level, 0, 9), Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+    if (deflateInit2(&stream_->z, std::clamp(level, 0, 9), Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+        stream_.reset();
         throw SystemError("zlib could not initialise compression");
-    std::vector<std::uint8_t> out;
+    }
+}
+
+GzipCompressor::~GzipCompressor() {
+    if (stream_) deflateEnd(&stream_->z);
+}
+
+void GzipCompressor::run(std::span<const std::uint8_t> bytes, bool last) {
+    z_stream& z = stream_->z;
     std::uint8_t chunk[1 << 16];
     std::size_t consumed = 0;
     int status = Z_OK;
-    while (status != Z_STREAM_END) {
+    do {
         // zlib counts in uInt: feed at most 1 GiB at a time.
         std::size_t feed = std::min<std::size_t>(bytes.size() - consumed, std::size_t(1) << 30);
-        stream.next_in = const_cast<Bytef*>(bytes.data() + consumed);
-        stream.avail_in = static_cast<uInt>(feed);
-        bool last = consumed + feed == bytes.size();
+        z.next_in = const_cast<Bytef*>(bytes.data() + consumed);
+        z.avail_in = static_cast<uInt>(feed);
+        const bool finishing = last && consumed + feed == bytes.size();
         do {
-            stream.next_out = chunk;
-            stream.avail_out = sizeof chunk;
-            status = deflate(&stream, last ? Z_FINISH : Z_NO_FLUSH);
-            if (status == Z_STREAM_ERROR) {
-                deflateEnd(&stream);
-                throw SystemError("zlib failed while compressing");
-            }
-            out.insert(out.end(), chunk, chunk + (sizeof chunk - stream.avail_out));
-        } while (stream.avail_out == 0);
-        consumed += feed - stream.avail_in;
-    }
-    deflateEnd(&stream);
-    return out;
+            z.next_out = chunk;
+            z.avail_out = sizeof chunk;
+            status = deflate(&z, finishing ? Z_FINISH : Z_NO_FLUSH);
+            if (status == Z_STREAM_ERROR) throw SystemError("zlib failed while compressing");
+            out_.insert(out_.end(), chunk, chunk + (sizeof chunk - z.avail_out));
+        } while (z.avail_out == 0);
+        consumed += feed - z.avail_in;
+    } while (consumed < bytes.size() || (last && status != Z_STREAM_END));
+}
+
+void GzipCompressor::add(std::span<const std::uint8_t> bytes) { run(bytes, false); }
+
+std::vector<std::uint8_t> GzipCompressor::finish() {
+    run({}, true);
+    return std::move(out_);
+}
+
+std::vector<std::uint8_t> gzipCompress(std::span<const std::uint8_t> bytes, int level) {
+    GzipCompressor gz(level);
+    gz.add(bytes);
+    return gz.finish();
 }
 
 }  // namespace curette::io

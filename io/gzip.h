@@ -3,6 +3,7 @@
 // limit so a small file cannot claim gigabytes; and compression into one gzip member, for the writers.
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,5 +25,23 @@ std::vector<std::uint8_t> inflateRaw(std::span<const std::uint8_t> bytes, const 
 // Deflates `bytes` into a single gzip member (zlib level 0..9; 6 is zlib's default). Throws SystemError
 // when zlib fails (out of memory).
 std::vector<std::uint8_t> gzipCompress(std::span<const std::uint8_t> bytes, int level = 6);
+
+// The same member fed in parts, for a writer whose file is too large to hold uncompressed: add() each part in
+// order, then finish() returns the member (gzipCompress of their concatenation).
+class GzipCompressor {
+public:
+    explicit GzipCompressor(int level = 6);
+    ~GzipCompressor();
+    GzipCompressor(const GzipCompressor&) = delete;
+    GzipCompressor& operator=(const GzipCompressor&) = delete;
+    void add(std::span<const std::uint8_t> bytes);
+    std::vector<std::uint8_t> finish();
+
+private:
+    void run(std::span<const std::uint8_t> bytes, bool last);
+    struct Stream;
+    std::unique_ptr<Stream> stream_;
+    std::vector<std::uint8_t> out_;
+};
 
 }  // namespace curette::io

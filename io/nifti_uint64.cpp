@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 namespace curette::io {
 
@@ -29,24 +30,48 @@ T load(std::span<const std::uint8_t> bytes, std::size_t offset, bool swap) {
 
 }  // namespace
 
+void writeNiftiUint64(const std::filesystem::path& path, glm::ivec3 dims, const glm::dmat4& indexToWorld, int words,
+                      const std::string& description, const Uint64Planes& plane) {
+    if (words < 1 || words > kMaxNiftiUint64Words)
+        throw InputError(path.string(), "words", "1.." + std::to_string(kMaxNiftiUint64Words), std::to_string(words));
+    const std::size_t planeWords = static_cast<std::size_t>(dims.x) * static_cast<std::size_t>(dims.y);
+    const std::size_t count = planeWords * static_cast<std::size_t>(dims.z) * static_cast<std::size_t>(words);
+    NiftiLayout layout{dims, indexToWorld, kDatatypeUint64, 64, 0, 0.0, description, ""};
+    std::vector<std::uint8_t> header = niftiHeaderBytes(layout, 0, path.string());
+    if (words > 1) {   // dim[0] 4, dim[4] the words (the header is little-endian)
+        header[40] = 4, header[41] = 0;
+        header[48] = static_cast<std::uint8_t>(words), header[49] = 0;
+    }
+    const bool gz = path.extension() == ".gz";
+    std::optional<GzipCompressor> compressor;
+    std::vector<std::uint8_t> file;   // uncompressed: the whole file
+    if (gz) compressor.emplace(), compressor->add(header);
+    else file = std::move(header), file.reserve(file.size() + 8 * count);
+    std::vector<std::uint64_t> values(planeWords);
+    std::vector<std::uint8_t> bytes(8 * planeWords);
+    for (int w = 0; w < words; ++w)   // the word slowest, then z
+        for (int z = 0; z < dims.z; ++z) {
+            std::fill(values.begin(), values.end(), 0);
+            plane(w, z, values);
+            for (std::size_t n = 0; n < planeWords; ++n)
+                for (std::size_t k = 0; k < 8; ++k) bytes[8 * n + k] = static_cast<std::uint8_t>(values[n] >> (8 * k));   // little-endian
+            if (gz) compressor->add(bytes);
+            else file.insert(file.end(), bytes.begin(), bytes.end());
+        }
+    if (gz) file = compressor->finish();
+    writeFileAtomically(path, file);
+}
+
 void writeNiftiUint64(const std::filesystem::path& path, const Uint64Volume& volume, const std::string& description) {
-    if (volume.words < 1 || volume.words > kMaxNiftiUint64Words)
-        throw InputError(path.string(), "words", "1.." + std::to_string(kMaxNiftiUint64Words), std::to_string(volume.words));
-    const std::size_t count = static_cast<std::size_t>(volume.dims.x) * volume.dims.y * volume.dims.z * volume.words;
-    if (volume.values.size() != count)
+    const std::size_t planeWords = static_cast<std::size_t>(volume.dims.x) * static_cast<std::size_t>(volume.dims.y);
+    const std::size_t count = planeWords * static_cast<std::size_t>(volume.dims.z) * static_cast<std::size_t>(volume.words);
+    const bool wordsValid = volume.words >= 1 && volume.words <= kMaxNiftiUint64Words;   // else the writer below names them
+    if (wordsValid && volume.values.size() != count)
         throw InputError(path.string(), "values", std::to_string(count) + " values (dims and words)", std::to_string(volume.values.size()));
-    NiftiLayout layout{volume.dims, volume.indexToWorld, kDatatypeUint64, 64, 0, 0.0, description, ""};
-    std::vector<std::uint8_t> bytes = niftiHeaderBytes(layout, count * 8, path.string());
-    if (volume.words > 1) {   // dim[0] 4, dim[4] the words (the header is little-endian)
-        bytes[40] = 4, bytes[41] = 0;
-        bytes[48] = static_cast<std::uint8_t>(volume.words), bytes[49] = 0;
-    }
-    std::uint8_t* data = bytes.data() + kNiftiVoxOffset;
-    for (std::size_t n = 0; n < count; ++n) {
-        for (std::size_t k = 0; k < 8; ++k) data[8 * n + k] = static_cast<std::uint8_t>(volume.values[n] >> (8 * k));   // little-endian
-    }
-    if (path.extension() == ".gz") bytes = gzipCompress(bytes);
-    writeFileAtomically(path, bytes);
+    writeNiftiUint64(path, volume.dims, volume.indexToWorld, volume.words, description, [&](int w, int z, std::span<std::uint64_t> out) {
+        const std::size_t first = (static_cast<std::size_t>(w) * volume.dims.z + static_cast<std::size_t>(z)) * planeWords;
+        std::copy_n(volume.values.begin() + static_cast<std::ptrdiff_t>(first), planeWords, out.begin());
+    });
 }
 
 Uint64Volume readNiftiUint64Bytes(std::span<const std::uint8_t> b, const std::string& source) {

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -28,6 +29,11 @@ struct Uint64Volume {
 
 // Atomic (base/atomic_file.h): no partial file remains on failure.
 void writeNiftiUint64(const std::filesystem::path& path, const Uint64Volume& volume, const std::string& description);
+// The same file from its planes, so a large sparse volume is never whole in memory (a `.gz` file only in its
+// compressed form): plane(word, z, out) fills word `word` of every voxel of plane z, x fastest (dims.x * dims.y).
+using Uint64Planes = std::function<void(int word, int z, std::span<std::uint64_t> out)>;
+void writeNiftiUint64(const std::filesystem::path& path, glm::ivec3 dims, const glm::dmat4& indexToWorld, int words,
+                      const std::string& description, const Uint64Planes& plane);
 // Throws InputError naming the file and the field (datatype, dim, sform_code, ...) on anything else.
 Uint64Volume readNiftiUint64(const std::filesystem::path& path);
 Uint64Volume readNiftiUint64Bytes(std::span<const std::uint8_t> bytes, const std::string& source);

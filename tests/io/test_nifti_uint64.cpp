@@ -119,5 +119,23 @@ TEST(NiftiUint64, OtherFilesAreRefusedNamingTheField) {
     EXPECT_FALSE(std::filesystem::exists(dir / "short.nii"));
 }
 
+
+// The writers' gzip member fed in parts (a plane at a time) inflates to the parts in order, across empty parts
+// and parts larger than zlib's output chunk.
+TEST(NiftiUint64, AGzipMemberFedInPartsInflatesToTheirConcatenation) {
+    std::mt19937 random(3);
+    std::vector<std::uint8_t> whole;
+    io::GzipCompressor gz;
+    for (std::size_t size : {std::size_t(0), std::size_t(348), std::size_t(200000), std::size_t(0), std::size_t(7), std::size_t(70000)}) {
+        std::vector<std::uint8_t> part(size);
+        for (std::size_t i = 0; i < size; ++i) part[i] = static_cast<std::uint8_t>(i % 251 < 200 ? 0 : random());
+        gz.add(part);
+        whole.insert(whole.end(), part.begin(), part.end());
+    }
+    std::vector<std::uint8_t> member = gz.finish();
+    EXPECT_EQ(io::gunzip(member, "parts", 1 << 22), whole);
+    EXPECT_EQ(io::gunzip(io::gzipCompress(whole), "whole", 1 << 22), whole);
+}
+
 }  // namespace
 }  // namespace curette
