@@ -48,27 +48,20 @@ void UndoHistory::pushEdit(const RemovalVolume& removal, nlohmann::json undoEdit
     push(std::move(step));
 }
 
-UndoResult UndoHistory::undo(RemovalVolume& removal) {
+UndoResult UndoHistory::moveLast(RemovalVolume& removal, std::deque<Step>& from, std::deque<Step>& to, bool undoing) {
     endStroke(removal);
-    if (undo_.empty()) return {};
-    Step& step = undo_.back();
-    UndoResult result{true, step.undoEdits};
-    if (step.undoEdits.is_null()) removal.setBricks(step.before);
-    redo_.push_back(std::move(step));
-    undo_.pop_back();
+    if (from.empty()) return {};
+    Step& step = from.back();
+    UndoResult result{true, undoing ? step.undoEdits : step.redoEdits};
+    if (result.edits.is_null()) removal.setBricks(undoing ? step.before : step.after);   // a stroke
+    to.push_back(std::move(step));
+    from.pop_back();
     return result;
 }
 
-UndoResult UndoHistory::redo(RemovalVolume& removal) {
-    endStroke(removal);
-    if (redo_.empty()) return {};
-    Step& step = redo_.back();
-    UndoResult result{true, step.redoEdits};
-    if (step.redoEdits.is_null()) removal.setBricks(step.after);
-    undo_.push_back(std::move(step));
-    redo_.pop_back();
-    return result;
-}
+UndoResult UndoHistory::undo(RemovalVolume& removal) { return moveLast(removal, undo_, redo_, true); }
+
+UndoResult UndoHistory::redo(RemovalVolume& removal) { return moveLast(removal, redo_, undo_, false); }
 
 void UndoHistory::enforceBudget() {
     while (bytes_ > budget_ && undo_.size() > 1) {

@@ -65,6 +65,8 @@ private:
         std::size_t bytes = 0;
     };
     void push(Step step);
+    // Undo (from undo_ to redo_) or redo (the other way) of the last step: a stroke's masks set back, or its edits returned.
+    UndoResult moveLast(RemovalVolume& removal, std::deque<Step>& from, std::deque<Step>& to, bool undoing);
     void enforceBudget();
     std::size_t budget_;
     std::optional<BrickMaskMap> open_;

@@ -100,14 +100,20 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
     for (int id : f.meshesRemoved)
         if (int i = state_.indexOf(id); i >= 0 && !removedByEdits.count(id)) state_.meshes.erase(state_.meshes.begin() + i);
     applyUndoableEdits(state_, f.edits, where);
-    // An undo or redo of a setting edit (version 7) changes settings, lights and meshes: the history applies it
-    // here, re-derived from the recorded presses, before the recorded lights and poses (which are after it);
-    // the drilling's sweeps too, from the poses before the frame to the recorded ones.
-    for (const SessionMesh& r : f.meshes)
-        if (int i = state_.indexOf(r.id); i >= 0) {
+    // Every recorded pose and scale; `everyId`: each recorded id must be a mesh present now.
+    auto placeAsRecorded = [&](bool everyId) {
+        for (const SessionMesh& r : f.meshes) {
+            int i = state_.indexOf(r.id);
+            if (i < 0 && everyId) throw InputError(where, "meshes", "ids of meshes present at that frame", std::to_string(r.id));
+            if (i < 0) continue;
             state_.meshes[static_cast<std::size_t>(i)].pose = {r.position, r.orientation};
             state_.meshes[static_cast<std::size_t>(i)].scale = r.scale;
         }
+    };
+    // An undo or redo of a setting edit (version 7) changes settings, lights and meshes: the history applies it
+    // here, re-derived from the recorded presses, before the recorded lights and poses (which are after it);
+    // the drilling's sweeps too, from the poses before the frame to the recorded ones.
+    placeAsRecorded(false);
     bool removal = applyDrilling(state_, before.poses, DrillInput{f.drills, f.historyCommands});
     if (state_.appliedHistoryEdits != f.historyEdits)
         throw InputError(where, "history_edits", "the edits the frame's undo/redo applies (" + std::to_string(state_.appliedHistoryEdits.size()) + ")",
@@ -120,12 +126,7 @@ StepChanges SessionStep::follow(const SessionFrame& f, const std::filesystem::pa
                              std::to_string(f.lights->size()));
         for (std::size_t i = 0; i < f.lights->size(); ++i) state_.lights[i].direction = (*f.lights)[i];
     }
-    for (const SessionMesh& r : f.meshes) {
-        int i = state_.indexOf(r.id);
-        if (i < 0) throw InputError(where, "meshes", "ids of meshes present at that frame", std::to_string(r.id));
-        state_.meshes[static_cast<std::size_t>(i)].pose = {r.position, r.orientation};
-        state_.meshes[static_cast<std::size_t>(i)].scale = r.scale;
-    }
+    placeAsRecorded(true);
     state_.shading = f.shading;
     frame_.camera = f.camera;
     frame_.size = f.size;
