@@ -4,6 +4,10 @@
 // z_k = firstDepth + k * sliceDistance, and a pixel's sample is where its ray crosses that plane, so the
 // segment it stands for is the true length along the ray, sliceDistance / cos(angle to the view axis).
 //
+// With a jitter seed each pixel takes its samples a fixed random fraction of a slice behind the planes (the same
+// fraction in every slice, as the ray caster jitters its lattice), so the slices do not show as rings where a
+// surface crosses them; the occlusion buffer stays on the planes.
+//
 // Occlusion buffer (two channels, docs/subsystems.md "Tubes in the slab pass"):
 //   .x "all": visibility of the ambient light through the cone, from the clipped volume and the tubes;
 //   .y "geometry": the same from the tubes alone.
@@ -15,6 +19,7 @@
 #include "pixel_ray.glsl"
 #include "shade_sample.glsl"
 #include "clip_test.glsl"
+#include "random.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D eyeBuffer;
@@ -29,6 +34,7 @@ uniform int gridSize;              // n: the cone base is sampled on an n x n gr
 uniform float ambientRadiance;     // La: the ambient light of dos shading (seed 001); lao/cao use V_AO
 uniform float earlyTerminationAlpha;
 uniform int firstRow;              // the dispatch covers a band of rows from here (a slice in several dispatches)
+uniform uint jitterSeed;            // 0: samples on the planes
 
 #ifdef HAS_TUBES
 // Tubes (seed 000): a tube shadows the volume behind it (Algorithm 3: geometry in the occlusion buffer), and
@@ -53,17 +59,18 @@ void main() {
     if (outsideImage(pixel)) return;
     vec3 direction = pixelRayDirection(pixel);
     float cosine = dot(direction, viewForward);
-    float t = sliceDepth / cosine;               // where this ray crosses the slice plane
+    float sampleDepth = sliceDepth + (jitterSeed != 0u ? pixelRandom(uvec2(pixel), jitterSeed) : 0.0) * sliceDistance;
+    float t = sampleDepth / cosine;              // where this ray takes the slice's sample
     float segment = sliceDistance / cosine;      // the true length of ray this sample stands for
-    // The sample stands for the ray between this slice and the next; a tube surface inside that interval
-    // cuts it short (Algorithm 2: sampling_distance = min(slice_distance, delta)).
+    // The sample stands for the ray between its depth and a slice distance further; a tube surface inside that
+    // interval cuts it short (Algorithm 2: sampling_distance = min(slice_distance, delta)).
     float eyeSegment = segment;
     bool behindSurface = false;
 #ifdef HAS_TUBES
     float surfaceDepth = texelFetch(tubeDepth, pixel, 0).r;  // 0: no tube at this pixel
     if (surfaceDepth > 0.0) {
-        behindSurface = sliceDepth >= surfaceDepth;
-        eyeSegment = min(sliceDistance, max(surfaceDepth - sliceDepth, 0.0)) / cosine;
+        behindSurface = sampleDepth >= surfaceDepth;
+        eyeSegment = min(sliceDistance, max(surfaceDepth - sampleDepth, 0.0)) / cosine;
     }
 #endif
     vec3 world = eyeWorld + t * direction;
@@ -80,12 +87,17 @@ void main() {
     // behind it); the samples of later slices are lit as the volume is.
     vec3 faceNormal = vec3(0.0);
     bool onFace = false;
-    int holding = clipMeshCount > 0 ? clipMeshHolding(world) : -1;
+    // Only the meshes whose depth box the ray meets within the sample's interval are tested, and the crossing
+    // is worked out in a loop of at most one turn: llvmpipe skips a loop no lane enters, while it runs an if's
+    // body for every lane when any takes it.
+    ClipSpan span = rayClipSpan(eyeWorld, direction);
+    uint meshesNear = span.near <= t + 0.5 * segment && span.far >= t - 0.5 * segment ? span.meshes : 0u;
+    int holding = clipMeshHoldingAmong(meshesNear, world);
     bool clipped = holding >= 0;
     vec3 nearEnd = world - 0.5 * segment * direction, farEnd = world + 0.5 * segment * direction;
-    int holdingOther = clipMeshCount > 0 ? clipMeshHolding(clipped ? farEnd : nearEnd) : -1;
+    int holdingOther = clipMeshHoldingAmong(meshesNear, clipped ? farEnd : nearEnd);
     bool leaves = clipped ? holdingOther < 0 : holdingOther >= 0;
-    if (leaves && insideVolume) {
+    for (int once = leaves && insideVolume ? 1 : 0; once > 0; --once) {
         vec3 outward;
         vec3 from = clipped ? world : nearEnd, to = clipped ? farEnd : world;
         float s = clipExitFraction(clipped ? holding : holdingOther, from, to, outward);
@@ -102,7 +114,7 @@ void main() {
 #else
     bool clipped = clipMeshCount > 0 && insideAnyClipMesh(world);
 #endif
-    if (insideVolume && !clipped) point = classifySample(tex);
+    for (int visible = insideVolume && !clipped ? 1 : 0; visible > 0; --visible) point = classifySample(tex);
     float alpha = correctOpacity(point.alphaUnit, segment);           // for the occlusion buffer: the whole slice
     float eyeAlpha = correctOpacity(point.alphaUnit, eyeSegment);     // for the eye: up to a tube surface
 

@@ -73,4 +73,32 @@ std::string imageHash(const std::vector<std::uint8_t>& rgba8) {
     return text;
 }
 
+Image meanImage(const std::vector<Image>& images) {
+    if (images.empty()) return {};
+    Image mean{images[0].width, images[0].height, std::vector<glm::vec4>(images[0].pixels.size(), glm::vec4(0.0f))};
+    for (const Image& image : images) {
+        if (image.width != mean.width || image.height != mean.height) throw SystemError("meanImage: images of different sizes");
+        for (std::size_t i = 0; i < mean.pixels.size(); ++i) mean.pixels[i] += image.pixels[i] / float(images.size());
+    }
+    return mean;
+}
+
+double boxFilteredRmsDifference(const Image& a, const Image& b, int radius) {
+    if (a.width != b.width || a.height != b.height) throw SystemError("boxFilteredRmsDifference: images of different sizes");
+    double sum = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            glm::dvec3 mean(0.0);
+            int count = 0;
+            for (int j = std::max(0, y - radius); j <= std::min(a.height - 1, y + radius); ++j)
+                for (int i = std::max(0, x - radius); i <= std::min(a.width - 1, x + radius); ++i) {
+                    mean += glm::dvec3(a.at(i, j)) - glm::dvec3(b.at(i, j));
+                    ++count;
+                }
+            mean /= double(count);
+            sum += glm::dot(mean, mean);
+        }
+    return a.pixels.empty() ? 0.0 : std::sqrt(sum / (3.0 * double(a.width) * double(a.height)));
+}
+
 }  // namespace curette

@@ -31,6 +31,15 @@ std::vector<std::uint8_t> encodePng(int width, int height, const std::vector<std
 // Writes 8-bit RGBA (row 0 at the top) as a PNG, atomically.
 void writePngRgba8(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba8);
 
+// How far apart two images of the same size are in structure rather than in noise: the RMS over pixels and
+// colour channels of their difference averaged over the (2 radius + 1)^2 box around each pixel (clamped at the
+// border). Coherent bands, such as a slab pass's slices where a surface crosses them, survive the average;
+// per-pixel jitter noise averages out.
+double boxFilteredRmsDifference(const Image& a, const Image& b, int radius);
+
+// The pixel-wise mean of images of the same size (e.g. of one frame over many jitter seeds: its expected image).
+Image meanImage(const std::vector<Image>& images);
+
 // FNV-1a 64-bit hash of the 8-bit pixels, printed as 16 hex digits (replays compare these).
 std::string imageHash(const std::vector<std::uint8_t>& rgba8);
 

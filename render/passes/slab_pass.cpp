@@ -110,6 +110,7 @@ gl::Program& SlabPass::prepare(const SlabInputs& in, double d) {
     p.set("gridSize", settings.gridSize);
     p.set("ambientRadiance", static_cast<float>(settings.ambientRadiance));
     p.set("earlyTerminationAlpha", static_cast<float>(frame.raycast.earlyTerminationAlpha));
+    p.set("jitterSeed", static_cast<unsigned>(frame.raycast.jitterSeed));
     glBindImageTexture(binding::imageOutput, in.eyeBuffer, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     return p;
 }

@@ -1,5 +1,7 @@
 #include "render/reference/dos_reference.h"
+
 #include "render/reference/camera_ray.h"
+#include "render/reference/random.h"
 
 #include "render/model/slice_lattice.h"
 #include "render/model/volume_geometry.h"
@@ -81,13 +83,14 @@ glm::dvec4 dosPixel(const VolumeData& volume, const TransferFunction& tf, const 
         return sum / static_cast<double>(cone.size());
     };
 
-    // Eq. 7-8 along the primary ray at the slab pass's sample positions (plane crossings z_k = k d).
+    // Eq. 7-8 along the primary ray at the slab pass's sample positions (depths z_k = (k + jitter) d).
     SliceLattice lattice = sliceLattice(g, camera, d);
     d = lattice.distanceMm;
     const long first = lattice.first, last = lattice.last;
+    const double jitter = frame.raycast.jitterSeed != 0 ? pixelRandom(glm::uvec2(pixel), frame.raycast.jitterSeed) : 0.0;
     glm::dvec4 acc(0.0);
     for (long k = first; k <= last && acc.a < frame.raycast.earlyTerminationAlpha; ++k) {
-        double t = double(k) * d / cosine;
+        double t = (double(k) + jitter) * d / cosine;
         glm::dvec3 x = eye + t * direction;
         glm::dvec3 albedo(0);
         double alpha = correct(classify(x, &albedo), d / cosine);
