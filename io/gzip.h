@@ -22,6 +22,27 @@ std::vector<std::uint8_t> gunzip(std::span<const std::uint8_t> bytes, const std:
 // after its end are ignored. Throws InputError(source, "deflate stream", ...) as gunzip does.
 std::vector<std::uint8_t> inflateRaw(std::span<const std::uint8_t> bytes, const std::string& source, std::uint64_t maxBytes);
 
+// The inflation of gunzip or inflateRaw read in parts, for a reader whose file is too large to hold
+// uncompressed: read() fills `out` and returns how many bytes it wrote, fewer only at the stream's end (0 after
+// it). `bytes` must outlive the inflater. Throws as gunzip does, the limit counting every byte read.
+class Inflater {
+public:
+    Inflater(std::span<const std::uint8_t> bytes, std::string source, std::uint64_t maxBytes, bool gzip = true);
+    ~Inflater();
+    Inflater(const Inflater&) = delete;
+    Inflater& operator=(const Inflater&) = delete;
+    std::size_t read(std::span<std::uint8_t> out);
+
+private:
+    [[noreturn]] void fail(const std::string& expected, const std::string& found);
+    struct Stream;
+    std::unique_ptr<Stream> stream_;
+    std::span<const std::uint8_t> bytes_;
+    std::string source_, what_;
+    std::uint64_t maxBytes_, total_ = 0;
+    bool gzip_, done_ = false;
+};
+
 // Deflates `bytes` into a single gzip member (zlib level 0..9; 6 is zlib's default). Throws SystemError
 // when zlib fails (out of memory).
 std::vector<std::uint8_t> gzipCompress(std::span<const std::uint8_t> bytes, int level = 6);

@@ -74,65 +74,117 @@ void writeNiftiUint64(const std::filesystem::path& path, const Uint64Volume& vol
     });
 }
 
-Uint64Volume readNiftiUint64Bytes(std::span<const std::uint8_t> b, const std::string& source) {
-    if (b.size() < kNiftiVoxOffset) throw InputError(source, "header", "a NIfTI-1 header (348 bytes and the extension flag)", std::to_string(b.size()) + " bytes");
-    bool swap = false;
-    if (load<std::int32_t>(b, 0, false) != kHeaderBytes) {
-        swap = true;
-        if (load<std::int32_t>(b, 0, true) != kHeaderBytes) throw InputError(source, "sizeof_hdr", "348 (a NIfTI-1 file)");
+// The bound on what a gzip stream of n bytes can inflate to: deflate's largest ratio is 1032:1 (zlib's
+// technical details), and a little for headers of several members.
+std::uint64_t mostInflatedBytes(std::uint64_t compressed) { return 1032 * compressed + (std::uint64_t(1) << 16); }
+
+NiftiUint64Reader::NiftiUint64Reader(const std::filesystem::path& path) : source_(path.string()), stored_(readFileBytes(path)) { open(stored_); }
+
+NiftiUint64Reader::NiftiUint64Reader(std::span<const std::uint8_t> bytes, std::string source) : source_(std::move(source)) { open(bytes); }
+
+NiftiUint64Reader::~NiftiUint64Reader() = default;
+
+void NiftiUint64Reader::readExactly(std::span<std::uint8_t> out, std::uint64_t claimed) {
+    std::size_t got = 0;
+    if (inflater_) got = inflater_->read(out);
+    else {
+        got = std::min(out.size(), plain_.size() - cursor_);
+        std::copy_n(plain_.begin() + static_cast<std::ptrdiff_t>(cursor_), got, out.begin());
+        cursor_ += got;
     }
-    if (std::memcmp(b.data() + 344, "n+1", 4) != 0) throw InputError(source, "magic", "\"n+1\" (a single-file NIfTI-1)");
-    std::int16_t rank = load<std::int16_t>(b, 40, swap);
-    if (rank != 3 && rank != 4) throw InputError(source, "dim[0]", "3 or 4 (a 3-D volume, or its words per voxel in dim[4])", std::to_string(rank));
-    Uint64Volume v;
+    if (got < out.size())
+        throw InputError(source_, "vox_offset", "352 or more, with " + std::to_string(claimed) + " bytes of voxels after it", "a file that ends before them");
+}
+
+void NiftiUint64Reader::open(std::span<const std::uint8_t> stored) {
+    const bool gz = isGzip(stored);
+    if (gz) inflater_ = std::make_unique<Inflater>(stored, source_, ~std::uint64_t(0));
+    else plain_ = stored;
+    const std::uint64_t available = gz ? mostInflatedBytes(stored.size()) : stored.size();
+    std::vector<std::uint8_t> b(kNiftiVoxOffset);
+    std::size_t got = gz ? inflater_->read(b) : std::min(b.size(), stored.size());
+    if (!gz) std::copy_n(stored.begin(), got, b.begin()), cursor_ = got;
+    if (got < kNiftiVoxOffset) throw InputError(source_, "header", "a NIfTI-1 header (348 bytes and the extension flag)", std::to_string(got) + " bytes");
+    std::span<const std::uint8_t> h(b);
+    if (load<std::int32_t>(h, 0, false) != kHeaderBytes) {
+        swap_ = true;
+        if (load<std::int32_t>(h, 0, true) != kHeaderBytes) throw InputError(source_, "sizeof_hdr", "348 (a NIfTI-1 file)");
+    }
+    if (std::memcmp(b.data() + 344, "n+1", 4) != 0) throw InputError(source_, "magic", "\"n+1\" (a single-file NIfTI-1)");
+    std::int16_t rank = load<std::int16_t>(h, 40, swap_);
+    if (rank != 3 && rank != 4) throw InputError(source_, "dim[0]", "3 or 4 (a 3-D volume, or its words per voxel in dim[4])", std::to_string(rank));
     if (rank == 4) {
-        v.words = load<std::int16_t>(b, 48, swap);
-        if (v.words < 1 || v.words > kMaxNiftiUint64Words)
-            throw InputError(source, "dim[4]", "1.." + std::to_string(kMaxNiftiUint64Words) + " words per voxel", std::to_string(v.words));
+        words_ = load<std::int16_t>(h, 48, swap_);
+        if (words_ < 1 || words_ > kMaxNiftiUint64Words)
+            throw InputError(source_, "dim[4]", "1.." + std::to_string(kMaxNiftiUint64Words) + " words per voxel", std::to_string(words_));
     }
     for (int a = 0; a < 3; ++a) {
-        int d = load<std::int16_t>(b, 42 + 2 * static_cast<std::size_t>(a), swap);
-        if (d < 1) throw InputError(source, "dim[" + std::to_string(a + 1) + "]", "a size of at least 1", std::to_string(d));
-        v.dims[a] = d;
+        int d = load<std::int16_t>(h, 42 + 2 * static_cast<std::size_t>(a), swap_);
+        if (d < 1) throw InputError(source_, "dim[" + std::to_string(a + 1) + "]", "a size of at least 1", std::to_string(d));
+        dims_[a] = d;
     }
-    std::int16_t datatype = load<std::int16_t>(b, 70, swap), bitpix = load<std::int16_t>(b, 72, swap);
-    if (datatype != kDatatypeUint64) throw InputError(source, "datatype", "1280 (DT_UINT64: words of sub-cell bits)", std::to_string(datatype));
-    if (bitpix != 64) throw InputError(source, "bitpix", "64 for datatype 1280", std::to_string(bitpix));
-    float slope = load<float>(b, 112, swap), inter = load<float>(b, 116, swap);
+    std::int16_t datatype = load<std::int16_t>(h, 70, swap_), bitpix = load<std::int16_t>(h, 72, swap_);
+    if (datatype != kDatatypeUint64) throw InputError(source_, "datatype", "1280 (DT_UINT64: words of sub-cell bits)", std::to_string(datatype));
+    if (bitpix != 64) throw InputError(source_, "bitpix", "64 for datatype 1280", std::to_string(bitpix));
+    float slope = load<float>(h, 112, swap_), inter = load<float>(h, 116, swap_);
     if (!(slope == 0.0f || slope == 1.0f) || inter != 0.0f)
-        throw InputError(source, "scl_slope", "0 or 1 with scl_inter 0 (the stored words are the bits)");
-    if (load<std::int16_t>(b, 254, swap) <= 0) throw InputError(source, "sform_code", "above 0 (the affine is the srow rows)");
+        throw InputError(source_, "scl_slope", "0 or 1 with scl_inter 0 (the stored words are the bits)");
+    if (load<std::int16_t>(h, 254, swap_) <= 0) throw InputError(source_, "sform_code", "above 0 (the affine is the srow rows)");
     for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 4; ++c) v.indexToWorld[c][r] = load<float>(b, 280 + 16 * static_cast<std::size_t>(r) + 4 * static_cast<std::size_t>(c), swap);
-    float offset = load<float>(b, 108, swap);
-    const std::size_t count = static_cast<std::size_t>(v.dims.x) * v.dims.y * v.dims.z * v.words;
-    if (!(offset >= static_cast<float>(kNiftiVoxOffset)) || offset != std::floor(offset) ||
-        static_cast<std::size_t>(offset) + count * 8 > b.size())
-        throw InputError(source, "vox_offset", "352 or more, with " + std::to_string(count * 8) + " bytes of voxels after it",
-                         std::to_string(offset) + " in a file of " + std::to_string(b.size()) + " bytes");
-    v.values.resize(count);
-    const std::uint8_t* data = b.data() + static_cast<std::size_t>(offset);
-    // The voxels are in the header's byte order.
-    for (std::size_t n = 0; n < count; ++n) v.values[n] = load<std::uint64_t>(std::span<const std::uint8_t>(data + 8 * n, 8), 0, swap);
+        for (int c = 0; c < 4; ++c) indexToWorld_[c][r] = load<float>(h, 280 + 16 * static_cast<std::size_t>(r) + 4 * static_cast<std::size_t>(c), swap_);
+    float offset = load<float>(h, 108, swap_);
+    const std::uint64_t count = static_cast<std::uint64_t>(dims_.x) * static_cast<std::uint64_t>(dims_.y) * static_cast<std::uint64_t>(dims_.z) *
+                                static_cast<std::uint64_t>(words_);
+    const std::string expected = "352 or more, with " + std::to_string(count * 8) + " bytes of voxels after it";
+    if (!(offset >= static_cast<float>(kNiftiVoxOffset)) || offset != std::floor(offset) || static_cast<double>(offset) + 8.0 * double(count) > double(available))
+        throw InputError(source_, "vox_offset", expected,
+                         std::to_string(offset) + " in a file of " + std::to_string(stored.size()) + (gz ? " compressed" : "") + " bytes");
+    // Extensions between the header and the voxels are skipped.
+    std::vector<std::uint8_t> skipped(static_cast<std::size_t>(offset) - kNiftiVoxOffset);
+    readExactly(skipped, count * 8);
+    buffer_.resize(std::min<std::size_t>(std::size_t(1) << 16, 8 * static_cast<std::size_t>(dims_.x) * static_cast<std::size_t>(dims_.y)));
+}
+
+bool NiftiUint64Reader::next(int& word, int& z, std::span<std::uint64_t> out) {
+    if (nextWord_ >= words_) return false;
+    const std::size_t planeWords = static_cast<std::size_t>(dims_.x) * static_cast<std::size_t>(dims_.y);
+    if (out.size() != planeWords) throw SystemError("NiftiUint64Reader::next: a plane of " + std::to_string(planeWords) + " values");
+    const std::uint64_t claimed = 8 * static_cast<std::uint64_t>(planeWords) * static_cast<std::uint64_t>(dims_.z) * static_cast<std::uint64_t>(words_);
+    // In parts of the buffer, so a plane's bytes are never held twice. The voxels are in the header's byte order.
+    const std::size_t perPart = buffer_.size() / 8;
+    for (std::size_t first = 0; first < planeWords; first += perPart) {
+        const std::size_t n = std::min(perPart, planeWords - first);
+        std::span<std::uint8_t> part(buffer_.data(), 8 * n);
+        readExactly(part, claimed);
+        for (std::size_t i = 0; i < n; ++i) out[first + i] = load<std::uint64_t>(part, 8 * i, swap_);
+    }
+    word = nextWord_;
+    z = nextZ_;
+    if (++nextZ_ == dims_.z) nextZ_ = 0, ++nextWord_;
+    return true;
+}
+
+namespace {
+Uint64Volume readWhole(NiftiUint64Reader& reader) {
+    Uint64Volume v;
+    v.dims = reader.dims();
+    v.indexToWorld = reader.indexToWorld();
+    v.words = reader.words();
+    std::vector<std::uint64_t> plane(static_cast<std::size_t>(v.dims.x) * static_cast<std::size_t>(v.dims.y));
+    int word = 0, z = 0;
+    while (reader.next(word, z, plane)) v.values.insert(v.values.end(), plane.begin(), plane.end());
     return v;
+}
+}  // namespace
+
+Uint64Volume readNiftiUint64Bytes(std::span<const std::uint8_t> bytes, const std::string& source) {
+    NiftiUint64Reader reader(bytes, source);
+    return readWhole(reader);
 }
 
 Uint64Volume readNiftiUint64(const std::filesystem::path& path) {
-    std::vector<std::uint8_t> bytes = readFileBytes(path);
-    if (isGzip(bytes)) {
-        // No more than the header claims (8 bytes a voxel, and room for extensions), so a small file cannot
-        // claim gigabytes; a header the parser then refuses gets the header's size.
-        std::vector<std::uint8_t> head = gunzip(bytes, path.string(), 1u << 20, kNiftiVoxOffset);
-        std::uint64_t claimed = 0;
-        if (head.size() >= kNiftiVoxOffset) {
-            bool swap = load<std::int32_t>(head, 0, false) != kHeaderBytes;
-            claimed = 8;
-            if (load<std::int16_t>(head, 40, swap) == 4) claimed *= static_cast<std::uint64_t>(std::clamp<std::int16_t>(load<std::int16_t>(head, 48, swap), 1, kMaxNiftiUint64Words));
-            for (int a = 0; a < 3; ++a) claimed *= static_cast<std::uint64_t>(std::max<std::int16_t>(1, load<std::int16_t>(head, 42 + 2 * static_cast<std::size_t>(a), swap)));
-        }
-        bytes = gunzip(bytes, path.string(), kNiftiVoxOffset + claimed + (std::uint64_t(1) << 20));
-    }
-    return readNiftiUint64Bytes(bytes, path.string());
+    NiftiUint64Reader reader(path);
+    return readWhole(reader);
 }
 
 }  // namespace curette::io

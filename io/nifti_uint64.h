@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -34,7 +35,39 @@ void writeNiftiUint64(const std::filesystem::path& path, const Uint64Volume& vol
 using Uint64Planes = std::function<void(int word, int z, std::span<std::uint64_t> out)>;
 void writeNiftiUint64(const std::filesystem::path& path, glm::ivec3 dims, const glm::dmat4& indexToWorld, int words,
                       const std::string& description, const Uint64Planes& plane);
-// Throws InputError naming the file and the field (datatype, dim, sform_code, ...) on anything else.
+// Reads such a file plane by plane, word slowest then z, so only the file as stored (compressed) and one plane
+// are in memory. The constructor reads and checks the header: it throws InputError naming the file and the
+// field (datatype, dim, sform_code, ...) on anything else, and names vox_offset when the file cannot hold the
+// voxels its header claims (a gzip member inflates at most 1032-fold, so a small file cannot claim gigabytes).
+class NiftiUint64Reader {
+public:
+    explicit NiftiUint64Reader(const std::filesystem::path& path);
+    NiftiUint64Reader(std::span<const std::uint8_t> bytes, std::string source);   // the file's bytes, kept by the caller
+    ~NiftiUint64Reader();
+    glm::ivec3 dims() const { return dims_; }
+    const glm::dmat4& indexToWorld() const { return indexToWorld_; }
+    int words() const { return words_; }
+    // The next plane into `out` (dims.x * dims.y values, x fastest) and which it is; false after the last.
+    // Throws InputError(vox_offset) when the file ends first.
+    bool next(int& word, int& z, std::span<std::uint64_t> out);
+
+private:
+    void open(std::span<const std::uint8_t> stored);
+    void readExactly(std::span<std::uint8_t> out, std::uint64_t claimed);
+    std::string source_;
+    std::vector<std::uint8_t> stored_;   // the file as read from disk (compressed or not)
+    std::span<const std::uint8_t> plain_;   // an uncompressed file: its bytes
+    std::size_t cursor_ = 0;
+    std::unique_ptr<class Inflater> inflater_;
+    glm::ivec3 dims_{0};
+    glm::dmat4 indexToWorld_{1.0};
+    int words_ = 1;
+    bool swap_ = false;
+    int nextWord_ = 0, nextZ_ = 0;
+    std::vector<std::uint8_t> buffer_;
+};
+
+// The whole volume (through NiftiUint64Reader).
 Uint64Volume readNiftiUint64(const std::filesystem::path& path);
 Uint64Volume readNiftiUint64Bytes(std::span<const std::uint8_t> bytes, const std::string& source);
 

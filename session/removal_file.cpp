@@ -4,7 +4,10 @@
 #include "io/nifti_uint64.h"
 #include "base/sha256.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 namespace curette {
 
@@ -62,47 +65,41 @@ std::shared_ptr<plan::RemovalVolume> readRemovalFile(const std::filesystem::path
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw InputError(referrer, key, "a removal file (NIfTI-1, datatype 1280) that exists", "\"" + path.string() + "\": no such file");
-    io::Uint64Volume v = io::readNiftiUint64(path);
-    if (v.dims != dims) throw InputError(path.string(), "dim", dimsText(dims) + " (the scan's grid)", dimsText(v.dims));
-    if (!sameAffine(v.indexToWorld, indexToWorld)) throw InputError(path.string(), "srow_x/y/z", "the scan's index-to-world affine (RAS mm)", "another grid");
-    const bool fourPerAxis = v.words == 1;
-    if (!fourPerAxis && v.words != plan::kRemovalWordsPerVoxel)
+    // Plane by plane into the sparse bricks: only the compressed file, one plane and the drilled bricks are in
+    // memory (the dense words are 64 bytes a voxel).
+    io::NiftiUint64Reader reader(path);
+    if (reader.dims() != dims) throw InputError(path.string(), "dim", dimsText(dims) + " (the scan's grid)", dimsText(reader.dims()));
+    if (!sameAffine(reader.indexToWorld(), indexToWorld)) throw InputError(path.string(), "srow_x/y/z", "the scan's index-to-world affine (RAS mm)", "another grid");
+    const bool fourPerAxis = reader.words() == 1;
+    if (!fourPerAxis && reader.words() != plan::kRemovalWordsPerVoxel)
         throw InputError(path.string(), "dim[4]", std::to_string(plan::kRemovalWordsPerVoxel) + " words per voxel (8 x 8 x 8 sub-cells; or a 3-D file of 4 x 4 x 4)",
-                         std::to_string(v.words));
-    const std::size_t voxels = static_cast<std::size_t>(dims.x) * dims.y * dims.z;
+                         std::to_string(reader.words()));
     auto removal = std::make_shared<plan::RemovalVolume>(dims, indexToWorld);
     plan::BrickMaskMap bricks;
-    Sha256 oldDigest;   // a 4 x 4 x 4 file's words as version 6 digested them: index and word, brick by brick
-    glm::ivec3 grid = removal->brickGrid();
-    for (int bz = 0; bz < grid.z; ++bz)
-        for (int by = 0; by < grid.y; ++by)
-            for (int bx = 0; bx < grid.x; ++bx) {
-                std::uint32_t brick = removal->brickNumber({bx, by, bz});
-                glm::ivec3 origin = removal->brickOrigin(brick);
-                plan::BrickMasks masks{};
-                bool any = false;
-                for (int k = 0; k < plan::kRemovalBrickSize; ++k)
-                    for (int j = 0; j < plan::kRemovalBrickSize; ++j)
-                        for (int i = 0; i < plan::kRemovalBrickSize; ++i) {
-                            glm::ivec3 p = origin + glm::ivec3(i, j, k);
-                            if (glm::any(glm::greaterThanEqual(p, dims))) continue;
-                            std::size_t n = (static_cast<std::size_t>(p.z) * dims.y + p.y) * dims.x + p.x;
-                            std::size_t inBrick = static_cast<std::size_t>((k * plan::kRemovalBrickSize + j) * plan::kRemovalBrickSize + i);
-                            plan::VoxelMask m{};
-                            if (fourPerAxis) {
-                                m = fromFourPerAxis(v.values[n]);
-                                if (v.values[n] != 0) {
-                                    std::uint64_t record[2] = {std::uint64_t(brick) * plan::kRemovalBrickVoxels + inBrick, v.values[n]};
-                                    oldDigest.update(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record), sizeof record));
-                                }
-                            } else {
-                                for (std::size_t w = 0; w < m.size(); ++w) m[w] = v.values[w * voxels + n];
-                            }
-                            masks[inBrick] = m;
-                            any = any || !plan::isEmpty(m);
-                        }
-                if (any) bricks[brick] = masks;
+    std::vector<std::array<std::uint64_t, 2>> oldRecords;   // a 4 x 4 x 4 file's words as version 6 digested them: index and word
+    std::vector<std::uint64_t> plane(static_cast<std::size_t>(dims.x) * static_cast<std::size_t>(dims.y));
+    int word = 0, z = 0;
+    while (reader.next(word, z, plane))
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                std::uint64_t value = plane[static_cast<std::size_t>(y) * dims.x + x];
+                if (value == 0) continue;
+                glm::ivec3 p(x, y, z), inside = p % plan::kRemovalBrickSize;
+                std::uint32_t brick = removal->brickNumber(p / plan::kRemovalBrickSize);
+                std::size_t inBrick = static_cast<std::size_t>((inside.z * plan::kRemovalBrickSize + inside.y) * plan::kRemovalBrickSize + inside.x);
+                auto [at, added] = bricks.try_emplace(brick);
+                if (added) at->second.fill(plan::VoxelMask{});
+                if (fourPerAxis) {
+                    at->second[inBrick] = fromFourPerAxis(value);
+                    oldRecords.push_back({std::uint64_t(brick) * plan::kRemovalBrickVoxels + inBrick, value});
+                } else {
+                    at->second[inBrick][static_cast<std::size_t>(word)] = value;
+                }
             }
+    // Version 6 digested brick by brick, x fastest inside a brick: the records' index order.
+    std::sort(oldRecords.begin(), oldRecords.end());
+    Sha256 oldDigest;
+    for (const auto& record : oldRecords) oldDigest.update(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record.data()), sizeof record));
     removal->setBricks(bricks);
     if (fileDigest) *fileDigest = fourPerAxis ? oldDigest.hexDigest() : removal->digest();
     return removal;

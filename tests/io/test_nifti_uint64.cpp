@@ -137,5 +137,52 @@ TEST(NiftiUint64, AGzipMemberFedInPartsInflatesToTheirConcatenation) {
     EXPECT_EQ(io::gunzip(io::gzipCompress(whole), "whole", 1 << 22), whole);
 }
 
+// The reader hands the planes over one at a time, word slowest then z, as written; an inflater read in parts
+// of any size gives the stream's bytes. A gzip file too small to hold what its header claims is refused at
+// the header (deflate inflates at most 1032-fold), and one cut short names vox_offset when the planes run out.
+TEST(NiftiUint64, PlanesAreReadOneAtATimeInTheFilesOrder) {
+    std::filesystem::path path = folder() / "planes.nii.gz";
+    io::Uint64Volume v = sampleVolume();
+    v.words = 2;
+    std::mt19937_64 random(5);
+    for (int i = 0; i < 60; ++i) v.values.push_back(random());
+    io::writeNiftiUint64(path, v, "test");
+    io::NiftiUint64Reader reader(path);
+    ASSERT_EQ(reader.dims(), v.dims);
+    ASSERT_EQ(reader.words(), 2);
+    std::vector<std::uint64_t> plane(20);
+    int word = -1, z = -1, planes = 0;
+    while (reader.next(word, z, plane)) {
+        EXPECT_EQ(word, planes / 3);
+        EXPECT_EQ(z, planes % 3);
+        EXPECT_TRUE(std::equal(plane.begin(), plane.end(), v.values.begin() + 20 * planes)) << "plane " << planes;
+        ++planes;
+    }
+    EXPECT_EQ(planes, 6);
+
+    std::vector<std::uint8_t> stored = readFileBytes(path), whole = io::gunzip(stored, "planes", 1 << 20), parts;
+    io::Inflater inflater(stored, "planes", 1 << 20);
+    for (std::size_t size = 1;; size = size * 3 + 1) {
+        std::vector<std::uint8_t> part(size);
+        std::size_t n = inflater.read(part);
+        parts.insert(parts.end(), part.begin(), part.begin() + static_cast<long>(n));
+        if (n < size) break;
+    }
+    EXPECT_EQ(parts, whole);
+
+    // A header claiming 2000^3 voxels of 8 words in a file of a few hundred bytes.
+    std::vector<std::uint8_t> header = whole;
+    header.resize(352);
+    std::int16_t big = 2000;
+    for (int a = 0; a < 3; ++a) std::memcpy(header.data() + 42 + 2 * a, &big, 2);
+    test::expectInputError([&] { io::NiftiUint64Reader(io::gzipCompress(header), "claims.nii.gz"); }, "claims.nii.gz", "vox_offset");
+    // The same file cut after its first plane: the header passes, the second plane is refused.
+    std::vector<std::uint8_t> cut(whole.begin(), whole.begin() + 352 + 8 * 20 + 8);
+    std::vector<std::uint8_t> cutStored = io::gzipCompress(cut);
+    io::NiftiUint64Reader shortReader(cutStored, "cut.nii.gz");
+    EXPECT_TRUE(shortReader.next(word, z, plane));
+    test::expectInputError([&] { shortReader.next(word, z, plane); }, "cut.nii.gz", "vox_offset");
+}
+
 }  // namespace
 }  // namespace curette
