@@ -31,9 +31,9 @@ void main() {
     if (!brickVoxel(volumeSize, v, entry)) return;
     uint decision = stepVDecision(v, volumeSize, entry);
     if (decision == DECISION_COPY) {
-        imageStore(ambientOut, v, texelFetch(precomputedAmbient, v, 0));
+        VOLUME_STORE(ambientOut, v, VOLUME_FETCH(precomputedAmbient, v));
     } else if (decision == DECISION_UNREACHABLE) {
-        imageStore(ambientOut, v, vec4(1.0));
+        VOLUME_STORE(ambientOut, v, vec4(1.0));
     } else {
         listVoxels[atomicAdd(listCount, 1u)] = indexFromVoxel(v, volumeSize);
     }

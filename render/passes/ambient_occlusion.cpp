@@ -17,20 +17,10 @@ namespace curette {
 
 namespace {
 
-gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label, bool zeroBorder) {
-    gl::Texture t = gl::createTexture(GL_TEXTURE_3D);
-    glTextureStorage3D(t.name(), 1, format, dims.x, dims.y, dims.z);
-    bool integer = format == GL_R8UI;
-    glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, integer ? GL_NEAREST : GL_LINEAR);
-    glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, integer ? GL_NEAREST : GL_LINEAR);
-    GLenum wrap = zeroBorder ? GL_CLAMP_TO_BORDER : GL_CLAMP_TO_EDGE;
-    for (GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(t.name(), axis, wrap);
-    const float border[4] = {0, 0, 0, 0};
-    glTextureParameterfv(t.name(), GL_TEXTURE_BORDER_COLOR, border);
-    glObjectLabel(GL_TEXTURE, t.name(), -1, label);
-    if (glGetError() == GL_OUT_OF_MEMORY) throw SystemError(std::string("not enough GPU memory for ") + label);
-    return t;
-}
+// V_o reads zero beyond the volume (lao_ray.glsl); V_m holds integer categories; V_PAO and V_AO are unorm16.
+const VolumeTextureFormat kOpacityFormat{GL_R16, GL_RED, GL_UNSIGNED_SHORT, 2, true, true};
+const VolumeTextureFormat kMaskFormat{GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, 1, false, false};
+const VolumeTextureFormat kAmbientFormat{GL_R16, GL_RED, GL_UNSIGNED_SHORT, 2, true, false};
 
 }  // namespace
 
@@ -46,10 +36,11 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     std::size_t bricks = BrickSet::none(dims).brickCount();
     // The visited-brick list numbers bricks in 30 bits (shaders/visit_bricks.glsl).
     if (bricks > 0x3FFFFFFFull) throw SystemError("the volume has more than 2^30 bricks of 4^3 voxels, more than steps IV and V can number");
-    opacity_ = makeVolumeTexture(dims, GL_R16, "V_o (clipped opacity)", true);
-    mask_ = makeVolumeTexture(dims, GL_R8UI, "V_m (categories)", false);
-    precomputed_ = makeVolumeTexture(dims, GL_R16, "V_PAO (unclipped LAO)", false);
-    ambient_ = makeVolumeTexture(dims, GL_R16, "V_AO", false);
+    const VolumeLayout& layout = volume.layout();
+    opacity_ = createVolumeTexture(layout, kOpacityFormat, "V_o (clipped opacity)");
+    mask_ = createVolumeTexture(layout, kMaskFormat, "V_m (categories)");
+    precomputed_ = createVolumeTexture(layout, kAmbientFormat, "V_PAO (unclipped LAO)");
+    ambient_ = createVolumeTexture(layout, kAmbientFormat, "V_AO");
 
     std::vector<glm::vec4> aa;
     for (const glm::dvec3& o : antiAliasingOffsets(std::max(settings.antiAliasingSamples, 1))) aa.emplace_back(glm::vec3(o), 0.0f);
@@ -82,6 +73,7 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     glNamedBufferStorage(visitBricks_.name(), static_cast<GLsizeiptr>(4 * bricks), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gl::Defines defines;
     if (seenBricks_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
+    VolumeLayoutPiece{volume.layout()}.addDefines(defines);
     compactProgram_ = gl::Program::compute("lao_compact.comp", defines);
 }
 
@@ -110,6 +102,7 @@ gl::Defines AmbientOcclusion::laoDefines(float opacityExponent) const {
     defines.emplace_back("LAO_DIRECTIONS", std::to_string(directionCount_));
     defines.emplace_back("LAO_SAMPLES", std::to_string(settings_.samples));
     if (opacityExponent == 1.0f) defines.emplace_back("LAO_UNIT_STEP", "1");
+    VolumeLayoutPiece{volume_.layout()}.addDefines(defines);
     return defines;
 }
 
@@ -120,6 +113,7 @@ void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
     glm::ivec3 dims = volume_.geometry().dims;
     p.set("laoTextureMargin", glm::vec3(0.5 / glm::dvec3(dims)));
     p.set("laoOpacityExponent", opacityExponent);
+    VolumeLayoutPiece{volume_.layout()}.apply(p);
 }
 
 std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, bool laoEverywhere) {
@@ -192,10 +186,12 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     gl::Defines defines;
     tf.addDefines(defines);
     NoDataPiece{volume_}.addDefines(defines);
+    VolumeLayoutPiece{volume_.layout()}.addDefines(defines);
     gl::Program& p = clipPrograms_.get(defines);
     const VolumeGeometry& g = volume_.geometry();
     tf.apply(p);
     NoDataPiece{volume_}.apply(p);
+    VolumeLayoutPiece{volume_.layout()}.apply(p);
     p.set("indexToWorld", glm::mat4(g.indexToWorld));
     p.set("volumeSize", g.dims);
     p.set("antiAliasingSamples", settings_.antiAliasingSamples);
@@ -237,6 +233,7 @@ void AmbientOcclusion::buildRecomputeList() {
     // Every visited voxel's decision: copies and unreachable voxels are written here, the rest appended.
     compactProgram_.set("volumeSize", volume_.geometry().dims);
     compactProgram_.set("maxGroupsX", kMaxWorkGroupsX);
+    VolumeLayoutPiece{volume_.layout()}.apply(compactProgram_);
     setVisitUniforms(compactProgram_);
     setDecisionUniforms(compactProgram_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
@@ -466,11 +463,11 @@ void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {
 
 std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
     glm::ivec3 d = volume_.geometry().dims;
-    std::size_t n = std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z);
-    std::vector<GpuAllocation> list{{Resource::ClippedOpacity, 2 * n, {}},
-                                    {Resource::CategoryMask, n, {}},
-                                    {Resource::PrecomputedAo, 2 * n, {}},
-                                    {Resource::Ambient, 2 * n, {}},
+    std::size_t n = std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z), texels = volume_.layout().texelCount();
+    std::vector<GpuAllocation> list{{Resource::ClippedOpacity, 2 * texels, {}},
+                                    {Resource::CategoryMask, texels, {}},
+                                    {Resource::PrecomputedAo, 2 * texels, {}},
+                                    {Resource::Ambient, 2 * texels, {}},
                                     // with the visited-brick list (4 bytes per brick)
                                     {Resource::RecomputeList, (settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * n + 8 : 8) +
                                                                   4 * BrickSet::none(d).brickCount(), {}},
@@ -478,28 +475,17 @@ std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
     return list;
 }
 
-namespace {
-template <typename T>
-std::vector<T> readTexture(GLuint texture, glm::ivec3 d, GLenum format, GLenum type) {
-    std::vector<T> values(std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z));
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // written by image stores: make them visible to the read-back
-    glGetTextureImage(texture, 0, format, type, static_cast<GLsizei>(values.size() * sizeof(T)), values.data());
-    return values;
-}
-}  // namespace
-
 std::vector<std::uint16_t> AmbientOcclusion::readAmbient() const {
-    return readTexture<std::uint16_t>(ambient_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+    return readVolume<std::uint16_t>(ambient_.name(), volume_.layout(), kAmbientFormat);
 }
 std::vector<std::uint16_t> AmbientOcclusion::readPrecomputed() const {
-    return readTexture<std::uint16_t>(precomputed_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+    return readVolume<std::uint16_t>(precomputed_.name(), volume_.layout(), kAmbientFormat);
 }
 std::vector<std::uint16_t> AmbientOcclusion::readOpacity() const {
-    return readTexture<std::uint16_t>(opacity_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+    return readVolume<std::uint16_t>(opacity_.name(), volume_.layout(), kOpacityFormat);
 }
 std::vector<std::uint8_t> AmbientOcclusion::readMask() const {
-    return readTexture<std::uint8_t>(mask_.name(), volume_.geometry().dims, GL_RED_INTEGER, GL_UNSIGNED_BYTE);
+    return readVolume<std::uint8_t>(mask_.name(), volume_.layout(), kMaskFormat);
 }
 
 void AmbientOcclusion::setRemoval(const plan::RemovalVolume* removal, const RemovalTexture* texture) {
