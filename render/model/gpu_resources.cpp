@@ -19,7 +19,7 @@ constexpr ResourceInfo kResources[] = {
     {Resource::CategoryMask, "V_m (categories a/b/c)", "R8UI 3D", "step IV: clipped, affected, unaffected", true},
     {Resource::PrecomputedAo, "V_PAO (precomputed LAO)", "R16 3D", "step I: LAO without clipping", true},
     {Resource::Ambient, "V_AO (LAO under clipping)", "R16 3D", "step V: the ambient factor the integrators read", true},
-    {Resource::RecomputeList, "recompute list", "uint32 buffer", "step V: the voxels to recompute (compacted dispatch)", true},
+    {Resource::RecomputeList, "recompute list", "uint32 buffer", "step V: the voxels to recompute of one chunk of at most 16384 visited bricks (compacted dispatch)", true},
     {Resource::VisitedBricks, "visited bricks", "uint32 buffer", "steps IV and V: the bricks they visit; step IV flags those whose V_o changed or whose LAO can", true},
     {Resource::LaoDirections, "LAO directions", "vec4 buffer", "the K rays of eq. 3 with their weights"},
     {Resource::TubeGeometry, "tube geometry", "vertex buffers", "tubes (triangles) or illuminated lines"},

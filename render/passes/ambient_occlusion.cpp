@@ -11,6 +11,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <cstdlib>
 #include <limits>
 
 namespace curette {
@@ -59,10 +60,17 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     directions_ = gl::createBuffer();
     glNamedBufferStorage(directions_.name(), static_cast<GLsizeiptr>(packed.size() * sizeof(glm::vec4)), packed.data(), 0);
 
+    if (const char* forced = std::getenv("CURETTE_RECOMPUTE_LIST_BRICKS")) {
+        long n = std::strtol(forced, nullptr, 10);
+        if (n < 1) throw InputError("CURETTE_RECOMPUTE_LIST_BRICKS", "value", "a whole number of bricks, at least 1", forced);
+        listChunkBricks_ = static_cast<std::uint32_t>(std::min<long>(n, kListChunkBricks));
+    }
     if (settings.dispatch == LaoSettings::Dispatch::Compacted) {
+        // A chunk's voxels, and room for every chunk's count (beginRecompute's counting pass).
+        std::size_t chunks = (bricks + listChunkBricks_ - 1) / listChunkBricks_;
+        listCapacity_ = std::max(std::size_t(kVisitBrickSize * kVisitBrickSize * kVisitBrickSize) * std::min<std::size_t>(listChunkBricks_, bricks), chunks);
         list_ = gl::createBuffer();
-        glNamedBufferStorage(list_.name(), static_cast<GLsizeiptr>(8 + 4 * volume.geometry().dims.x * std::size_t(dims.y) * dims.z),
-                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+        glNamedBufferStorage(list_.name(), static_cast<GLsizeiptr>(8 + 4 * listCapacity_), nullptr, GL_DYNAMIC_STORAGE_BIT);
         dispatch_ = gl::createBuffer();
         glNamedBufferStorage(dispatch_.name(), 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
     } else {
@@ -229,19 +237,28 @@ gl::Program& AmbientOcclusion::bindLao(GLuint target, float opacityExponent) {
     return program;
 }
 
-void AmbientOcclusion::buildRecomputeList() {
-    // Every visited voxel's decision: copies and unreachable voxels are written here, the rest appended.
+void AmbientOcclusion::buildRecomputeList(std::uint32_t firstSlot, std::uint32_t bricks, std::uint32_t countChunks) {
+    // Every visited voxel's decision: copies and unreachable voxels are written here, the rest appended (or counted).
     compactProgram_.set("volumeSize", volume_.geometry().dims);
     compactProgram_.set("maxGroupsX", kMaxWorkGroupsX);
     VolumeLayoutPiece{volume_.layout()}.apply(compactProgram_);
     setVisitUniforms(compactProgram_);
+    compactProgram_.set("visitSlotOffset", firstSlot);
     setDecisionUniforms(compactProgram_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
     compactProgram_.set("prepareDispatch", 0);
+    compactProgram_.set("countChunks", countChunks);
     compactProgram_.use();
-    glm::uvec2 grid = workGroupGrid(visitCount_);
+    glm::uvec2 grid = workGroupGrid(bricks);
     glDispatchCompute(grid.x, grid.y, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void AmbientOcclusion::resetListLength() {
+    // The last chunk's LAO dispatch read the list and its length: finish with them before they are rewritten.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    const std::uint32_t zero = 0;
+    glNamedBufferSubData(list_.name(), 0, 4, &zero);
 }
 
 void AmbientOcclusion::readRecomputeCounts() {
@@ -264,15 +281,19 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
         lao.use();
         glDispatchCompute(grid.x, grid.y, 1);
     } else {
-        buildRecomputeList();
-        compactProgram_.set("prepareDispatch", 1);
-        glDispatchCompute(1, 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        lao.set("laoMode", 1);
-        lao.use();
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatch_.name());
-        glDispatchComputeIndirect(0);
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        // Chunk after chunk of the visited bricks, each its own list (the list holds one chunk).
+        for (std::uint32_t first = 0; first < visitCount_; first += listChunkBricks_) {
+            if (first > 0) resetListLength();
+            buildRecomputeList(first, std::min(listChunkBricks_, visitCount_ - first));
+            compactProgram_.set("prepareDispatch", 1);
+            glDispatchCompute(1, 1, 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+            lao.set("laoMode", 1);
+            lao.use();
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatch_.name());
+            glDispatchComputeIndirect(0);
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        }
     }
     readRecomputeCounts();
 }
@@ -289,27 +310,60 @@ std::uint32_t AmbientOcclusion::beginRecompute(const TransferFunctionTexture& tf
     const std::uint32_t zero[2] = {0, 0};
     glNamedBufferSubData(list_.name(), 0, 8, zero);
     bindLao(ambient_.name(), exponent);
-    buildRecomputeList();
-    readRecomputeCounts();   // waits for the list's length: the slices are sized on the CPU
+    const std::uint32_t chunks = (visitCount_ + listChunkBricks_ - 1) / listChunkBricks_;
+    chunkEntries_.assign(chunks, 0);
+    if (chunks == 1) {
+        buildRecomputeList(0, visitCount_);
+        readRecomputeCounts();   // waits for the list's length: the slices are sized on the CPU
+        chunkEntries_[0] = listCount_;
+        chunkBuilt_ = true;
+    } else {
+        // Each chunk's length first (the decisions write the copies here); its list is built when step V reaches it.
+        glNamedBufferSubData(list_.name(), 8, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
+        buildRecomputeList(0, visitCount_, listChunkBricks_);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(list_.name(), 8, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
+        chunkBuilt_ = false;
+    }
+    chunk_ = chunkGroupsDone_ = 0;
     recomputeExponent_ = exponent;
-    recomputeGroups_ = (listCount_ + kLaoGroupSize - 1) / kLaoGroupSize;
+    recomputeGroups_ = 0;
+    for (std::uint32_t entries : chunkEntries_) recomputeGroups_ += (entries + kLaoGroupSize - 1) / kLaoGroupSize;
     return recomputeGroups_;
 }
 
 std::uint32_t AmbientOcclusion::advanceRecompute(std::uint32_t groups) {
-    std::uint32_t n = std::min(groups, recomputeGroups_ - recomputeGroupsDone_);
-    if (n == 0) return 0;
-    // Other passes may have bound their own resources since the last slice.
-    gl::Program& lao = bindLao(ambient_.name(), recomputeExponent_);
-    lao.set("laoMode", 1);
-    lao.set("listOffset", recomputeGroupsDone_ * kLaoGroupSize);
-    lao.use();
-    glm::uvec2 grid = workGroupGrid(n);
-    glDispatchCompute(grid.x, grid.y, 1);
-    recomputeGroupsDone_ += n;
+    std::uint32_t ran = 0;
+    while (ran < groups && recomputeGroupsDone_ < recomputeGroups_) {
+        const std::uint32_t chunkGroups = (chunkEntries_[chunk_] + kLaoGroupSize - 1) / kLaoGroupSize;
+        if (chunkGroupsDone_ == chunkGroups) {   // on to the next chunk
+            ++chunk_;
+            chunkGroupsDone_ = 0;
+            chunkBuilt_ = false;
+            continue;
+        }
+        // Other passes may have bound their own resources since the last slice.
+        gl::Program& lao = bindLao(ambient_.name(), recomputeExponent_);
+        if (!chunkBuilt_) {
+            resetListLength();
+            const std::uint32_t first = chunk_ * listChunkBricks_;
+            buildRecomputeList(first, std::min(listChunkBricks_, visitCount_ - first));
+            chunkBuilt_ = true;
+        }
+        std::uint32_t n = std::min(groups - ran, chunkGroups - chunkGroupsDone_);
+        lao.set("laoMode", 1);
+        lao.set("listOffset", chunkGroupsDone_ * kLaoGroupSize);
+        lao.use();
+        glm::uvec2 grid = workGroupGrid(n);
+        glDispatchCompute(grid.x, grid.y, 1);
+        chunkGroupsDone_ += n;
+        recomputeGroupsDone_ += n;
+        ran += n;
+    }
+    if (ran == 0) return 0;
     if (recomputeGroupsDone_ == recomputeGroups_) readRecomputeCounts();
     else glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    return n;
+    return ran;
 }
 
 void AmbientOcclusion::precompute(const TransferFunctionTexture& tf) {
@@ -463,13 +517,13 @@ void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {
 
 std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
     glm::ivec3 d = volume_.geometry().dims;
-    std::size_t n = std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z), texels = volume_.layout().texelCount();
+    std::size_t texels = volume_.layout().texelCount();
     std::vector<GpuAllocation> list{{Resource::ClippedOpacity, 2 * texels, {}},
                                     {Resource::CategoryMask, texels, {}},
                                     {Resource::PrecomputedAo, 2 * texels, {}},
                                     {Resource::Ambient, 2 * texels, {}},
                                     // with the visited-brick list (4 bytes per brick)
-                                    {Resource::RecomputeList, (settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * n + 8 : 8) +
+                                    {Resource::RecomputeList, (settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * listCapacity_ + 8 : 8) +
                                                                   4 * BrickSet::none(d).brickCount(), {}},
                                     {Resource::LaoDirections, 16u * std::size_t(directionCount_), {}}};
     return list;
