@@ -3,23 +3,20 @@
 #include "base/error.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 
 namespace curette {
 
 namespace {
 
-struct TextureFormat {
-    GLenum internal, format, type;
-};
-
-TextureFormat textureFormat(StorageFormat f) {
+VolumeTextureFormat textureFormat(StorageFormat f) {
     switch (f) {
-        case StorageFormat::UNorm8: return {GL_R8, GL_RED, GL_UNSIGNED_BYTE};
-        case StorageFormat::UNorm16: return {GL_R16, GL_RED, GL_UNSIGNED_SHORT};
-        case StorageFormat::Float32: return {GL_R32F, GL_RED, GL_FLOAT};
+        case StorageFormat::UNorm8: return {GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1};
+        case StorageFormat::UNorm16: return {GL_R16, GL_RED, GL_UNSIGNED_SHORT, 2};
+        case StorageFormat::Float32: return {GL_R32F, GL_RED, GL_FLOAT, 4};
     }
-    return {GL_R8, GL_RED, GL_UNSIGNED_BYTE};
+    return {GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1};
 }
 
 // Brick ranges with a one-voxel apron: a sample in brick b interpolates voxels b*B-1 .. (b+1)*B. One pass
@@ -73,32 +70,29 @@ std::vector<glm::vec2> coarserBrickRanges(const std::vector<glm::vec2>& fine, gl
 
 }  // namespace
 
+int GpuVolume::textureSizeLimit(const gl::ContextInfo& info) {
+    int limit = info.max3DTextureSize;
+    if (const char* forced = std::getenv("CURETTE_MAX_3D_TEXTURE_SIZE")) {
+        int n = std::atoi(forced);
+        if (n < 2) throw InputError("CURETTE_MAX_3D_TEXTURE_SIZE", "value", "an integer of at least 2", forced);
+        limit = std::min(limit, n);
+    }
+    return limit;
+}
+
 GpuVolume::GpuVolume(const gl::ContextInfo& info, const VolumeData& data)
     : format_(data.format), valueScale_(data.valueScale), valueOffset_(data.valueOffset), noData_(data) {
-    for (int axis = 0; axis < 3; ++axis)
-        if (data.dims[axis] < 1 || data.dims[axis] > info.max3DTextureSize)
-            throw InputError(data.source, "dim[" + std::to_string(axis + 1) + "]",
-                             "between 1 and " + std::to_string(info.max3DTextureSize) +
-                                 " voxels (GL_MAX_3D_TEXTURE_SIZE of " + info.renderer + ")",
-                             std::to_string(data.dims[axis]));
+    layout_ = VolumeLayout::forLimit(data.dims, textureSizeLimit(info), data.source);
     geometry_.dims = data.dims;
     geometry_.indexToWorld = data.indexToWorld;
 
-    TextureFormat tf = textureFormat(format_);
-    texture_ = gl::createTexture(GL_TEXTURE_3D);
-    glTextureStorage3D(texture_.name(), 1, tf.internal, data.dims.x, data.dims.y, data.dims.z);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(texture_.name(), 0, 0, 0, 0, data.dims.x, data.dims.y, data.dims.z, tf.format, tf.type,
-                        data.voxels.data());
-    glTextureParameteri(texture_.name(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_.name(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-        glTextureParameteri(texture_.name(), wrap, GL_CLAMP_TO_EDGE);
-    glObjectLabel(GL_TEXTURE, texture_.name(), -1, "V (data volume)");
+    VolumeTextureFormat tf = textureFormat(format_);
+    texture_ = createVolumeTexture(layout_, tf, "V (data volume)");
+    uploadVolumeBox(texture_.name(), layout_, tf, glm::ivec3(0), data.dims, data.voxels.data());
     if (glGetError() == GL_OUT_OF_MEMORY)
         throw SystemError(data.source + ": not enough GPU memory for a " + std::to_string(data.voxels.size()) +
                           "-byte volume texture");
-    gpuBytes_ = data.voxels.size();
+    gpuBytes_ = layout_.texelCount() * std::size_t(tf.bytesPerVoxel);
 
     // One pass over the voxels for the finer bricks; the ray caster's are their unions.
     seenBrickGrid_ = (data.dims + seenBrickSize - 1) / seenBrickSize;

@@ -1,12 +1,15 @@
 #pragma once
 // The data volume V on the GPU: a 3D texture in the volume's own storage format (R8, R16 or R32F; no
 // conversion, so 8-bit CT/MRI costs one byte a voxel), its geometry, and per-brick value ranges used to
-// skip empty space.
+// skip empty space. A volume longer than GL_MAX_3D_TEXTURE_SIZE along one axis is folded into pieces
+// (render/model/volume_layout.h); every volume-sized texture follows the same layout.
 
 #include "gl/context.h"
 #include "gl/objects.h"
 #include "base/volume.h"
 #include "render/model/volume_geometry.h"
+#include "render/model/volume_layout.h"
+#include "render/volume_texture.h"
 
 #include <algorithm>
 #include <vector>
@@ -17,10 +20,14 @@ class GpuVolume {
 public:
     static constexpr int brickSize = 8;
 
-    // Throws InputError(source, "dim", "at most N voxels per axis (GL_MAX_3D_TEXTURE_SIZE)") when too large.
+    // Throws InputError(source, "dim", ...) when no layout fits GL_MAX_3D_TEXTURE_SIZE (VolumeLayout::forLimit).
     GpuVolume(const gl::ContextInfo& info, const VolumeData& data);
 
     const VolumeGeometry& geometry() const { return geometry_; }
+    const VolumeLayout& layout() const { return layout_; }
+    // The 3-D texture size limit the layout is made for: GL_MAX_3D_TEXTURE_SIZE, or less when the environment
+    // sets CURETTE_MAX_3D_TEXTURE_SIZE (tests fold small volumes with it).
+    static int textureSizeLimit(const gl::ContextInfo& info);
     GLuint texture() const { return texture_.name(); }
     StorageFormat format() const { return format_; }
     double valueScale() const { return valueScale_; }
@@ -49,6 +56,7 @@ public:
 
 private:
     VolumeGeometry geometry_;
+    VolumeLayout layout_;
     gl::Texture texture_;
     StorageFormat format_;
     double valueScale_, valueOffset_;

@@ -12,18 +12,34 @@
 namespace curette {
 
 LabelOverlay::LabelOverlay(glm::ivec3 dims, const std::vector<std::uint16_t>& ids, const std::vector<glm::vec4>& styles)
-    : dims_(dims), ids_(ids) {
+    : dims_(dims), layout_(VolumeLayout::unfolded(dims)), ids_(ids) {
     if (ids.size() != std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z))
         throw std::logic_error("LabelOverlay: ids do not match the grid");
-    idsTexture_ = gl::createTexture(GL_TEXTURE_3D);
-    glTextureStorage3D(idsTexture_.name(), 1, GL_R16UI, dims.x, dims.y, dims.z);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-    glTextureSubImage3D(idsTexture_.name(), 0, 0, 0, 0, dims.x, dims.y, dims.z, GL_RED_INTEGER, GL_UNSIGNED_SHORT, ids.data());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTextureParameteri(idsTexture_.name(), p, GL_NEAREST);
-    glObjectLabel(GL_TEXTURE, idsTexture_.name(), -1, "label ids");
-    if (glGetError() == GL_OUT_OF_MEMORY) throw SystemError("not enough GPU memory for the label volume");
+    uploadIds();
     setStyles(styles);
+}
+
+namespace {
+const VolumeTextureFormat kIdsFormat{GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT, 2, false, false};
+const VolumeTextureFormat kFieldFormat{GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4, true, false};
+const VolumeTextureFormat kOpacityFormat{GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1, true, false};
+}  // namespace
+
+void LabelOverlay::uploadIds() {
+    idsTexture_ = createVolumeTexture(layout_, kIdsFormat, "label ids");
+    uploadVolumeBox(idsTexture_.name(), layout_, kIdsFormat, glm::ivec3(0), dims_, ids_.data());
+    if (glGetError() == GL_OUT_OF_MEMORY) throw SystemError("not enough GPU memory for the label volume");
+}
+
+void LabelOverlay::setLayout(const VolumeLayout& layout) {
+    if (layout.dims != dims_) throw std::logic_error("LabelOverlay: the layout is not the label grid's");
+    if (layout == layout_) return;
+    layout_ = layout;
+    uploadIds();
+    fieldTexture_ = gl::Texture();
+    opacityTexture_ = gl::Texture();
+    fieldStale_ = true;
+    build_.reset();
 }
 
 void LabelOverlay::setStyles(const std::vector<glm::vec4>& styles) {
@@ -157,21 +173,11 @@ double LabelOverlay::fieldProgress() const {
 }
 
 void LabelOverlay::uploadField(const FieldBuild& b) const {
-    auto make = [&](gl::Texture& t, GLenum format, const char* label) {
-        if (t) return;
-        t = gl::createTexture(GL_TEXTURE_3D);
-        glTextureStorage3D(t.name(), 1, format, dims_.x, dims_.y, dims_.z);
-        for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTextureParameteri(t.name(), p, GL_LINEAR);
-        for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(t.name(), p, GL_CLAMP_TO_EDGE);
-        glObjectLabel(GL_TEXTURE, t.name(), -1, label);
-        if (glGetError() == GL_OUT_OF_MEMORY) throw SystemError("not enough GPU memory for the label field");
-    };
-    make(fieldTexture_, GL_RGBA8, "label field (smoothed shown colour, shown)");
-    make(opacityTexture_, GL_R8, "label field (smoothed opacity)");
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(fieldTexture_.name(), 0, 0, 0, 0, dims_.x, dims_.y, dims_.z, GL_RGBA, GL_UNSIGNED_BYTE, b.rgba.data());
-    glTextureSubImage3D(opacityTexture_.name(), 0, 0, 0, 0, dims_.x, dims_.y, dims_.z, GL_RED, GL_UNSIGNED_BYTE, b.alpha.data());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    if (!fieldTexture_) fieldTexture_ = createVolumeTexture(layout_, kFieldFormat, "label field (smoothed shown colour, shown)");
+    if (!opacityTexture_) opacityTexture_ = createVolumeTexture(layout_, kOpacityFormat, "label field (smoothed opacity)");
+    uploadVolumeBox(fieldTexture_.name(), layout_, kFieldFormat, glm::ivec3(0), dims_, b.rgba.data());
+    uploadVolumeBox(opacityTexture_.name(), layout_, kOpacityFormat, glm::ivec3(0), dims_, b.alpha.data());
+    if (glGetError() == GL_OUT_OF_MEMORY) throw SystemError("not enough GPU memory for the label field");
 }
 
 void LabelOverlay::addDefines(gl::Defines& defines) const { defines.emplace_back("LABELS", "1"); }
@@ -208,6 +214,6 @@ std::vector<std::uint8_t> LabelOverlay::occupiedBricks(glm::ivec3 grid, int bric
     return flags;
 }
 
-std::size_t LabelOverlay::gpuBytes() const { return ids_.size() * (2 + 4 + 1) + styles_.size() * 16; }
+std::size_t LabelOverlay::gpuBytes() const { return layout_.texelCount() * (2 + 4 + 1) + styles_.size() * 16; }
 
 }  // namespace curette

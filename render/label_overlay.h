@@ -10,6 +10,7 @@
 
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "render/volume_texture.h"
 
 #include <glm/glm.hpp>
 
@@ -30,6 +31,8 @@ public:
     // id 0 (no label) must be transparent.
     LabelOverlay(glm::ivec3 dims, const std::vector<std::uint16_t>& ids, const std::vector<glm::vec4>& styles);
     ~LabelOverlay();
+    // The layout of the volume's textures (render/model/volume_layout.h); unfolded until the renderer sets it.
+    void setLayout(const VolumeLayout& layout);
 
     void setStyles(const std::vector<glm::vec4>& styles);
     const std::vector<glm::vec4>& styles() const { return styles_; }
@@ -51,6 +54,7 @@ public:
 
 private:
     glm::ivec3 dims_;
+    VolumeLayout layout_;
     std::vector<std::uint16_t> ids_;
     std::vector<glm::vec4> styles_;
     // The label field is a cache of the styles, built when stale: hence mutable. Its build runs in stages, each
@@ -59,6 +63,7 @@ private:
     struct FieldBuild;
     void runFieldPlanes(FieldBuild& build, int planes) const;
     void uploadField(const FieldBuild& build) const;
+    void uploadIds();
     mutable std::unique_ptr<FieldBuild> build_;
     gl::Texture idsTexture_, stylesTexture_;
     mutable gl::Texture fieldTexture_, opacityTexture_;

@@ -8,7 +8,12 @@
 
 namespace curette {
 
-RemovalTexture::RemovalTexture(glm::ivec3 dims, const glm::dmat4& indexToWorld) : dims_(dims) {
+namespace {
+const VolumeTextureFormat kFractionFormat{GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1, true, false};
+}  // namespace
+
+RemovalTexture::RemovalTexture(const VolumeLayout& layout, const glm::dmat4& indexToWorld) : dims_(layout.dims), layout_(layout) {
+    const glm::ivec3 dims = layout.dims;
     bricks_ = (dims + plan::kRemovalBrickSize - 1) / plan::kRemovalBrickSize;
     minStretchMm_ = plan::smallestStretchMm(indexToWorld);
     drilledBricks_.assign(std::size_t(bricks_.x) * std::size_t(bricks_.y) * std::size_t(bricks_.z), 0);
@@ -21,11 +26,10 @@ RemovalTexture::RemovalTexture(glm::ivec3 dims, const glm::dmat4& indexToWorld) 
         glObjectLabel(GL_TEXTURE, t.name(), -1, label);
         if (glGetError() == GL_OUT_OF_MEMORY) throw SystemError("not enough GPU memory for the drilled removal");
     };
-    make(fraction_, GL_R8, dims, GL_LINEAR, "drilled fraction");
+    fraction_ = createVolumeTexture(layout, kFractionFormat, "drilled fraction");
+    glClearTexImage(fraction_.name(), 0, GL_RED, GL_UNSIGNED_BYTE, nullptr);   // nothing drilled
     make(near_, GL_R8UI, bricks_, GL_NEAREST, "near-drill bricks");
-    std::vector<std::uint8_t> zeros(std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z), 0);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(fraction_.name(), 0, 0, 0, 0, dims.x, dims.y, dims.z, GL_RED, GL_UNSIGNED_BYTE, zeros.data());
     glTextureSubImage3D(near_.name(), 0, 0, 0, 0, bricks_.x, bricks_.y, bricks_.z, GL_RED_INTEGER, GL_UNSIGNED_BYTE, drilledBricks_.data());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 }
@@ -64,11 +68,9 @@ void RemovalTexture::update(const plan::RemovalVolume& removal, double dilationR
             std::array<std::uint8_t, plan::kRemovalBrickVoxels> bytes = removal.brickBytes(brick);
             glm::ivec3 o = removal.brickOrigin(brick);
             glm::ivec3 size = glm::min(glm::ivec3(plan::kRemovalBrickSize), dims_ - o);
-            // The brick's bytes are 4 x 4 x 4 with x fastest; upload the part inside the grid row by row.
-            for (int z = 0; z < size.z; ++z)
-                for (int y = 0; y < size.y; ++y)
-                    glTextureSubImage3D(fraction_.name(), 0, o.x, o.y + y, o.z + z, size.x, 1, 1, GL_RED, GL_UNSIGNED_BYTE,
-                                        bytes.data() + (z * plan::kRemovalBrickSize + y) * plan::kRemovalBrickSize);
+            // The brick's bytes are 4 x 4 x 4 with x fastest; upload the part inside the grid.
+            uploadVolumeBox(fraction_.name(), layout_, kFractionFormat, o, size, bytes.data(),
+                            glm::ivec2(plan::kRemovalBrickSize));
             drilledBricks_[brick] = std::any_of(bytes.begin(), bytes.end(), [](std::uint8_t v) { return v != 0; }) ? 1 : 0;
         }
         glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -91,7 +93,7 @@ void RemovalTexture::apply(gl::Program&) const {
 }
 
 std::size_t RemovalTexture::gpuBytes() const {
-    return std::size_t(dims_.x) * std::size_t(dims_.y) * std::size_t(dims_.z) + drilledBricks_.size();
+    return layout_.texelCount() + drilledBricks_.size();
 }
 
 }  // namespace curette

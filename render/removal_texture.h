@@ -9,6 +9,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 #include "plan/removal_volume.h"
+#include "render/volume_texture.h"
 
 #include <glm/glm.hpp>
 
@@ -19,7 +20,7 @@ namespace curette {
 
 class RemovalTexture {
 public:
-    RemovalTexture(glm::ivec3 dims, const glm::dmat4& indexToWorld);
+    RemovalTexture(const VolumeLayout& layout, const glm::dmat4& indexToWorld);
 
     // Brings the textures to `removal`'s version (changed bricks only) and the near flags to `dilationRadiusMm`.
     void update(const plan::RemovalVolume& removal, double dilationRadiusMm);
@@ -37,6 +38,7 @@ public:
 
 private:
     glm::ivec3 dims_, bricks_;
+    VolumeLayout layout_;
     double minStretchMm_ = 1;   // the smallest world length of a unit index step (a lower bound)
     gl::Texture fraction_, near_;
     std::vector<std::uint8_t> drilledBricks_;

@@ -49,6 +49,7 @@ void Renderer::setTransferFunction(const TransferFunction& tf) {
 
 void Renderer::setLabels(std::unique_ptr<LabelOverlay> labels) {
     labels_ = std::move(labels);
+    if (labels_) labels_->setLayout(volume_.layout());
     tf_->attachLabels(labels_.get());
     ++versions_.transferFunction;  // the labels are part of the classification
     updateOccupancy();
@@ -147,7 +148,7 @@ void Renderer::syncRemoval() {
     if (!removal_) return;
     if (!removalTexture_) {
         if (removal_->empty()) return;   // never drilled: no texture, no shader variant
-        removalTexture_ = std::make_unique<RemovalTexture>(volume_.geometry().dims, volume_.geometry().indexToWorld);
+        removalTexture_ = std::make_unique<RemovalTexture>(volume_.layout(), volume_.geometry().indexToWorld);
     }
     removalTexture_->update(*removal_, AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()));
     tf_->attachRemoval(removalTexture_.get());

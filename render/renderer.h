@@ -72,6 +72,7 @@ public:
     std::size_t tubeTriangleCount() const { return tubes_ ? tubes_->triangleCount() : 0; }
     const GBuffer& gbuffer() const { return gbuffer_; }
     const VolumeGeometry& geometry() const { return volume_.geometry(); }
+    const VolumeLayout& volumeLayout() const { return volume_.layout(); }   // how its textures store the voxels
     double resolveStepMm(const RaycastSettings& settings) const;
 
     // The passes render(frame) would run now, in order, with what each reads and writes.

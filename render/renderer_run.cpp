@@ -401,11 +401,13 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
     if (countSamples_) defines.emplace_back("COUNT_SAMPLES", "1");
     tf_->addDefines(defines);
     NoDataPiece{volume_}.addDefines(defines);
+    VolumeLayoutPiece{volume_.layout()}.addDefines(defines);
     gl::Program& p = raycastPrograms_.get(defines);
 
     CameraRayPiece{frame}.apply(p);
     VolumePiece{volume_}.apply(p);
     NoDataPiece{volume_}.apply(p);
+    VolumeLayoutPiece{volume_.layout()}.apply(p);
     tf_->apply(p);
     clip_.apply(p);
     SampleShadingPiece{shading, laoSettings_.ambientScale, context.ambient, frame.raycast.cutFace}.apply(p);

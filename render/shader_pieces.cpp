@@ -116,6 +116,19 @@ void VolumePiece::apply(gl::Program& p) const {
     glBindTextureUnit(binding::volume, volume.texture());
 }
 
+void VolumeLayoutPiece::addDefines(gl::Defines& defines) const {
+    if (!layout.folded()) return;
+    defines.emplace_back("VOLUME_FOLD", "1");
+    defines.emplace_back("VOLUME_FOLD_AXIS", std::to_string(layout.foldAxis));
+    defines.emplace_back("VOLUME_ACROSS_AXIS", std::to_string(layout.acrossAxis));
+}
+
+void VolumeLayoutPiece::apply(gl::Program& p) const {
+    p.set("volumeFold", glm::ivec3(layout.stride, layout.pieces, layout.acrossPitch()));
+    p.set("volumeFoldDims", glm::vec3(layout.dims));
+    p.set("volumeFoldTexels", glm::vec3(layout.texels));
+}
+
 void NoDataPiece::addDefines(gl::Defines& defines) const {
     if (volume.hasNoData()) defines.emplace_back("NO_DATA", "1");
 }

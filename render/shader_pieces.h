@@ -7,6 +7,7 @@
 //   GLSL piece                   binder
 //   pixel_ray.glsl               CameraRayPiece (below)
 //   volume.glsl                  VolumePiece (below)
+//   volume_layout.glsl           VolumeLayoutPiece (below)
 //   no_data.glsl                 NoDataPiece (below)
 //   transfer_function.glsl       TransferFunctionTexture::addDefines / apply (render/transfer_function_texture.h)
 //   classify_sample.glsl         (no uniforms: volume.glsl + transfer_function.glsl)
@@ -67,6 +68,15 @@ struct TileOrderPiece {
 // volume.glsl: the data volume, its world-to-texture map and the gradient's map to world units.
 struct VolumePiece {
     const GpuVolume& volume;
+    void apply(gl::Program& program) const;
+};
+
+// volume_layout.glsl: where the voxels of every volume-sized texture lie (render/model/volume_layout.h). Compiled
+// in (VOLUME_FOLD and its axes) only for a folded volume; every pass that reads or writes a volume-sized texture
+// adds its defines and applies it.
+struct VolumeLayoutPiece {
+    const VolumeLayout& layout;
+    void addDefines(gl::Defines& defines) const;
     void apply(gl::Program& program) const;
 };
 

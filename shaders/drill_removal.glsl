@@ -3,12 +3,13 @@
 // A sample keeps (1 - drilled fraction) of its opacity, the fraction trilinear between voxel centres; step IV
 // scales a voxel's V_o by its own voxel's (voxel_clip.comp), as it scales by the meshes' visible fraction.
 #include "bindings.glsl"
+#include "volume_layout.glsl"
 
 #ifdef DRILL_REMOVAL
 layout(binding = BINDING_DRILLED_FRACTION) uniform sampler3D drilledFraction;
 layout(binding = BINDING_DRILL_NEAR_BRICKS) uniform usampler3D drillNearBricks;
-float drillRetainedAt(vec3 tex) { return 1.0 - texture(drilledFraction, tex).r; }
-float drillRetainedAtVoxel(ivec3 v) { return 1.0 - texelFetch(drilledFraction, v, 0).r; }
+float drillRetainedAt(vec3 tex) { return 1.0 - VOLUME_SAMPLE(drilledFraction, tex).r; }
+float drillRetainedAtVoxel(ivec3 v) { return 1.0 - VOLUME_FETCH(drilledFraction, v).r; }
 // Whether a drilled voxel lies within the dilation radius of voxel v's brick (4^3 voxels): its LAO may differ
 // from V_PAO, so step IV makes it category b (docs/subsystems.md, "Drilling").
 bool nearDrilledVoxel(ivec3 v) { return texelFetch(drillNearBricks, v / 4, 0).r != 0u; }

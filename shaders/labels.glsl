@@ -11,12 +11,13 @@
 // surface is where its smoothed indicator is one half, a surface, not the staircase of its voxels' cells.
 // Binder: render/label_overlay.h (LabelOverlay::apply, through TransferFunctionTexture::apply).
 #include "bindings.glsl"
+#include "volume_layout.glsl"
 
 #ifdef LABELS
 layout(binding = BINDING_LABEL_IDS) uniform usampler3D labelIds;
 layout(binding = BINDING_LABEL_STYLES) uniform sampler1D labelStyles;
 
-vec4 labelStyleAtVoxel(ivec3 voxel) { return texelFetch(labelStyles, int(texelFetch(labelIds, voxel, 0).r), 0); }
+vec4 labelStyleAtVoxel(ivec3 voxel) { return texelFetch(labelStyles, int(VOLUME_FETCH(labelIds, voxel).r), 0); }
 
 layout(binding = BINDING_LABEL_FIELD) uniform sampler3D labelField;     // smoothed (rgb * shown, shown)
 layout(binding = BINDING_LABEL_OPACITY) uniform sampler3D labelOpacity; // smoothed opacity * shown
@@ -30,17 +31,17 @@ struct LabelSample {
 // The surface is where the smoothed shown share is one half; the narrow smoothstep across it keeps the
 // surface crisp and still sampled without aliasing at the ray step.
 LabelSample labelAt(vec3 tex) {
-    vec4 f = texture(labelField, tex);
-    float alpha = texture(labelOpacity, tex).r;
+    vec4 f = VOLUME_SAMPLE(labelField, tex);
+    float alpha = VOLUME_SAMPLE(labelOpacity, tex).r;
     float edge = smoothstep(0.4, 0.6, f.a);
     return LabelSample(f.a > 0.0 ? f.rgb / f.a : vec3(0.0), f.a > 0.0 ? alpha / f.a * edge : 0.0, edge);
 }
 
 // d shown / d voxel index by central differences (the label surface's inward normal, for phong).
 vec3 labelShownGradient(vec3 tex, vec3 texel) {
-    return 0.5 * vec3(texture(labelField, tex + vec3(texel.x, 0, 0)).a - texture(labelField, tex - vec3(texel.x, 0, 0)).a,
-                      texture(labelField, tex + vec3(0, texel.y, 0)).a - texture(labelField, tex - vec3(0, texel.y, 0)).a,
-                      texture(labelField, tex + vec3(0, 0, texel.z)).a - texture(labelField, tex - vec3(0, 0, texel.z)).a);
+    return 0.5 * vec3(VOLUME_SAMPLE(labelField, tex + vec3(texel.x, 0, 0)).a - VOLUME_SAMPLE(labelField, tex - vec3(texel.x, 0, 0)).a,
+                      VOLUME_SAMPLE(labelField, tex + vec3(0, texel.y, 0)).a - VOLUME_SAMPLE(labelField, tex - vec3(0, texel.y, 0)).a,
+                      VOLUME_SAMPLE(labelField, tex + vec3(0, 0, texel.z)).a - VOLUME_SAMPLE(labelField, tex - vec3(0, 0, texel.z)).a);
 }
 
 vec4 withLabel(vec4 classified, vec4 style) {

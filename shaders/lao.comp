@@ -32,16 +32,16 @@ void main() {
         if (!brickVoxel(volumeSize, v, entry)) return;
         uint decision = stepVDecision(v, volumeSize, entry);
         if (decision == DECISION_COPY) {
-            imageStore(ambientOut, v, texelFetch(precomputedAmbient, v, 0));
+            VOLUME_STORE(ambientOut, v, VOLUME_FETCH(precomputedAmbient, v));
             return;
         }
         if (decision == DECISION_UNREACHABLE) {
-            imageStore(ambientOut, v, vec4(1.0));
+            VOLUME_STORE(ambientOut, v, vec4(1.0));
             return;
         }
     }
     // The single call site of the LAO ray.
     atomicAdd(computedCount, 1u);
     float ambient = localAmbientOcclusion((vec3(v) + 0.5) / vec3(volumeSize));
-    imageStore(ambientOut, v, vec4(ambient));
+    VOLUME_STORE(ambientOut, v, vec4(ambient));
 }

@@ -6,6 +6,7 @@
 // Shared by the full-grid and compacted variants, and by step I, so V_PAO, V_AO and full LAO agree.
 #include "bindings.glsl"
 #include "visit_bricks.glsl"
+#include "volume_layout.glsl"
 
 #define DECISION_COPY 0u
 #define DECISION_COMPUTE 1u
@@ -28,7 +29,7 @@ bool ambientSeen(ivec3 v) { return texelFetch(seenBricks, v / seenBrickSize, 0).
 #endif
 
 uint stepVDecision(ivec3 v, ivec3 size, uint brickEntry) {
-    uint category = texelFetch(categoryMask, v, 0).r;
+    uint category = VOLUME_FETCH(categoryMask, v).r;
     if (category == CATEGORY_UNAFFECTED) return DECISION_COPY;   // (an unseen voxel's V_PAO is 1 too)
 #ifdef AO_ONLY_WHERE_SEEN
     if (!ambientSeen(v)) return DECISION_UNREACHABLE;
@@ -40,7 +41,7 @@ uint stepVDecision(ivec3 v, ivec3 size, uint brickEntry) {
             for (int x = -1; x <= 1; ++x) {
                 ivec3 n = v + ivec3(x, y, z);
                 if (any(lessThan(n, ivec3(0))) || any(greaterThanEqual(n, size))) continue;
-                if (texelFetch(categoryMask, n, 0).r != CATEGORY_CLIPPED) return lao ? DECISION_COMPUTE : DECISION_COPY;
+                if (VOLUME_FETCH(categoryMask, n).r != CATEGORY_CLIPPED) return lao ? DECISION_COMPUTE : DECISION_COPY;
             }
     return DECISION_UNREACHABLE;
 }

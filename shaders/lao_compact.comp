@@ -2,7 +2,9 @@
 // Step V, compacted variant, first half: over the visited bricks (visit_bricks.glsl), take every voxel's
 // decision (lao_common.glsl); write the copies and
 // the unreachable ones directly and append the voxels to recompute to a list (atomic append). A second
-// one-invocation pass turns the count into an indirect dispatch of lao.comp in LIST mode.
+// one-invocation pass turns the count into an indirect dispatch of lao.comp in LIST mode. The list holds the
+// voxels of one chunk of the visited bricks at a time (AmbientOcclusion::listChunkBricks_): with countChunks, this
+// pass appends nothing and counts each chunk's voxels to recompute instead, in listVoxels[chunk].
 #include "bindings.glsl"
 #include "lao_common.glsl"
 
@@ -15,6 +17,7 @@ layout(std430, binding = SSBO_DISPATCH) buffer Dispatch { uvec3 dispatchSize; };
 uniform ivec3 volumeSize;
 uniform int prepareDispatch;   // 1: the single invocation that sizes the indirect dispatch
 uniform uint maxGroupsX;
+uniform uint countChunks;      // 0: append to the list; else the bricks of a chunk: count per chunk
 
 void main() {
     if (prepareDispatch == 1) {
@@ -31,9 +34,11 @@ void main() {
     if (!brickVoxel(volumeSize, v, entry)) return;
     uint decision = stepVDecision(v, volumeSize, entry);
     if (decision == DECISION_COPY) {
-        imageStore(ambientOut, v, texelFetch(precomputedAmbient, v, 0));
+        VOLUME_STORE(ambientOut, v, VOLUME_FETCH(precomputedAmbient, v));
     } else if (decision == DECISION_UNREACHABLE) {
-        imageStore(ambientOut, v, vec4(1.0));
+        VOLUME_STORE(ambientOut, v, vec4(1.0));
+    } else if (countChunks != 0u) {
+        atomicAdd(listVoxels[visitSlot() / countChunks], 1u);
     } else {
         listVoxels[atomicAdd(listCount, 1u)] = indexFromVoxel(v, volumeSize);
     }

@@ -16,6 +16,7 @@
 //   LAO_UNIT_STEP   defined when the step equals the TF's unit length: the correction (1 - a)^(step / unit)
 //                   is then 1 - a exactly, and pow (exp2 of log2 on llvmpipe) is about a quarter of a sample.
 #include "bindings.glsl"
+#include "volume_layout.glsl"
 
 layout(binding = BINDING_OPACITY) uniform sampler3D clippedOpacity;
 layout(std430, binding = SSBO_LAO_DIRECTIONS) readonly buffer LaoDirections {
@@ -42,7 +43,7 @@ float localAmbientOcclusion(vec3 centreTex) {
                 sum += transmittance * float(LAO_SAMPLES - m);
                 break;
             }
-            float a = texture(clippedOpacity, p).r;
+            float a = VOLUME_SAMPLE_ZERO_BORDER(clippedOpacity, p).r;
 #ifdef LAO_UNIT_STEP
             transmittance *= 1.0 - a;
 #else

@@ -6,6 +6,7 @@
 #include "shading_modes.glsl"
 #include "classify_sample.glsl"
 #include "phong.glsl"
+#include "volume_layout.glsl"
 
 #if SHADING == SHADING_LAO || SHADING == SHADING_CAO
 layout(binding = BINDING_AMBIENT) uniform sampler3D ambientOcclusion;   // V_AO
@@ -19,7 +20,7 @@ vec3 shadeSample(VolumeSample s, vec3 tex, vec3 toEye) {
 #elif SHADING == SHADING_LAO || SHADING == SHADING_CAO
     // CAO step VI: the colour lit by ambient light only, V_AO the fraction that reaches the sample, scaled so
     // an open flat surface (half its rays blocked, A = 0.5) shows the TF colour.
-    return s.albedo * ambientScale * texture(ambientOcclusion, tex).r;
+    return s.albedo * ambientScale * VOLUME_SAMPLE(ambientOcclusion, tex).r;
 #else
     return s.albedo;
 #endif

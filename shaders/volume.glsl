@@ -4,6 +4,7 @@
 // centre is at ((i,j,k) + 0.5) / dims.
 #include "bindings.glsl"
 #include "no_data.glsl"
+#include "volume_layout.glsl"
 
 layout(binding = BINDING_VOLUME) uniform sampler3D volumeData;
 uniform mat4 worldToTexture;
@@ -13,7 +14,7 @@ uniform mat3 gradientToWorld;      // transpose(inverse(linear part of indexToWo
 vec3 toTexture(vec3 world) { return (worldToTexture * vec4(world, 1.0)).xyz; }
 
 // The stored value as the GPU filters it (normalized for UNorm formats).
-float sampleTexel(vec3 tex) { return texture(volumeData, tex).r; }
+float sampleTexel(vec3 tex) { return VOLUME_SAMPLE(volumeData, tex).r; }
 
 // Gradient of the physical value in world units (value per mm), by central differences one voxel apart
 // along each index axis (one-sided next to no data: no_data.glsl).

@@ -10,6 +10,7 @@
 #include "transfer_function.glsl"
 #include "clip_coverage.glsl"
 #include "visit_bricks.glsl"
+#include "volume_layout.glsl"
 
 layout(local_size_x = 64) in;   // one brick (visit_bricks.glsl)
 layout(binding = BINDING_VOLUME) uniform sampler3D volumeData;
@@ -24,17 +25,17 @@ uniform bool applyDrill;           // the drilled removal scales V_o (off in ste
 // TF_o of Algorithm 2: the opacity per unit length of the voxel's own value (no interpolation), with the
 // gradient-opacity factor from central differences when the TF has one (one-sided next to no data).
 float voxelOpacity(ivec3 v) {
-    float alpha = classify(texelFetch(volumeData, v, 0).r).a;
+    float alpha = classify(VOLUME_FETCH(volumeData, v).r).a;
 #ifdef LABELS
     alpha = withLabel(vec4(0.0, 0.0, 0.0, alpha), labelStyleAtVoxel(v)).a;
 #endif
     if (useGradientOpacity) {
         ivec3 hi = volumeSize - 1;
-        vec3 minus = vec3(texelFetch(volumeData, max(v - ivec3(1, 0, 0), 0), 0).r, texelFetch(volumeData, max(v - ivec3(0, 1, 0), 0), 0).r,
-                          texelFetch(volumeData, max(v - ivec3(0, 0, 1), 0), 0).r);
-        vec3 plus = vec3(texelFetch(volumeData, min(v + ivec3(1, 0, 0), hi), 0).r, texelFetch(volumeData, min(v + ivec3(0, 1, 0), hi), 0).r,
-                         texelFetch(volumeData, min(v + ivec3(0, 0, 1), hi), 0).r);
-        vec3 d = differencesAcross(minus, vec3(texelFetch(volumeData, v, 0).r), plus);
+        vec3 minus = vec3(VOLUME_FETCH(volumeData, max(v - ivec3(1, 0, 0), 0)).r, VOLUME_FETCH(volumeData, max(v - ivec3(0, 1, 0), 0)).r,
+                          VOLUME_FETCH(volumeData, max(v - ivec3(0, 0, 1), 0)).r);
+        vec3 plus = vec3(VOLUME_FETCH(volumeData, min(v + ivec3(1, 0, 0), hi)).r, VOLUME_FETCH(volumeData, min(v + ivec3(0, 1, 0), hi)).r,
+                         VOLUME_FETCH(volumeData, min(v + ivec3(0, 0, 1), hi)).r);
+        vec3 d = differencesAcross(minus, vec3(VOLUME_FETCH(volumeData, v).r), plus);
         alpha *= gradientOpacityFactor(length(gradientToWorld * (0.5 * d)));
     }
     return alpha;
@@ -87,6 +88,6 @@ void main() {
     uint category = (visible == 0 || retained == 0.0) ? CATEGORY_CLIPPED
                     : (testDilation && meshes == 0u && !nearDrill) ? CATEGORY_UNAFFECTED
                                                                    : CATEGORY_AFFECTED;
-    imageStore(clippedOpacityOut, v, vec4(opacity));
-    imageStore(maskOut, v, uvec4(category));
+    VOLUME_STORE(clippedOpacityOut, v, vec4(opacity));
+    VOLUME_STORE(maskOut, v, uvec4(category));
 }

@@ -43,6 +43,8 @@ struct ResourceInfo {
     const char* name;      // as the memory report and the plan print it
     const char* format;
     const char* purpose;
+    // Its size grows with the volume's voxels: the memory report gives its bytes per voxel.
+    bool volumeSized = false;
 };
 
 const ResourceInfo& resourceInfo(Resource id);

@@ -11,26 +11,17 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <cstdlib>
 #include <limits>
 
 namespace curette {
 
 namespace {
 
-gl::Texture makeVolumeTexture(glm::ivec3 dims, GLenum format, const char* label, bool zeroBorder) {
-    gl::Texture t = gl::createTexture(GL_TEXTURE_3D);
-    glTextureStorage3D(t.name(), 1, format, dims.x, dims.y, dims.z);
-    bool integer = format == GL_R8UI;
-    glTextureParameteri(t.name(), GL_TEXTURE_MIN_FILTER, integer ? GL_NEAREST : GL_LINEAR);
-    glTextureParameteri(t.name(), GL_TEXTURE_MAG_FILTER, integer ? GL_NEAREST : GL_LINEAR);
-    GLenum wrap = zeroBorder ? GL_CLAMP_TO_BORDER : GL_CLAMP_TO_EDGE;
-    for (GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(t.name(), axis, wrap);
-    const float border[4] = {0, 0, 0, 0};
-    glTextureParameterfv(t.name(), GL_TEXTURE_BORDER_COLOR, border);
-    glObjectLabel(GL_TEXTURE, t.name(), -1, label);
-    if (glGetError() == GL_OUT_OF_MEMORY) throw SystemError(std::string("not enough GPU memory for ") + label);
-    return t;
-}
+// V_o reads zero beyond the volume (lao_ray.glsl); V_m holds integer categories; V_PAO and V_AO are unorm16.
+const VolumeTextureFormat kOpacityFormat{GL_R16, GL_RED, GL_UNSIGNED_SHORT, 2, true, true};
+const VolumeTextureFormat kMaskFormat{GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, 1, false, false};
+const VolumeTextureFormat kAmbientFormat{GL_R16, GL_RED, GL_UNSIGNED_SHORT, 2, true, false};
 
 }  // namespace
 
@@ -46,10 +37,11 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     std::size_t bricks = BrickSet::none(dims).brickCount();
     // The visited-brick list numbers bricks in 30 bits (shaders/visit_bricks.glsl).
     if (bricks > 0x3FFFFFFFull) throw SystemError("the volume has more than 2^30 bricks of 4^3 voxels, more than steps IV and V can number");
-    opacity_ = makeVolumeTexture(dims, GL_R16, "V_o (clipped opacity)", true);
-    mask_ = makeVolumeTexture(dims, GL_R8UI, "V_m (categories)", false);
-    precomputed_ = makeVolumeTexture(dims, GL_R16, "V_PAO (unclipped LAO)", false);
-    ambient_ = makeVolumeTexture(dims, GL_R16, "V_AO", false);
+    const VolumeLayout& layout = volume.layout();
+    opacity_ = createVolumeTexture(layout, kOpacityFormat, "V_o (clipped opacity)");
+    mask_ = createVolumeTexture(layout, kMaskFormat, "V_m (categories)");
+    precomputed_ = createVolumeTexture(layout, kAmbientFormat, "V_PAO (unclipped LAO)");
+    ambient_ = createVolumeTexture(layout, kAmbientFormat, "V_AO");
 
     std::vector<glm::vec4> aa;
     for (const glm::dvec3& o : antiAliasingOffsets(std::max(settings.antiAliasingSamples, 1))) aa.emplace_back(glm::vec3(o), 0.0f);
@@ -68,10 +60,17 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     directions_ = gl::createBuffer();
     glNamedBufferStorage(directions_.name(), static_cast<GLsizeiptr>(packed.size() * sizeof(glm::vec4)), packed.data(), 0);
 
+    if (const char* forced = std::getenv("CURETTE_RECOMPUTE_LIST_BRICKS")) {
+        long n = std::strtol(forced, nullptr, 10);
+        if (n < 1) throw InputError("CURETTE_RECOMPUTE_LIST_BRICKS", "value", "a whole number of bricks, at least 1", forced);
+        listChunkBricks_ = static_cast<std::uint32_t>(std::min<long>(n, kListChunkBricks));
+    }
     if (settings.dispatch == LaoSettings::Dispatch::Compacted) {
+        // A chunk's voxels, and room for every chunk's count (beginRecompute's counting pass).
+        std::size_t chunks = (bricks + listChunkBricks_ - 1) / listChunkBricks_;
+        listCapacity_ = std::max(std::size_t(kVisitBrickSize * kVisitBrickSize * kVisitBrickSize) * std::min<std::size_t>(listChunkBricks_, bricks), chunks);
         list_ = gl::createBuffer();
-        glNamedBufferStorage(list_.name(), static_cast<GLsizeiptr>(8 + 4 * volume.geometry().dims.x * std::size_t(dims.y) * dims.z),
-                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+        glNamedBufferStorage(list_.name(), static_cast<GLsizeiptr>(8 + 4 * listCapacity_), nullptr, GL_DYNAMIC_STORAGE_BIT);
         dispatch_ = gl::createBuffer();
         glNamedBufferStorage(dispatch_.name(), 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
     } else {
@@ -82,6 +81,7 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
     glNamedBufferStorage(visitBricks_.name(), static_cast<GLsizeiptr>(4 * bricks), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gl::Defines defines;
     if (seenBricks_) defines.emplace_back("AO_ONLY_WHERE_SEEN", "1");
+    VolumeLayoutPiece{volume.layout()}.addDefines(defines);
     compactProgram_ = gl::Program::compute("lao_compact.comp", defines);
 }
 
@@ -110,6 +110,7 @@ gl::Defines AmbientOcclusion::laoDefines(float opacityExponent) const {
     defines.emplace_back("LAO_DIRECTIONS", std::to_string(directionCount_));
     defines.emplace_back("LAO_SAMPLES", std::to_string(settings_.samples));
     if (opacityExponent == 1.0f) defines.emplace_back("LAO_UNIT_STEP", "1");
+    VolumeLayoutPiece{volume_.layout()}.addDefines(defines);
     return defines;
 }
 
@@ -120,6 +121,7 @@ void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
     glm::ivec3 dims = volume_.geometry().dims;
     p.set("laoTextureMargin", glm::vec3(0.5 / glm::dvec3(dims)));
     p.set("laoOpacityExponent", opacityExponent);
+    VolumeLayoutPiece{volume_.layout()}.apply(p);
 }
 
 std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, bool laoEverywhere) {
@@ -192,10 +194,12 @@ void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const
     gl::Defines defines;
     tf.addDefines(defines);
     NoDataPiece{volume_}.addDefines(defines);
+    VolumeLayoutPiece{volume_.layout()}.addDefines(defines);
     gl::Program& p = clipPrograms_.get(defines);
     const VolumeGeometry& g = volume_.geometry();
     tf.apply(p);
     NoDataPiece{volume_}.apply(p);
+    VolumeLayoutPiece{volume_.layout()}.apply(p);
     p.set("indexToWorld", glm::mat4(g.indexToWorld));
     p.set("volumeSize", g.dims);
     p.set("antiAliasingSamples", settings_.antiAliasingSamples);
@@ -233,18 +237,28 @@ gl::Program& AmbientOcclusion::bindLao(GLuint target, float opacityExponent) {
     return program;
 }
 
-void AmbientOcclusion::buildRecomputeList() {
-    // Every visited voxel's decision: copies and unreachable voxels are written here, the rest appended.
+void AmbientOcclusion::buildRecomputeList(std::uint32_t firstSlot, std::uint32_t bricks, std::uint32_t countChunks) {
+    // Every visited voxel's decision: copies and unreachable voxels are written here, the rest appended (or counted).
     compactProgram_.set("volumeSize", volume_.geometry().dims);
     compactProgram_.set("maxGroupsX", kMaxWorkGroupsX);
+    VolumeLayoutPiece{volume_.layout()}.apply(compactProgram_);
     setVisitUniforms(compactProgram_);
+    compactProgram_.set("visitSlotOffset", firstSlot);
     setDecisionUniforms(compactProgram_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
     compactProgram_.set("prepareDispatch", 0);
+    compactProgram_.set("countChunks", countChunks);
     compactProgram_.use();
-    glm::uvec2 grid = workGroupGrid(visitCount_);
+    glm::uvec2 grid = workGroupGrid(bricks);
     glDispatchCompute(grid.x, grid.y, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void AmbientOcclusion::resetListLength() {
+    // The last chunk's LAO dispatch read the list and its length: finish with them before they are rewritten.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    const std::uint32_t zero = 0;
+    glNamedBufferSubData(list_.name(), 0, 4, &zero);
 }
 
 void AmbientOcclusion::readRecomputeCounts() {
@@ -267,15 +281,19 @@ void AmbientOcclusion::runLao(GLuint target, bool compacted, float opacityExpone
         lao.use();
         glDispatchCompute(grid.x, grid.y, 1);
     } else {
-        buildRecomputeList();
-        compactProgram_.set("prepareDispatch", 1);
-        glDispatchCompute(1, 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        lao.set("laoMode", 1);
-        lao.use();
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatch_.name());
-        glDispatchComputeIndirect(0);
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        // Chunk after chunk of the visited bricks, each its own list (the list holds one chunk).
+        for (std::uint32_t first = 0; first < visitCount_; first += listChunkBricks_) {
+            if (first > 0) resetListLength();
+            buildRecomputeList(first, std::min(listChunkBricks_, visitCount_ - first));
+            compactProgram_.set("prepareDispatch", 1);
+            glDispatchCompute(1, 1, 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+            lao.set("laoMode", 1);
+            lao.use();
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatch_.name());
+            glDispatchComputeIndirect(0);
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        }
     }
     readRecomputeCounts();
 }
@@ -292,27 +310,60 @@ std::uint32_t AmbientOcclusion::beginRecompute(const TransferFunctionTexture& tf
     const std::uint32_t zero[2] = {0, 0};
     glNamedBufferSubData(list_.name(), 0, 8, zero);
     bindLao(ambient_.name(), exponent);
-    buildRecomputeList();
-    readRecomputeCounts();   // waits for the list's length: the slices are sized on the CPU
+    const std::uint32_t chunks = (visitCount_ + listChunkBricks_ - 1) / listChunkBricks_;
+    chunkEntries_.assign(chunks, 0);
+    if (chunks == 1) {
+        buildRecomputeList(0, visitCount_);
+        readRecomputeCounts();   // waits for the list's length: the slices are sized on the CPU
+        chunkEntries_[0] = listCount_;
+        chunkBuilt_ = true;
+    } else {
+        // Each chunk's length first (the decisions write the copies here); its list is built when step V reaches it.
+        glNamedBufferSubData(list_.name(), 8, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
+        buildRecomputeList(0, visitCount_, listChunkBricks_);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(list_.name(), 8, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
+        chunkBuilt_ = false;
+    }
+    chunk_ = chunkGroupsDone_ = 0;
     recomputeExponent_ = exponent;
-    recomputeGroups_ = (listCount_ + kLaoGroupSize - 1) / kLaoGroupSize;
+    recomputeGroups_ = 0;
+    for (std::uint32_t entries : chunkEntries_) recomputeGroups_ += (entries + kLaoGroupSize - 1) / kLaoGroupSize;
     return recomputeGroups_;
 }
 
 std::uint32_t AmbientOcclusion::advanceRecompute(std::uint32_t groups) {
-    std::uint32_t n = std::min(groups, recomputeGroups_ - recomputeGroupsDone_);
-    if (n == 0) return 0;
-    // Other passes may have bound their own resources since the last slice.
-    gl::Program& lao = bindLao(ambient_.name(), recomputeExponent_);
-    lao.set("laoMode", 1);
-    lao.set("listOffset", recomputeGroupsDone_ * kLaoGroupSize);
-    lao.use();
-    glm::uvec2 grid = workGroupGrid(n);
-    glDispatchCompute(grid.x, grid.y, 1);
-    recomputeGroupsDone_ += n;
+    std::uint32_t ran = 0;
+    while (ran < groups && recomputeGroupsDone_ < recomputeGroups_) {
+        const std::uint32_t chunkGroups = (chunkEntries_[chunk_] + kLaoGroupSize - 1) / kLaoGroupSize;
+        if (chunkGroupsDone_ == chunkGroups) {   // on to the next chunk
+            ++chunk_;
+            chunkGroupsDone_ = 0;
+            chunkBuilt_ = false;
+            continue;
+        }
+        // Other passes may have bound their own resources since the last slice.
+        gl::Program& lao = bindLao(ambient_.name(), recomputeExponent_);
+        if (!chunkBuilt_) {
+            resetListLength();
+            const std::uint32_t first = chunk_ * listChunkBricks_;
+            buildRecomputeList(first, std::min(listChunkBricks_, visitCount_ - first));
+            chunkBuilt_ = true;
+        }
+        std::uint32_t n = std::min(groups - ran, chunkGroups - chunkGroupsDone_);
+        lao.set("laoMode", 1);
+        lao.set("listOffset", chunkGroupsDone_ * kLaoGroupSize);
+        lao.use();
+        glm::uvec2 grid = workGroupGrid(n);
+        glDispatchCompute(grid.x, grid.y, 1);
+        chunkGroupsDone_ += n;
+        recomputeGroupsDone_ += n;
+        ran += n;
+    }
+    if (ran == 0) return 0;
     if (recomputeGroupsDone_ == recomputeGroups_) readRecomputeCounts();
     else glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    return n;
+    return ran;
 }
 
 void AmbientOcclusion::precompute(const TransferFunctionTexture& tf) {
@@ -466,40 +517,29 @@ void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {
 
 std::vector<GpuAllocation> AmbientOcclusion::allocations() const {
     glm::ivec3 d = volume_.geometry().dims;
-    std::size_t n = std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z);
-    std::vector<GpuAllocation> list{{Resource::ClippedOpacity, 2 * n, {}},
-                                    {Resource::CategoryMask, n, {}},
-                                    {Resource::PrecomputedAo, 2 * n, {}},
-                                    {Resource::Ambient, 2 * n, {}},
+    std::size_t texels = volume_.layout().texelCount();
+    std::vector<GpuAllocation> list{{Resource::ClippedOpacity, 2 * texels, {}},
+                                    {Resource::CategoryMask, texels, {}},
+                                    {Resource::PrecomputedAo, 2 * texels, {}},
+                                    {Resource::Ambient, 2 * texels, {}},
                                     // with the visited-brick list (4 bytes per brick)
-                                    {Resource::RecomputeList, (settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * n + 8 : 8) +
+                                    {Resource::RecomputeList, (settings_.dispatch == LaoSettings::Dispatch::Compacted ? 4 * listCapacity_ + 8 : 8) +
                                                                   4 * BrickSet::none(d).brickCount(), {}},
                                     {Resource::LaoDirections, 16u * std::size_t(directionCount_), {}}};
     return list;
 }
 
-namespace {
-template <typename T>
-std::vector<T> readTexture(GLuint texture, glm::ivec3 d, GLenum format, GLenum type) {
-    std::vector<T> values(std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z));
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // written by image stores: make them visible to the read-back
-    glGetTextureImage(texture, 0, format, type, static_cast<GLsizei>(values.size() * sizeof(T)), values.data());
-    return values;
-}
-}  // namespace
-
 std::vector<std::uint16_t> AmbientOcclusion::readAmbient() const {
-    return readTexture<std::uint16_t>(ambient_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+    return readVolume<std::uint16_t>(ambient_.name(), volume_.layout(), kAmbientFormat);
 }
 std::vector<std::uint16_t> AmbientOcclusion::readPrecomputed() const {
-    return readTexture<std::uint16_t>(precomputed_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+    return readVolume<std::uint16_t>(precomputed_.name(), volume_.layout(), kAmbientFormat);
 }
 std::vector<std::uint16_t> AmbientOcclusion::readOpacity() const {
-    return readTexture<std::uint16_t>(opacity_.name(), volume_.geometry().dims, GL_RED, GL_UNSIGNED_SHORT);
+    return readVolume<std::uint16_t>(opacity_.name(), volume_.layout(), kOpacityFormat);
 }
 std::vector<std::uint8_t> AmbientOcclusion::readMask() const {
-    return readTexture<std::uint8_t>(mask_.name(), volume_.geometry().dims, GL_RED_INTEGER, GL_UNSIGNED_BYTE);
+    return readVolume<std::uint8_t>(mask_.name(), volume_.layout(), kMaskFormat);
 }
 
 void AmbientOcclusion::setRemoval(const plan::RemovalVolume* removal, const RemovalTexture* texture) {

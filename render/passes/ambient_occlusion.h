@@ -152,7 +152,10 @@ private:
     gl::Program& bindLao(GLuint target, float opacityExponent);
     gl::Defines laoDefines(float opacityExponent) const;
     gl::Program& laoProgram(float opacityExponent);   // compiled when first needed
-    void buildRecomputeList();      // lao_compact.comp over the visited bricks
+    // lao_compact.comp over the visited slots [firstSlot, firstSlot + bricks): appends their voxels to recompute to
+    // the list, or with countChunks counts them per chunk of countChunks slots (into the list's entries).
+    void buildRecomputeList(std::uint32_t firstSlot, std::uint32_t bricks, std::uint32_t countChunks = 0);
+    void resetListLength();         // listCount = 0 before a chunk's list is appended
     void readRecomputeCounts();     // the list's length and the LAO rays run, into listCount_ and stats_
     void setLaoUniforms(gl::Program& program, float opacityExponent);
 
@@ -167,6 +170,15 @@ private:
     gl::Program compactProgram_;
     AmbientOcclusionStats stats_;
     std::uint32_t listCount_ = 0;            // the recompute list's length (read after it is built)
+    // The recompute list holds the voxels of at most listChunkBricks_ visited bricks at a time, so it costs
+    // 4 bytes a voxel of a chunk, not of the volume (a first exact frame visits every brick); step V runs chunk
+    // after chunk. CURETTE_RECOMPUTE_LIST_BRICKS sets it (tests make small volumes take several chunks).
+    static constexpr std::uint32_t kListChunkBricks = 16384;   // 1 Mi voxels, 4 MiB
+    std::uint32_t listChunkBricks_ = kListChunkBricks;
+    std::size_t listCapacity_ = 0;               // entries
+    std::vector<std::uint32_t> chunkEntries_;    // sliced step V: each chunk's list length
+    std::uint32_t chunk_ = 0, chunkGroupsDone_ = 0;
+    bool chunkBuilt_ = false;
     std::uint32_t recomputeGroups_ = 0, recomputeGroupsDone_ = 0;   // sliced step V
     float recomputeExponent_ = 1;
     std::uint32_t visitCount_ = 0;   // bricks in the uploaded list: what the last step IV visited, step V visits the same

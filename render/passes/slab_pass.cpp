@@ -91,6 +91,7 @@ gl::Program& SlabPass::prepare(const SlabInputs& in, double d) {
     SampleShadingPiece::addCutFaceDefines(clipDefines, frame.raycast.cutFace, in.clip.count());
     in.clip.addDefines(clipDefines);
     NoDataPiece{volume}.addDefines(clipDefines);
+    VolumeLayoutPiece{volume.layout()}.addDefines(clipDefines);
     gl::Program& p = program(frame.shading, tubes != nullptr, in.tf, std::move(clipDefines));
     if (tubes) {
         glBindTextureUnit(binding::tubeDepth, tubes->depth());
@@ -102,6 +103,7 @@ gl::Program& SlabPass::prepare(const SlabInputs& in, double d) {
     CameraRayPiece{frame}.apply(p);
     VolumePiece{volume}.apply(p);
     NoDataPiece{volume}.apply(p);
+    VolumeLayoutPiece{volume.layout()}.apply(p);
     in.tf.apply(p);
     in.clip.apply(p);
     in.shading.apply(p);

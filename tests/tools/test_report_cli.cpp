@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -270,6 +271,31 @@ TEST(ReportCli, AShownLabelIsTissueAtTheOpacityItIsDrawnWith) {
         EXPECT_NEAR(report.at("removed_ml").get<double>(), expected, 0.03 * expected) << (shown ? "shown" : "hidden");
         EXPECT_EQ(rowsByName(report.at("structures")).count("left"), shown ? 1u : 0u);
     }
+}
+
+// A volume folded into pieces (render/model/volume_layout.h; the limit forced with CURETTE_MAX_3D_TEXTURE_SIZE, as
+// for a scan longer than the GPU's 3D textures) reports the carve the unfolded volume reports, to the digit.
+TEST(ReportCli, AFoldedVolumeReportsWhatTheUnfoldedOneReports) {
+    fs::path dir = scratch("folded");
+    test::writeBytes(dir / "long.raw", std::vector<std::uint8_t>(std::size_t(20) * 16 * 70, 120));
+    std::ofstream(dir / "long.json") << R"({
+  "volume": {"path": "long.raw", "format": "raw", "raw": {"dims": [20, 16, 70], "type": "uint8"}},
+  "transfer_function": {"color": [[0, 1, 1, 1], [255, 1, 1, 1]], "opacity": [[0, 0], [100, 0.5], [255, 0.5]]},
+  "image": {"width": 32, "height": 32},
+  "clip_meshes": [{"name": "ball", "mesh": {"shape": "sphere", "radius_mm": 6, "resolution": 4},
+                   "position_mm": [9.5, 7.8, 34.6]}]
+})";
+    auto removed = [&](const std::string& name) {
+        Invocation r = runCurette("report --no-exports --scene " + (dir / "long.json").string() + " --out " + (dir / name).string());
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return readJson(dir / name / "report.json").at("removed_ml").get<double>();
+    };
+    double unfolded = removed("unfolded");
+    setenv("CURETTE_MAX_3D_TEXTURE_SIZE", "64", 1);   // z (70) folds into 2 pieces across y
+    double folded = removed("folded");
+    unsetenv("CURETTE_MAX_3D_TEXTURE_SIZE");
+    EXPECT_GT(unfolded, 0.5);
+    EXPECT_EQ(folded, unfolded);
 }
 
 TEST(ReportCli, BadArgumentsAndBadLabelNamesAreOneErrorLine) {

@@ -137,6 +137,24 @@ TEST(VolumeFormatsCli, InfoReadsAMetaImage) {
     EXPECT_NE(vector.output.find("ElementNumberOfChannels"), std::string::npos) << vector.output;
 }
 
+// A volume longer than llvmpipe's 3D texture limit (2048): `info` says how the renderer will fold it, GL-free,
+// for the default limit and a stated one.
+TEST(VolumeFormatsCli, InfoSaysHowAVolumeOverTheTextureLimitIsStored) {
+    auto path = scratch() / "thin.mha";
+    std::string bytes = "NDims = 3\nDimSize = 2 3 2049\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n";
+    bytes.append(std::size_t(2 * 3 * 2049), '\x40');
+    writeText(path, bytes);
+    Invocation r = run("info " + path.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("GPU layout   z folded into 2 pieces of 1026 voxels side by side along x: one 3D texture of 5 x 3 x 1026 texels"),
+              std::string::npos) << r.output;
+    Invocation fits = run("info " + path.string() + " --texture-limit 4096");
+    EXPECT_NE(fits.output.find("GPU layout   one 3D texture of 2 x 3 x 2049 texels (3D texture limit 4096)"), std::string::npos) << fits.output;
+    Invocation none = run("info " + path.string() + " --texture-limit 64");
+    EXPECT_EQ(none.exitCode, 0) << none.output;
+    EXPECT_NE(none.output.find("GPU layout   none fits the 3D texture limit 64"), std::string::npos) << none.output;
+}
+
 // Statistics leave voxels without data out: the same as a volume of the finite values alone.
 TEST(VolumeStatistics, IgnoreNoDataVoxels) {
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();

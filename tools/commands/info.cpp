@@ -7,6 +7,7 @@
 #include "scene/volume_statistics.h"
 #include "base/error.h"
 #include "render/model/volume_geometry.h"
+#include "render/model/volume_layout.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -182,6 +183,20 @@ int info(const CommandLine& cl) {
     if (!volume.description.empty()) std::printf("description  %s\n", volume.description.c_str());
     std::printf("type         %s (GPU texture %s, %zu bytes)\n", scalarTypeName(volume.sourceType), storage, volume.voxels.size());
     std::printf("dimensions   %d x %d x %d (%zu voxels)\n", volume.dims.x, volume.dims.y, volume.dims.z, volume.voxelCount());
+    {
+        // How the renderer will store it: GL-free, so for a stated limit (llvmpipe's by default; `info --gl` prints
+        // the context's GL_MAX_3D_TEXTURE_SIZE).
+        int limit = 2048;
+        if (auto t = cl.value("texture-limit")) limit = static_cast<int>(CommandLine::parseDouble("texture-limit", *t, 2, 1 << 20));
+        try {
+            VolumeLayout l = VolumeLayout::forLimit(volume.dims, limit, path);
+            std::printf("GPU layout   %s (3D texture limit %d)\n", l.describe().c_str(), limit);
+            std::printf("GPU V        %.3f bytes per voxel\n",
+                        static_cast<double>(l.texelCount() * (volume.voxels.size() / volume.voxelCount())) / static_cast<double>(volume.voxelCount()));
+        } catch (const InputError& e) {
+            std::printf("GPU layout   none fits the 3D texture limit %d: %s\n", limit, e.what());
+        }
+    }
     if (volume.volumeCount > 1)
         std::printf("volumes      %d (showing index %d, --volume N)\n", volume.volumeCount, volume.volumeIndex);
     std::printf("spacing      %g x %g x %g mm\n", sp.x, sp.y, sp.z);
@@ -217,6 +232,7 @@ Command infoCommand() {
     return {{"info", "FILE | --gl", "what a volume file (or DICOM folder) holds: dimensions, spacing, affine, type, value range, histogram; with --gl the EGL devices and platforms and the GL context headless commands get",
              {{"gl", false, "instead of a file: the EGL devices and platforms, and the GL context headless commands get"},
               gpuOption(),
+              {"texture-limit", true, "the GPU's GL_MAX_3D_TEXTURE_SIZE the layout line assumes (default 2048, llvmpipe's; info --gl prints it)"},
               {"raw-dims", true, "raw file: dimensions XxYxZ"},
               {"raw-type", true, "raw file: uint8|int16|uint16|int32|float32|float64"},
               {"raw-spacing", true, "raw file: spacing in mm, e.g. 1,1,2 (default 1,1,1)"},

@@ -204,12 +204,18 @@ int render(const CommandLine& cl) {
         const char* kind = context->info().softwareRenderer ? "wall time, llvmpipe" : "GPU timer";
         for (const FrameTimings::Entry& e : renderer.collectTimings().passes)
             std::printf("  %-28s %10.1f ms (%s)\n", passInfo(e.pass).name, e.ms, kind);
-        std::size_t total = 0;
+        // Bytes per voxel of every resource whose size grows with the volume (with the fold's spare texels).
+        const double voxels = static_cast<double>(renderer.volumeLayout().voxelCount());
+        std::size_t total = 0, perVoxel = 0;
         for (const GpuAllocation& a : renderer.gpuAllocations()) {
-            std::printf("  %-40s %-28s %10.2f MiB\n", a.name(), a.formatText().c_str(), static_cast<double>(a.bytes) / 1048576.0);
+            std::printf("  %-40s %-28s %10.2f MiB", a.name(), a.formatText().c_str(), static_cast<double>(a.bytes) / 1048576.0);
+            if (resourceInfo(a.resource).volumeSized) std::printf(" %8.3f B/voxel", static_cast<double>(a.bytes) / voxels), perVoxel += a.bytes;
+            std::printf("\n");
             total += a.bytes;
         }
-        std::printf("  %-40s %-28s %10.2f MiB\n", "total", "", static_cast<double>(total) / 1048576.0);
+        std::printf("  %-40s %-28s %10.2f MiB %8.3f B/voxel (volume-sized)\n", "total", "", static_cast<double>(total) / 1048576.0,
+                    static_cast<double>(perVoxel) / voxels);
+        std::printf("  volume layout: %s\n", renderer.volumeLayout().describe().c_str());
         if (const AmbientOcclusion* ao = renderer.ambientOcclusion())
             std::printf("  recomputed %.2f %% of %llu voxels in step V\n", 100.0 * ao->lastStats().recomputedFraction(),
                         static_cast<unsigned long long>(ao->lastStats().voxels));
