@@ -244,8 +244,8 @@ TEST(ViewXr, ARecordedTwoControllerSessionReplaysBitForBit) {
     expectValidationSilent(xr.validation);
     std::string log = curette::testing::readTextFile(out / "runtime.log");
     // The trigger is bound in every profile that has one: not the simple controller (its one button grabs). Per
-    // hand: grip, squeeze, shading, stick, trigger, volume and erase; the Vive's trackpad click carries the volume,
-    // leaving no erase button.
+    // hand: grip, squeeze, shading, stick, trigger, volume and erase; the Vive has one trackpad click for volume
+    // and erase (split by where it is pressed).
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/oculus/touch_controller: 14"), std::string::npos) << log;
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/htc/vive_controller: 12"), std::string::npos) << log;
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/khr/simple_controller: 6"), std::string::npos) << log;
@@ -483,19 +483,19 @@ TEST(ViewXr, AVolumeMovedByHandCarriesTheSceneAndTheCarveIsUnchanged) {
     EXPECT_NE(r.output.find("DIFFERENT"), std::string::npos) << r.output;
 }
 
-// Erase, undo and redo on the controllers (Valve Index under validation): the right hand's burr drills a stroke
-// with the trigger, erases part of it back with the erase button (the thumbstick's click), then a thumbstick flick
-// left undoes the erase and a flick right redoes it. The session records each as the action layer applied it
-// (drill, erase, undo, redo), and the removal after each step, re-derived from the recorded hands, is what it
-// should be: the erase changes it, the undo brings back the drilled one, the redo the erased one.
-TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
-    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
-    auto dir = scratch("erase-undo");
+// Erase, undo and redo on the controllers of `profile` under validation: the right hand's burr drills a stroke
+// with the trigger, erases part of it back with the erase control (`eraseStickY`: where the thumb is on the stick
+// or trackpad as it clicks), then a flick left undoes the erase and a flick right redoes it. The session records
+// each as the action layer applied it (drill, erase, undo, redo), and the removal after each step, re-derived
+// from the recorded hands, is what it should be: the erase changes it, the undo brings back the drilled one, the
+// redo the erased one.
+void eraseUndoAndRedo(const std::string& name, const std::string& profile, double eraseStickY) {
+    auto dir = scratch(name);
     auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "phong", "clip_meshes": [
         {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 44]},
         {"name": "burr", "mesh": {"shape": "sphere", "radius_mm": 5}, "position_mm": [24, 34, 30]}]})"));
     nlohmann::json script = poseScript();
-    script["interaction_profile"] = "/interaction_profiles/valve/index_controller";
+    script["interaction_profile"] = profile;
     struct Step {
         int at;   // the burr's place: 0, 1, 2 steps of 4 mm
         double squeeze, trigger;
@@ -515,7 +515,7 @@ TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
                       {"squeeze", st.squeeze},
                       {"trigger", st.trigger},
                       {"thumbstick_click", st.erase},
-                      {"thumbstick", {st.stickX, 0.0}}};
+                      {"thumbstick", {st.stickX, st.erase ? eraseStickY : 0.0}}};
         frames.push_back(f);
     }
     script["frames"] = frames;
@@ -525,6 +525,7 @@ TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
     expectValidationSilent(xr.validation);
     std::string log = curette::testing::readTextFile(xr.eyes / "runtime.log");
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/valve/index_controller: 14"), std::string::npos) << log;
+    EXPECT_NE(log.find("bindings suggested for /interaction_profiles/htc/vive_controller: 12"), std::string::npos) << log;
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/khr/simple_controller: 6"), std::string::npos) << log;
     const std::string finalDigest = curette::testing::removalDigest(xr.shell.output);
     ASSERT_FALSE(finalDigest.empty()) << xr.shell.output;
@@ -541,11 +542,12 @@ TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
         EXPECT_EQ(drill, nlohmann::ordered_json::parse(expectedDrill)) << "frame " << i;
         EXPECT_EQ(history, nlohmann::ordered_json::parse(expectedHistory)) << "frame " << i;
         EXPECT_EQ(f["xr"]["hands"][1]["erase"].get<bool>(), i == 5) << "frame " << i;
+        EXPECT_FALSE(f["xr"]["hands"][1]["volume"].get<bool>()) << "frame " << i;
     }
 
     // The removal after each step, re-derived from the recorded hands.
-    auto digestAfter = [&](std::size_t frames) {
-        curette::testing::Invocation r = replayPrefix(recorded, frames, dir / ("prefix-" + std::to_string(frames) + ".jsonl"));
+    auto digestAfter = [&](std::size_t count) {
+        curette::testing::Invocation r = replayPrefix(recorded, count, dir / ("prefix-" + std::to_string(count) + ".jsonl"));
         EXPECT_EQ(r.exitCode, 0) << r.output;
         EXPECT_NE(r.output.find("identical to the recorded ones"), std::string::npos) << r.output;
         return curette::testing::removalDigest(r.output);
@@ -556,6 +558,49 @@ TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
     EXPECT_EQ(undone, drilled) << "the flick left did not undo the erase";
     EXPECT_EQ(redone, erased) << "the flick right did not redo the erase";
     EXPECT_EQ(finalDigest, erased);
+}
+
+TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    eraseUndoAndRedo("erase-undo", "/interaction_profiles/valve/index_controller", 0.0);   // the thumbstick's click
+}
+
+// The Vive has no spare button: its trackpad clicked in the lower third erases (xr/controller_actions.h).
+TEST(ViewXr, TheViveErasesWithItsTrackpadClickedLow) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    eraseUndoAndRedo("erase-vive", "/interaction_profiles/htc/vive_controller", -0.8);
+}
+
+// Elsewhere on the Vive's trackpad the click carries the volume, and the stick reads zero while it is clicked.
+TEST(ViewXr, TheViveTrackpadClickedHighCarriesTheVolume) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    auto dir = scratch("vive-volume");
+    auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "phong"})"));
+    nlohmann::json script = poseScript();
+    script["interaction_profile"] = "/interaction_profiles/htc/vive_controller";
+    const double stickY[] = {0.0, 0.6, 0.1, -0.2};
+    const bool click[] = {false, true, true, true};
+    nlohmann::json frames = nlohmann::json::array();
+    for (int i = 0; i < 4; ++i) {
+        nlohmann::json f = script["frames"][0];
+        f["right"] = {{"grip", {{"position", {0.1, 1.0, -0.4}}, {"orientation", {0, 0, 0, 1}}}},
+                      {"thumbstick_click", click[i]},
+                      {"thumbstick", {0.0, stickY[i]}}};
+        frames.push_back(f);
+    }
+    script["frames"] = frames;
+    auto session = dir / "session.jsonl";
+    XrRun xr = runViewXr(dir, script, scene, " --record " + session.string());
+    ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
+    expectValidationSilent(xr.validation);
+    RecordedSession recorded = readRecorded(session);
+    ASSERT_EQ(recorded.frames.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
+        const nlohmann::ordered_json& hand = recorded.frames[i]["xr"]["hands"][1];
+        EXPECT_EQ(hand["volume"].get<bool>(), click[i]) << "frame " << i;
+        EXPECT_FALSE(hand["erase"].get<bool>()) << "frame " << i;
+        EXPECT_EQ(hand["thumbstick"][1].get<double>(), click[i] ? 0.0 : static_cast<double>(static_cast<float>(stickY[i]))) << "frame " << i;
+    }
 }
 
 // Headless through XR_MNDX_egl_enable: with the test runtime offering the extension (its EGL mode, as Monado
