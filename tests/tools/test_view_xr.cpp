@@ -66,7 +66,8 @@ std::string xrEnvironment(const std::filesystem::path& script, const std::filesy
            " XR_CORE_VALIDATION_EXPORT_TYPE=text XR_CORE_VALIDATION_FILE_NAME=" + validation.string() + " XR_LOADER_DEBUG=info";
 }
 
-// `view --xr` of `scene` (with `arguments`) under Xvfb against the test runtime playing `script` (written to
+// `view --xr` of `scene` (with `arguments`; exact quality unless they say otherwise, so every submitted eye is
+// the exact frame of its views) under Xvfb against the test runtime playing `script` (written to
 // dir/script.json), the core validation layer on: the run, the runtime's folder (eyes, runtime.log) and the
 // layer's report file.
 struct XrRun {
@@ -78,7 +79,7 @@ XrRun runViewXr(const std::filesystem::path& dir, const nlohmann::json& script, 
     std::ofstream(scriptPath) << script.dump(2);
     XrRun run{{}, dir / "eyes", dir / "validation.txt"};
     run.shell = runShell("xvfb-run -a -s '-screen 0 640x480x24' " + xrEnvironment(scriptPath, run.eyes, run.validation) + " " + CURETTE_BINARY +
-                         " view --xr --scene " + scene.string() + arguments);
+                         " view --xr --scene " + scene.string() + (arguments.find("--quality") == std::string::npos ? " --quality exact" : "") + arguments);
     return run;
 }
 
@@ -603,6 +604,88 @@ TEST(ViewXr, TheViveTrackpadClickedHighCarriesTheVolume) {
     }
 }
 
+// Previews in the headset (--quality adaptive, viewer/xr_frame_loop.h), Index under validation: the right hand
+// grabs its tool and carries it over the top of the ball, cutting it, for six frames, then holds still while the head sways by a
+// millimetre (below the head's stillness bound). While the tool moves every frame submits a preview of both eyes
+// (smaller than the exact eye: the projection view's imageRect, which the runtime reads back), the tool seen
+// moving from one to the next; once still the exact frame follows, in slices, the held eyes submitted meanwhile
+// (a frame every xrWaitFrame); the last submitted eyes are the exact frame of the views they were rendered from
+// (`render --xr-views` of --save-views), whole size, in spite of the sway. The recording re-derives bit for bit.
+TEST(ViewXr, PreviewsWhileATakenToolMovesThenTheExactFrameOnceStill) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    auto dir = scratch("previews");
+    auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "cao", "clip_meshes": [
+        {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 44]},
+        {"name": "burr", "mesh": {"shape": "sphere", "radius_mm": 9}, "position_mm": [20, 32, 58]}]})"));
+    nlohmann::json script = poseScript();
+    script["interaction_profile"] = "/interaction_profiles/valve/index_controller";
+    const int moving = 6, still = 60;   // the still frames: the settle time (9 frames at 90 Hz) and the slices
+    nlohmann::json frames = nlohmann::json::array();
+    for (int i = 0; i < 2 + moving + still; ++i) {
+        nlohmann::json f = script["frames"][0];
+        const int at = std::clamp(i - 1, 0, moving);
+        if (i >= 2 + moving) f["head"]["position"][1] = 1.03 + (i % 2 ? 0.001 : -0.001);   // sway, 2 mm in all
+        f["right"] = {{"grip", {{"position", {0.1 - 0.004 * at, 1.0, -0.4}}, {"orientation", {0, 0, 0, 1}}}}, {"squeeze", i >= 1 ? 1.0 : 0.0}};
+        frames.push_back(f);
+    }
+    script["frames"] = frames;
+    auto session = dir / "session.jsonl";
+    auto views = dir / "held-views.json";
+    XrRun xr = runViewXr(dir, script, scene, " --quality adaptive --record " + session.string() + " --save-views " + views.string());
+    ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
+    expectValidationSilent(xr.validation);
+    EXPECT_NE(xr.shell.output.find("xr quality: adaptive"), std::string::npos) << xr.shell.output;
+    EXPECT_FALSE(lineStartingWith(xr.shell.output, "xr left eye: ").empty()) << xr.shell.output;
+
+    auto eye = [&](int frame, const char* side) {
+        char name[48];
+        std::snprintf(name, sizeof name, "frame_%06d_%s.png", frame, side);
+        return readPng(xr.eyes / name);
+    };
+    // Every frame was submitted (a layer at every xrEndFrame), so the runtime wrote every one.
+    for (int i = 0; i < 2 + moving + still; ++i) ASSERT_FALSE(eye(i, "left").rgba.empty()) << "frame " << i;
+    // The exact eye is 31 x 35 (TheSessionRuns...); each moving frame's eyes are a preview, smaller, and the
+    // tool moved between them.
+    std::vector<std::uint8_t> before;
+    for (int i = 2; i < 2 + moving; ++i) {
+        curette::testing::Png left = eye(i, "left"), right = eye(i, "right");
+        EXPECT_LT(left.width, 31) << "frame " << i << ": the tool moved, but the eye submitted is not a preview";
+        EXPECT_LT(right.width, 31) << "frame " << i;
+        EXPECT_LT(left.height, 35) << "frame " << i;
+        if (!before.empty() && before.size() == left.rgba.size()) {
+            EXPECT_NE(left.rgba, before) << "frame " << i << ": the preview did not follow the tool";
+        }
+        before = left.rgba;
+    }
+    // The last submitted eyes: exact, whole size, `render --xr-views` of the views they were rendered from.
+    const int last = 1 + moving + still;
+    curette::testing::Png left = eye(last, "left"), right = eye(last, "right");
+    ASSERT_EQ(left.width, 31);
+    ASSERT_EQ(left.height, 35);
+    // The scene with the burr where the hand left it (the recorded pose, 17 digits: the same double).
+    RecordedSession recorded = readRecorded(session);
+    ASSERT_FALSE(recorded.frames.empty());
+    nlohmann::json moved = nlohmann::json::parse(curette::testing::readTextFile(scene));
+    moved["clip_meshes"][1]["position_mm"] = recorded.frames.back()["meshes"][1]["position_mm"];
+    ASSERT_NE(moved["clip_meshes"][1]["position_mm"][0].get<double>(), 20.0) << "the hand did not carry the burr";
+    auto movedScene = dir / "moved.json";
+    std::ofstream(movedScene) << moved.dump(2);
+    auto rendered = dir / "exact.png";
+    curette::testing::Invocation r = curette::testing::runCurette("render --scene " + movedScene.string() + " --xr-views " + views.string() +
+                                                                  " --stereo side-by-side --out " + rendered.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    curette::testing::Png pair = readPng(rendered);
+    ASSERT_EQ(pair.width, left.width + right.width);
+    EXPECT_TRUE(sideBySide(left, right) == pair.rgba) << "the last submitted eyes are not the exact frame";
+    // Held eyes went out while the exact frame was sliced, or once it was done.
+    EXPECT_NE(xr.shell.output.find("xr held eyes submitted again on "), std::string::npos) << xr.shell.output;
+
+    // What the session recorded re-derives bit for bit (previews record nothing of their own).
+    curette::testing::Invocation derived = curette::testing::runCurette("replay " + session.string() + " --from-reports --no-render");
+    ASSERT_EQ(derived.exitCode, 0) << derived.output;
+    EXPECT_NE(derived.output.find("identical to the recorded ones"), std::string::npos) << derived.output;
+}
+
 // Headless through XR_MNDX_egl_enable: with the test runtime offering the extension (its EGL mode, as Monado
 // does), `view --xr --headless` binds a headless EGL context (no X server: no xvfb-run), the runtime sees an EGL
 // binding, and every submitted eye pair is `render --xr-views --stereo` of its views. Without the extension
@@ -618,7 +701,7 @@ TEST(ViewXr, HeadlessThroughEglWhereTheRuntimeOffersIt) {
     auto out = dir / "eyes";
     const std::string runtime = "env -u DISPLAY XR_RUNTIME_JSON=" + std::string(CURETTE_XR_TEST_RUNTIME_JSON) + " CURETTE_XR_TEST_SCRIPT=" +
                                 scriptPath.string() + " CURETTE_XR_TEST_OUT=" + out.string();
-    ShellRun run = runShell(runtime + " CURETTE_XR_TEST_EGL=1 " + CURETTE_BINARY + " view --xr --headless --scene " + scene.string());
+    ShellRun run = runShell(runtime + " CURETTE_XR_TEST_EGL=1 " + CURETTE_BINARY + " view --xr --headless --quality exact --scene " + scene.string());
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find("xr session over: 3 frames rendered"), std::string::npos) << run.output;
     std::string log = curette::testing::readTextFile(out / "runtime.log");
