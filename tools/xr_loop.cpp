@@ -43,6 +43,7 @@ void saveViews(const std::filesystem::path& path, RoomSpace space, glm::ivec2 re
                           {"views", list}};
     const glm::dquat& q = anchor.volumeTurnRoom;
     doc["volume"] = {{"centre_m", {anchor.volumeCentreRoomM.x, anchor.volumeCentreRoomM.y, anchor.volumeCentreRoomM.z}}, {"turn", {q.x, q.y, q.z, q.w}}};
+    if (anchor.volumeScale != 1.0) doc["volume"]["scale"] = anchor.volumeScale;
     writeFileAtomically(path, doc.dump(2) + "\n");
 }
 

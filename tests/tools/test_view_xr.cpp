@@ -686,6 +686,75 @@ TEST(ViewXr, PreviewsWhileATakenToolMovesThenTheExactFrameOnceStill) {
     EXPECT_NE(derived.output.find("identical to the recorded ones"), std::string::npos) << derived.output;
 }
 
+// Two hands scale the volume (session version 8, RoomAnchor::heldByTwo), Index under validation: both hands hold
+// their volume buttons (B) 0.25 m apart, draw apart to 0.375 m about a fixed midpoint, and let go. The recorded
+// anchor's scale is the ratio of the hands' distances, 1.5 (every position is dyadic: exact), the midpoint's
+// place on the anatomy stays, and the volume's centre moved away from it by that ratio; `replay --from-reports`
+// re-derives the anchor bit for bit and `replay --check` renders every frame with the recorded scale (its eyes
+// the submitted ones, CAO == LAO).
+TEST(ViewXr, TwoHandsScaleTheVolumeAboutTheirMidpoint) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    auto dir = scratch("two-hands");
+    auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "cao", "clip_meshes": [
+        {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 44]}]})"));
+    nlohmann::json script = poseScript();
+    script["interaction_profile"] = "/interaction_profiles/valve/index_controller";
+    const double half[] = {0.125, 0.125, 0.15625, 0.1875, 0.1875};
+    const bool held[] = {false, true, true, true, false};
+    const int n = 5;
+    nlohmann::json frames = nlohmann::json::array();
+    for (int i = 0; i < n; ++i) {
+        nlohmann::json f = script["frames"][0];
+        f["left"] = {{"grip", {{"position", {-half[i], 1.0, -0.5}}, {"orientation", {0, 0, 0, 1}}}}, {"b", held[i]}};
+        f["right"] = {{"grip", {{"position", {half[i], 1.0, -0.5}}, {"orientation", {0, 0, 0, 1}}}}, {"b", held[i]}};
+        frames.push_back(f);
+    }
+    script["frames"] = frames;
+    auto session = dir / "session.jsonl";
+    XrRun xr = runViewXr(dir, script, scene, " --record " + session.string());
+    ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
+    expectValidationSilent(xr.validation);
+    RecordedSession recorded = readRecorded(session);
+    ASSERT_EQ(recorded.frames.size(), static_cast<std::size_t>(n));
+    EXPECT_EQ(recorded.header["version"], 8);
+    const double expectedScale[] = {1.0, 1.0, 1.25, 1.5, 1.5};
+    const nlohmann::ordered_json& table = recorded.frames[0]["xr"]["anchor"];
+    for (int i = 0; i < n; ++i) {
+        const nlohmann::ordered_json& a = recorded.frames[static_cast<std::size_t>(i)]["xr"]["anchor"];
+        EXPECT_EQ(a["volume_scale"].get<double>(), expectedScale[i]) << "frame " << i;
+        // The hands' midpoint (0, 1, -0.5) is fixed: the centre's offset from it grows by the scale.
+        for (int k = 0; k < 3; ++k) {
+            const double mid = k == 1 ? 1.0 : k == 2 ? -0.5 : 0.0;
+            EXPECT_NEAR(a["volume_centre_m"][k].get<double>() - mid, expectedScale[i] * (table["volume_centre_m"][k].get<double>() - mid), 1e-12)
+                << "frame " << i << " axis " << k;
+        }
+        EXPECT_EQ(a["volume_turn"], table["volume_turn"]) << "frame " << i << ": hands drawn apart on one line turn nothing";
+    }
+    EXPECT_NE(xr.shell.output.find(", scaled by 1.5000"), std::string::npos) << xr.shell.output;
+
+    curette::testing::Invocation derived = curette::testing::runCurette("replay " + session.string() + " --from-reports --no-render");
+    ASSERT_EQ(derived.exitCode, 0) << derived.output;
+    EXPECT_NE(derived.output.find("identical to the recorded ones"), std::string::npos) << derived.output;
+    auto replayed = dir / "replay";
+    curette::testing::Invocation replay = curette::testing::runCurette("replay " + session.string() + " --check --out " + replayed.string());
+    ASSERT_EQ(replay.exitCode, 0) << replay.output;
+    EXPECT_NE(replay.output.find("CAO == LAO on 5 of 5 checked frames"), std::string::npos) << replay.output;
+    std::vector<std::uint8_t> first;
+    for (int frame = 0; frame < n; ++frame) {
+        char stem[32];
+        std::snprintf(stem, sizeof stem, "frame_%06d", frame);
+        curette::testing::Png left = readPng(xr.eyes / (std::string(stem) + "_left.png"));
+        curette::testing::Png right = readPng(xr.eyes / (std::string(stem) + "_right.png"));
+        curette::testing::Png pair = readPng(replayed / (std::string(stem) + ".png"));
+        ASSERT_EQ(pair.width, left.width + right.width) << stem;
+        EXPECT_TRUE(sideBySide(left, right) == pair.rgba) << stem << ": the replayed eyes differ from the submitted ones";
+        if (frame == 0) first = left.rgba;
+        if (frame == n - 1) {
+            EXPECT_NE(left.rgba, first) << "the volume grew, the eye did not change";
+        }
+    }
+}
+
 // Headless through XR_MNDX_egl_enable: with the test runtime offering the extension (its EGL mode, as Monado
 // does), `view --xr --headless` binds a headless EGL context (no X server: no xvfb-run), the runtime sees an EGL
 // binding, and every submitted eye pair is `render --xr-views --stereo` of its views. Without the extension

@@ -127,7 +127,7 @@ int benchXr(const CommandLine& cl) {
     // One window for every run: closing the last would reset an X server such as xvfb-run's.
     auto window = gl::createWindowContext("curette bench xr", glm::ivec2(320, 240));
     rendererName = window->info().renderer;
-    const ViewQuality loopQuality = quality.value_or(defaultViewQuality(window->info().softwareRenderer));
+    const ViewQuality loopQuality = quality.value_or(testRuntime ? defaultViewQuality(window->info().softwareRenderer) : ViewQuality::Exact);
     const bool adaptive = loopQuality == ViewQuality::Adaptive;
     if (adaptive && !testRuntime) throw InputError("<command line>", "--quality", "exact without --test-runtime (a headset's poses are not scripted to hold still)");
     std::printf("quality: %s\n", viewQualityName(loopQuality));

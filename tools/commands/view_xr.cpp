@@ -123,7 +123,9 @@ int viewXr(const CommandLine& cl) {
     const RoomAnchor& a = result.finalAnchor;
     const glm::dvec3 c = a.volumeCentreRoomM + 0.0;           // + 0.0: a zero prints without its sign
     const glm::dvec4 q = glm::dvec4(a.volumeTurnRoom.w, a.volumeTurnRoom.x, a.volumeTurnRoom.y, a.volumeTurnRoom.z) + 0.0;
-    std::printf("xr volume left at %.4f, %.4f, %.4f m in the room, turned by [%.4f, %.4f, %.4f, %.4f]\n", c.x, c.y, c.z, q.x, q.y, q.z, q.w);
+    std::printf("xr volume left at %.4f, %.4f, %.4f m in the room, turned by [%.4f, %.4f, %.4f, %.4f]", c.x, c.y, c.z, q.x, q.y, q.z, q.w);
+    if (a.volumeScale != 1.0) std::printf(", scaled by %.4f", a.volumeScale);
+    std::printf("\n");
     for (const MeshState& m : step.state().meshes)
         std::printf("xr tool %d \"%s\" left at %.3f, %.3f, %.3f mm\n", m.id, m.name.c_str(), m.pose.position.x, m.pose.position.y, m.pose.position.z);
     const InteractionState& state = step.state();
