@@ -59,27 +59,35 @@ nlohmann::json poseScript() {
             {"frames", frames}};
 }
 
-// The environment of a run against the test runtime with the core validation layer writing to `validation`.
-std::string xrEnvironment(const std::filesystem::path& script, const std::filesystem::path& out, const std::filesystem::path& validation) {
-    return "env XR_RUNTIME_JSON=" + std::string(CURETTE_XR_TEST_RUNTIME_JSON) + " CURETTE_XR_TEST_SCRIPT=" + script.string() +
-           " CURETTE_XR_TEST_OUT=" + out.string() + " XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation" +
-           " XR_CORE_VALIDATION_EXPORT_TYPE=text XR_CORE_VALIDATION_FILE_NAME=" + validation.string() + " XR_LOADER_DEBUG=info";
-}
+// How `view --xr` meets the test runtime: under Xvfb with the core validation layer (a GLX binding), or
+// headless (no X server: an EGL binding, which the runtime offers only with `offerEgl`; the layer is left out,
+// see HeadlessThroughEglWhereTheRuntimeOffersIt).
+struct XrLaunch {
+    bool headless = false;
+    bool offerEgl = false;
+};
 
 // `view --xr` of `scene` (with `arguments`; exact quality unless they say otherwise, so every submitted eye is
-// the exact frame of its views) under Xvfb against the test runtime playing `script` (written to
-// dir/script.json), the core validation layer on: the run, the runtime's folder (eyes, runtime.log) and the
-// layer's report file.
+// the exact frame of its views) against the test runtime playing `script` (written to dir/script.json): the
+// run, the runtime's folder (eyes, runtime.log) and the layer's report file (none headless).
 struct XrRun {
     ShellRun shell;
     std::filesystem::path eyes, validation;
 };
-XrRun runViewXr(const std::filesystem::path& dir, const nlohmann::json& script, const std::filesystem::path& scene, const std::string& arguments = "") {
+XrRun runViewXr(const std::filesystem::path& dir, const nlohmann::json& script, const std::filesystem::path& scene, const std::string& arguments = "",
+                XrLaunch launch = {}) {
     auto scriptPath = dir / "script.json";
     std::ofstream(scriptPath) << script.dump(2);
     XrRun run{{}, dir / "eyes", dir / "validation.txt"};
-    run.shell = runShell("xvfb-run -a -s '-screen 0 640x480x24' " + xrEnvironment(scriptPath, run.eyes, run.validation) + " " + CURETTE_BINARY +
-                         " view --xr --scene " + scene.string() + (arguments.find("--quality") == std::string::npos ? " --quality exact" : "") + arguments);
+    std::string runtime = "env" + std::string(launch.headless ? " -u DISPLAY" : "") + " XR_RUNTIME_JSON=" + CURETTE_XR_TEST_RUNTIME_JSON +
+                          " CURETTE_XR_TEST_SCRIPT=" + scriptPath.string() + " CURETTE_XR_TEST_OUT=" + run.eyes.string() +
+                          (launch.offerEgl ? " CURETTE_XR_TEST_EGL=1" : "");
+    if (!launch.headless)
+        runtime = "xvfb-run -a -s '-screen 0 640x480x24' " + runtime + " XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation" +
+                  " XR_CORE_VALIDATION_EXPORT_TYPE=text XR_CORE_VALIDATION_FILE_NAME=" + run.validation.string() + " XR_LOADER_DEBUG=info";
+    const std::string quality = arguments.find("--quality") == std::string::npos ? " --quality exact" : "";
+    run.shell = runShell(runtime + " " + CURETTE_BINARY + " view --xr" + (launch.headless ? " --headless" : "") + " --scene " + scene.string() + quality +
+                         arguments);
     return run;
 }
 
@@ -765,12 +773,9 @@ TEST(ViewXr, HeadlessThroughEglWhereTheRuntimeOffersIt) {
     auto dir = scratch("egl");
     auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "cao", "clip_meshes": [
         {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 12}, "position_mm": [32, 44, 40]}]})"));
-    auto scriptPath = dir / "script.json";
-    std::ofstream(scriptPath) << poseScript().dump(2);
-    auto out = dir / "eyes";
-    const std::string runtime = "env -u DISPLAY XR_RUNTIME_JSON=" + std::string(CURETTE_XR_TEST_RUNTIME_JSON) + " CURETTE_XR_TEST_SCRIPT=" +
-                                scriptPath.string() + " CURETTE_XR_TEST_OUT=" + out.string();
-    ShellRun run = runShell(runtime + " CURETTE_XR_TEST_EGL=1 " + CURETTE_BINARY + " view --xr --headless --quality exact --scene " + scene.string());
+    XrRun xr = runViewXr(dir, poseScript(), scene, "", XrLaunch{true, true});
+    const ShellRun& run = xr.shell;
+    const std::filesystem::path& out = xr.eyes;
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find("xr session over: 3 frames rendered"), std::string::npos) << run.output;
     std::string log = curette::testing::readTextFile(out / "runtime.log");
@@ -791,7 +796,7 @@ TEST(ViewXr, HeadlessThroughEglWhereTheRuntimeOffersIt) {
         EXPECT_TRUE(sideBySide(left, right) == pair.rgba) << stem << ": the submitted eyes differ from render --xr-views";
         EXPECT_NE(std::count(left.rgba.begin(), left.rgba.end(), left.rgba[0]), static_cast<std::ptrdiff_t>(left.rgba.size())) << stem;
     }
-    ShellRun refused = runShell(runtime + " " + CURETTE_BINARY + " view --xr --headless --scene " + scene.string());
+    ShellRun refused = runViewXr(dir, poseScript(), scene, "", XrLaunch{true, false}).shell;
     EXPECT_NE(refused.exitCode, 0) << refused.output;
     EXPECT_NE(refused.output.find("XR_MNDX_egl_enable"), std::string::npos) << refused.output;
 }
