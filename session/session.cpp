@@ -136,7 +136,9 @@ nlohmann::ordered_json xrFrameJson(const SessionXrFrame& f) {
         hand["erase"] = h.erase;
         j["hands"].push_back(hand);
     }
-    if (f.anchor) j["anchor"] = {{"volume_centre_m", vec(f.anchor->volumeCentreRoomM)}, {"volume_turn", quaternion(f.anchor->volumeTurnRoom)}};
+    if (f.anchor)
+        j["anchor"] = {{"volume_centre_m", vec(f.anchor->volumeCentreRoomM)}, {"volume_turn", quaternion(f.anchor->volumeTurnRoom)},
+                       {"volume_scale", f.anchor->volumeScale}};
     return j;
 }
 
@@ -186,6 +188,11 @@ SessionXrFrame readXrFrame(const JsonReader& r, int version) {
         f.anchor.emplace();
         f.anchor->volumeCentreRoomM = a->at("volume_centre_m").vec3(-1e4, 1e4);
         f.anchor->volumeTurnRoom = readQuaternion(a->at("volume_turn"));
+        if (auto scale = a->find("volume_scale")) {
+            if (version < kXrTwoHandVersion)
+                scale->fail("nothing: session version " + std::to_string(version) + " has no volume scaled by two hands (it came with version 8)");
+            f.anchor->volumeScale = scale->number(1e-3, 1e3);
+        }
         a->finish();
     }
     r.finish();

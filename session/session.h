@@ -28,14 +28,17 @@
 
 namespace curette {
 
-inline constexpr int kSessionVersion = 7;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
+inline constexpr int kSessionVersion = 8;   // 3: setting edits (scene/setting_edit.h); 4: hold requests, lights added and removed;
                                             // 5: drilling and its undo/redo; 6: drilling from keys and devices (actions, so
                                             // --from-reports re-derives it; 64-bit keys), the removal at the start,
                                             // head-mounted display sessions; 7: the controllers' volume and erase
                                             // buttons, the volume's place in the room, undo/redo of setting edits
-                                            // too ("history_edits")
+                                            // too ("history_edits"); 8: two hands scale the volume (the
+                                            // anchor's "volume_scale")
 // The first version whose controllers move the volume, erase and undo/redo (session/xr_hands.h).
 inline constexpr int kXrVolumeVersion = 7;
+// The first version whose two hands holding the volume scale it (session/xr_hands.h); before, the first hand carries it.
+inline constexpr int kXrTwoHandVersion = 8;
 // The first version whose drilling comes from the recorded keys and devices: replay --from-reports re-derives
 // it and compares it with the frame's "drill"/"drill_history"; before, those are the input.
 inline constexpr int kDrillFromInputVersion = 6;

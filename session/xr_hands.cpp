@@ -24,18 +24,28 @@ RoomAnchor recordedAnchor(const RoomAnchor& table, const SessionXrFrame& frame) 
     if (frame.anchor) {
         a.volumeCentreRoomM = frame.anchor->volumeCentreRoomM;
         a.volumeTurnRoom = frame.anchor->volumeTurnRoom;
+        a.volumeScale = frame.anchor->volumeScale;
     }
     return a;
 }
 
 XrHands::XrHands(const RoomAnchor& table, int sessionVersion)
     : hands_{input::TrackedHand(0, sessionVersion >= kXrVolumeVersion), input::TrackedHand(1, sessionVersion >= kXrVolumeVersion)},
-      anchor_(table) {}
+      anchor_(table),
+      twoHands_(sessionVersion >= kXrTwoHandVersion) {}
 
 std::vector<input::Action> XrHands::step(const std::array<SessionXrHand, 2>& hands, double dtSeconds) {
     auto carrying = [&](int h) { return hands[static_cast<std::size_t>(h)].tracked && hands[static_cast<std::size_t>(h)].moveVolume; };
     bool carried = false;   // the anchor followed a grip this frame (not at a grab's first frame)
-    if (volumeHand_ && carrying(*volumeHand_)) {
+    bool byTwo = twoHands_ && carrying(0) && carrying(1);
+    if (byTwo) {
+        if (heldByTwo_) {
+            anchor_ = anchor_.heldByTwo(twoGrips_[0], twoGrips_[1], hands[0].grip.positionM, hands[1].grip.positionM);
+            carried = true;
+        }
+        twoGrips_ = {hands[0].grip.positionM, hands[1].grip.positionM};
+        volumeHand_.reset();   // when one lets go, the other's carrying starts afresh
+    } else if (volumeHand_ && carrying(*volumeHand_)) {
         carried = true;
         const TrackedView& grip = hands[static_cast<std::size_t>(*volumeHand_)].grip;
         anchor_ = anchor_.carried(volumeGrip_, grip);
@@ -48,10 +58,11 @@ std::vector<input::Action> XrHands::step(const std::array<SessionXrHand, 2>& han
                 volumeGrip_ = hands[static_cast<std::size_t>(h)].grip;
             }
     }
+    heldByTwo_ = byTwo;
     std::vector<input::Action> actions;
     for (std::size_t h = 0; h < 2; ++h) {
         input::HandSample sample = handSample(hands[h], anchor_, dtSeconds);
-        sample.movingVolume = carried && volumeHand_ == static_cast<int>(h);
+        sample.movingVolume = carried && (byTwo || volumeHand_ == static_cast<int>(h));
         for (input::Action& a : hands_[h].step(sample)) actions.push_back(std::move(a));
     }
     return actions;

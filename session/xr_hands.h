@@ -10,6 +10,11 @@
 // poses, so the carve and the ambient occlusion do not change; only the eyes see it from elsewhere. The
 // first hand to press carries it (the left when both press at once) until it lets go; the first frame of a
 // grab moves nothing.
+//
+// Scaling it (session version 8): while both hands hold their volume buttons, the volume follows both
+// (RoomAnchor::heldByTwo): the ratio of the hands' distances scales it about their midpoint, the line between
+// them turns it, the midpoint carries it, as in any VR viewer. The first frame both hold moves nothing; when
+// one lets go, the other carries it alone from its next frame (a new grab).
 
 #include "input/actions.h"
 #include "input/tracked_hand.h"
@@ -42,8 +47,11 @@ public:
 private:
     std::array<input::TrackedHand, 2> hands_;
     RoomAnchor anchor_;
-    std::optional<int> volumeHand_;   // the hand carrying the volume
+    bool twoHands_;                   // the session's version scales with two hands
+    std::optional<int> volumeHand_;   // the hand carrying the volume alone
     TrackedView volumeGrip_;          // its grip at the last frame
+    bool heldByTwo_ = false;          // both hands held the volume at the last frame
+    std::array<glm::dvec3, 2> twoGrips_{};   // their grips then (room positions)
 };
 
 }  // namespace curette

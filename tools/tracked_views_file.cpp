@@ -37,6 +37,7 @@ TrackedViewsFile readTrackedViews(const std::filesystem::path& path) {
         glm::dvec4 q = volume->at("turn").vec4(-1.0001, 1.0001);
         if (glm::length(q) < 0.99 || glm::length(q) > 1.01) volume->at("turn").fail("a unit quaternion [x, y, z, w]");
         out.volumeTurnRoom = glm::dquat(q.w, q.x, q.y, q.z);   // as written: the recorded bits, not renormalised
+        if (auto scale = volume->find("scale")) out.volumeScale = scale->number(1e-3, 1e3);
         volume->finish();
     }
     root.finish();
@@ -48,6 +49,7 @@ RoomAnchor viewsAnchor(const TrackedViewsFile& file, const VolumeGeometry& geome
     if (file.volumeCentreRoomM) {
         anchor.volumeCentreRoomM = *file.volumeCentreRoomM;
         anchor.volumeTurnRoom = file.volumeTurnRoom;
+        anchor.volumeScale = file.volumeScale;
     }
     return anchor;
 }

@@ -4,6 +4,7 @@
 #include "input/hid/fake_backend.h"
 #include "input/mapping.h"
 #include "render/presenter.h"
+#include "render/model/stereo.h"
 #include "render/stereo_render.h"
 #include "session/live_input.h"
 #include "session/xr_hands.h"
@@ -15,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -41,6 +43,7 @@ void saveViews(const std::filesystem::path& path, RoomSpace space, glm::ivec2 re
                           {"views", list}};
     const glm::dquat& q = anchor.volumeTurnRoom;
     doc["volume"] = {{"centre_m", {anchor.volumeCentreRoomM.x, anchor.volumeCentreRoomM.y, anchor.volumeCentreRoomM.z}}, {"turn", {q.x, q.y, q.z, q.w}}};
+    if (anchor.volumeScale != 1.0) doc["volume"]["scale"] = anchor.volumeScale;
     writeFileAtomically(path, doc.dump(2) + "\n");
 }
 
@@ -58,6 +61,12 @@ SessionXrHand recordedHand(const xr::HandState& s) {
 }
 
 }  // namespace
+
+std::size_t XrLoopResult::newImages() const {
+    return static_cast<std::size_t>(std::count_if(rendered.begin(), rendered.end(), [](const XrFrameTiming& t) {
+        return t.step == XrStep::ExactWhole || t.step == XrStep::Preview || t.submittedExact;
+    }));
+}
 
 std::array<TrackedEye, 2> xrEyes(const FrameDescription& base, const std::array<TrackedView, 2>& views, const RoomAnchor& anchor,
                                  const std::array<glm::ivec2, 2>& recommendedSize) {
@@ -116,11 +125,53 @@ XrLoopResult runXrLoop(gl::Context& context, gl::WindowContext* mirror, Renderer
     std::signal(SIGINT, requestQuit);
     std::signal(SIGTERM, requestQuit);
     Presenter presenter;
+    XrFrameLoop loop(options.loop, options.stillness);
+    // The eyes last submitted, sent again while nothing new is rendered (the exact frame in slices, a still
+    // scene): the images and the views and fields of view they were rendered for.
+    struct HeldEyes {
+        std::array<std::vector<std::uint8_t>, 2> rgba8;
+        std::array<glm::ivec2, 2> size{};
+        std::array<FieldOfView, 2> fov{};
+        std::array<TrackedView, 2> views{};
+        bool any = false;
+    } held;
+    // The exact frame under way in slices: its eyes (fixed when it started), the left eye's image once done.
+    struct ExactJob {
+        std::array<TrackedEye, 2> eyes;
+        std::array<TrackedView, 2> views;
+        std::size_t eye = 0;
+        std::array<Image, 2> images;
+        std::array<double, 2> ms{};
+        FrameTimings firstEye;
+    };
+    std::optional<ExactJob> job;
+    auto hold = [&](const std::array<TrackedEye, 2>& eyes, const std::array<Image, 2>& images, const std::array<TrackedView, 2>& views) {
+        for (std::size_t e = 0; e < 2; ++e) {
+            held.rgba8[e] = toRgba8(images[e], background);
+            held.size[e] = eyes[e].size;
+            held.fov[e] = eyes[e].renderedFov;
+            held.views[e] = views[e];
+        }
+        held.any = true;
+        if (options.saveViews) saveViews(*options.saveViews, session.roomSpace(), session.recommendedSize(0), views, hands.anchor());
+    };
+    auto submitHeld = [&] {
+        if (!held.any) return false;
+        for (int eye = 0; eye < 2; ++eye) {
+            const auto e = static_cast<std::size_t>(eye);
+            session.submitEye(eye, held.rgba8[e], held.size[e], held.fov[e], held.views[e]);
+        }
+        return true;
+    };
+    const auto loopStart = std::chrono::steady_clock::now();
+    auto msSince = [](std::chrono::steady_clock::time_point t) { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count(); };
+    bool exactSinceMotion = false;
     XrTime firstDisplayTime = 0, lastDisplayTime = 0;   // the frame before's, for the hands' time step
     while (session.pollEvents()) {
         if (mirror) glfwPollEvents();
         const bool quit = (mirror && mirror->shouldClose()) || quitRequested;
-        if (quit || (options.frameLimit && result.rendered.size() >= static_cast<std::size_t>(*options.frameLimit))) session.requestExit();
+        const bool done = options.endAfterExact && exactSinceMotion;
+        if (quit || done || (options.frameLimit && result.newImages() >= static_cast<std::size_t>(*options.frameLimit))) session.requestExit();
         if (!session.running()) {   // idle, ready to begin or stopped: the runtime's next event
             if (quit) break;        // never begun (no READY yet): nothing to walk down
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -136,27 +187,94 @@ XrLoopResult runXrLoop(gl::Context& context, gl::WindowContext* mirror, Renderer
         record.displayTimeNs = frame.displayTime;
         record.head = frame.head;
         for (std::size_t h = 0; h < 2; ++h) record.hands[h] = recordedHand(handStates[h]);
-        step.apply(hands.step(record.hands, dtSeconds), session.recommendedSize(0).y);
+        const RoomAnchor anchorBefore = hands.anchor();
+        const StepChanges changes = step.apply(hands.step(record.hands, dtSeconds), session.recommendedSize(0).y);
         record.anchor = hands.anchor();
         step.syncTo(renderer, loaded.tracts);
         const std::size_t index = result.framesStepped++;
         if (frame.shouldRender && frame.viewsValid) {
             record.views = frame.views;
             std::array<TrackedEye, 2> eyes = xrEyes(step.frame(), frame.views, hands.anchor(), result.recommendedSize);
+            XrFrameInputs in;
+            in.now = 1e-9 * static_cast<double>(frame.displayTime - firstDisplayTime);
+            in.sceneMoved = changes.any() || !(hands.anchor() == anchorBefore);
+            in.head = frame.views[0];
+            in.precomputePending = renderer.precomputePending(eyes[0].frame);
+            in.precomputeInputs = renderer.precomputeInputsVersion();
+            in.recommendedSize = result.recommendedSize[0];
+            const XrFrameDecision decision = loop.decide(in);
+            if (decision.moved) exactSinceMotion = false;
             XrFrameTiming timing;
             timing.frame = index;
+            timing.step = decision.step;
+            timing.moved = decision.moved;
+            timing.displayS = in.now;
             renderer.collectTimings();   // the times of this frame alone
-            for (int eye = 0; eye < 2; ++eye) {
-                auto start = std::chrono::steady_clock::now();
-                const TrackedEye& ev = eyes[static_cast<std::size_t>(eye)];
-                Image image = renderTrackedEye(renderer, ev);
-                session.submitEye(eye, toRgba8(image, background), ev.size, ev.renderedFov, frame.views[static_cast<std::size_t>(eye)]);
-                timing.eyeMs[static_cast<std::size_t>(eye)] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-                if (eye == 0) timing.firstEye = renderer.collectTimings();
+            const auto workStart = std::chrono::steady_clock::now();
+            if (decision.frame.precomputeBudgetMs > 0) renderer.advancePrecompute(decision.frame.precomputeBudgetMs);
+            bool submitted = false, rendered = false;
+            switch (decision.step) {
+                case XrStep::ExactWhole: {   // both eyes rendered whole and submitted (exact quality: as a GPU does)
+                    std::array<Image, 2> images;
+                    for (int eye = 0; eye < 2; ++eye) {
+                        const auto e = static_cast<std::size_t>(eye);
+                        auto start = std::chrono::steady_clock::now();
+                        images[e] = renderTrackedEye(renderer, eyes[e]);
+                        session.submitEye(eye, toRgba8(images[e], background), eyes[e].size, eyes[e].renderedFov, frame.views[e]);
+                        timing.eyeMs[e] = msSince(start);
+                        if (eye == 0) timing.firstEye = renderer.collectTimings();
+                    }
+                    if (options.saveViews) saveViews(*options.saveViews, session.roomSpace(), session.recommendedSize(0), frame.views, hands.anchor());
+                    timing.submittedExact = submitted = rendered = true;
+                    break;
+                }
+                case XrStep::Preview: {   // both eyes at the preview size, without steps I, IV and V
+                    const glm::ivec2 previewSize = loop.previewSize(result.recommendedSize[0]);
+                    std::array<TrackedEye, 2> previews = xrEyes(step.frame(), frame.views, hands.anchor(),
+                                                                {loop.previewSize(result.recommendedSize[0]), loop.previewSize(result.recommendedSize[1])});
+                    std::array<Image, 2> images;
+                    for (std::size_t e = 0; e < 2; ++e) {
+                        auto start = std::chrono::steady_clock::now();
+                        const FrameDescription& f = previews[e].frame;
+                        renderer.renderPreview(decidedFrame(f, FrameKind::Preview, f.size, decision.frame.rayStepScale, renderer.resolveStepMm(f.raycast)));
+                        images[e] = cropImage(renderer.readImage(), previews[e].cropOrigin, previews[e].size);
+                        timing.eyeMs[e] = msSince(start);
+                        if (e == 0) timing.firstEye = renderer.collectTimings();
+                    }
+                    hold(previews, images, frame.views);
+                    loop.previewSubmitted(decision, previewSize, timing.eyeMs[0] + timing.eyeMs[1]);
+                    submitted = submitHeld();
+                    rendered = true;
+                    break;
+                }
+                case XrStep::ExactSlice: {   // the next slices of one eye's exact frame; the held eyes meanwhile
+                    if (decision.startExact || !job) job = ExactJob{eyes, frame.views, 0, {}, {}, {}};
+                    const TrackedEye& eye = job->eyes[job->eye];
+                    auto start = std::chrono::steady_clock::now();
+                    const bool eyeDone = renderer.advanceExact(eye.frame, decision.frame.exactBudgetMs, decision.frame.exactSliceUnits);
+                    if (eyeDone) job->images[job->eye] = cropImage(renderer.readImage(), eye.cropOrigin, eye.size);
+                    job->ms[job->eye] += msSince(start);
+                    if (job->eye == 0) for (const FrameTimings::Entry& p : renderer.collectTimings().passes) job->firstEye.passes.push_back(p);
+                    if (eyeDone && ++job->eye == 2) {
+                        hold(job->eyes, job->images, job->views);
+                        loop.exactSubmitted();
+                        timing.eyeMs = job->ms;
+                        timing.firstEye = job->firstEye;
+                        timing.submittedExact = true;
+                        job.reset();
+                    }
+                    submitted = submitHeld();
+                    break;
+                }
+                case XrStep::Hold: submitted = submitHeld(); break;
             }
-            result.rendered.push_back(timing);
-            if (options.saveViews) saveViews(*options.saveViews, session.roomSpace(), session.recommendedSize(0), frame.views, hands.anchor());
-            if (mirror) {   // the last eye's whole frame, fitted into the window
+            if (decision.step != XrStep::ExactSlice) job.reset();
+            if (timing.submittedExact) exactSinceMotion = true;
+            renderer.finish();
+            timing.workMs = msSince(workStart);
+            timing.wallS = 1e-3 * msSince(loopStart);
+            if (submitted) result.rendered.push_back(timing);
+            if (mirror && rendered) {   // the last eye's whole frame, fitted into the window
                 const glm::ivec2 fb = mirror->framebufferSize(), out = renderer.outputSize();
                 const double scale = std::min(double(fb.x) / out.x, double(fb.y) / out.y);
                 const glm::ivec2 shown = glm::max(glm::ivec2(glm::dvec2(out) * scale), glm::ivec2(1));

@@ -1,8 +1,10 @@
 #pragma once
 // The frame loop of a head-mounted display session (OpenXR through xr/), shared by `view --xr` and `bench xr`:
 // each frame the controllers' states (xr/controller_actions.h) become actions through session/xr_hands.h and
-// the session step, then both eyes are rendered from the views the runtime located, through one renderer (one
-// V_AO a frame, both eyes read it), and submitted; a small window mirrors the last eye. With a recording path
+// the session step, then the frame loop's decision (viewer/xr_frame_loop.h) is run: both eyes rendered from the
+// views the runtime located, through one renderer (one V_AO a frame, both eyes read it), exact or as previews,
+// or the next slices of the exact frame with the held images submitted again; a small window mirrors the last
+// eye rendered. With a recording path
 // every stepped frame is recorded (session version 7: head, eyes, hands, the volume's place, poses), so `replay`
 // re-renders it headless and re-derives its poses and the volume's place from the hands.
 
@@ -12,6 +14,7 @@
 #include "render/renderer.h"
 #include "session/loaded_scene.h"
 #include "session/session_step.h"
+#include "viewer/xr_frame_loop.h"
 
 #include <array>
 #include <filesystem>
@@ -27,12 +30,23 @@ struct XrLoopOptions {
     std::string sceneInSession;                       // the scene as the session's header names it
     std::optional<std::filesystem::path> saveViews;   // the last rendered frame's views (render --xr-views)
     bool printStates = true;                          // "xr session state X" lines as the state changes
+    FrameLoopSettings loop;                           // quality (exact: every frame exact and whole), budgets
+    HeadStillness stillness;
+    bool endAfterExact = false;                       // ask to end the session once an exact frame is submitted
+                                                      // after the last motion (bench xr)
 };
 
-// A rendered frame: wall time per eye (render, read back, submit) and the first eye's pass times (the second
-// eye reuses its V_AO: steps I-V run at most once a frame).
+// A frame that submitted eyes: what it did, wall time per eye (render, read back, submit; an exact frame in
+// slices: the sum of its eye's slices, on the frame that submits it) and the first eye's pass times (the
+// second eye reuses its V_AO: steps I-V run at most once a frame; in slices, summed over the left eye's).
 struct XrFrameTiming {
     std::size_t frame = 0;                  // among the frames stepped
+    XrStep step = XrStep::ExactWhole;       // Hold and ExactSlice frames submitted the held images
+    bool submittedExact = false;            // the eyes submitted are exact (ExactWhole, or the slices' last)
+    bool moved = false;                     // the scene or the head counted as moved
+    double displayS = 0;                    // the display time, from the first frame's
+    double wallS = 0;                       // wall time when the frame ended, from the first frame's begin
+    double workMs = 0;                      // wall time of this frame's rendering (step I's slices included)
     std::array<double, 2> eyeMs{};
     FrameTimings firstEye;
 };
@@ -44,7 +58,8 @@ struct XrLoopResult {
     RoomAnchor anchor;        // the volume on its table, at the start
     RoomAnchor finalAnchor;   // where the hands left it
     std::size_t framesStepped = 0;
-    std::vector<XrFrameTiming> rendered;
+    std::vector<XrFrameTiming> rendered;   // every frame that submitted eyes
+    std::size_t newImages() const;         // of them, those that rendered the eyes they submitted
 };
 
 // Runs the session until the runtime ends it (or frameLimit frames, or the window closes, or SIGINT/SIGTERM).

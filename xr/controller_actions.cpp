@@ -35,7 +35,8 @@ XrAction createAction(XrInstance instance, XrActionSet set, const char* name, co
 // squeeze (the simple controller's one button, select, is its squeeze), the shading button per hand, the
 // thumbstick (its y scales a held tool, a flick of its x undoes or redoes), the trigger, the volume button
 // per hand (held: the hand carries the volume) and the erase button (held: the tool erases). The simple
-// controller has two inputs, both taken; the Vive's trackpad click carries the volume, leaving it no erase.
+// controller has two inputs, both taken. The Vive has one click left for both, its trackpad's: `padClick`,
+// split by where the thumb presses (ControllerActions::sync).
 struct ProfileInputs {
     const char* profile;
     const char* squeeze;
@@ -44,6 +45,7 @@ struct ProfileInputs {
     const char* trigger;
     std::array<const char*, 2> moveVolume;
     const char* erase;
+    const char* padClick = nullptr;
 };
 constexpr ProfileInputs kProfiles[] = {
     {"/interaction_profiles/khr/simple_controller", "/input/select/click", {"/input/menu/click", "/input/menu/click"}, nullptr, nullptr,
@@ -53,10 +55,17 @@ constexpr ProfileInputs kProfiles[] = {
     {"/interaction_profiles/oculus/touch_controller", "/input/squeeze/value", {"/input/x/click", "/input/a/click"}, "/input/thumbstick",
      "/input/trigger/value", {"/input/y/click", "/input/b/click"}, "/input/thumbstick/click"},
     {"/interaction_profiles/htc/vive_controller", "/input/squeeze/click", {"/input/menu/click", "/input/menu/click"}, "/input/trackpad",
-     "/input/trigger/value", {"/input/trackpad/click", "/input/trackpad/click"}, nullptr},
+     "/input/trigger/value", {nullptr, nullptr}, nullptr, "/input/trackpad/click"},
 };
 
 }  // namespace
+
+HandState trackpadClicked(HandState hand) {
+    if (hand.thumbstick.y < kTrackpadEraseBelow) hand.erase = true;
+    else hand.moveVolume = true;
+    hand.thumbstick = glm::dvec2(0.0);   // a click is neither a scale nor a flick
+    return hand;
+}
 
 ControllerActions::ControllerActions(XrInstance instance, XrSession session) : instance_(instance), session_(session) {
     hands_ = {path(instance, "/user/hand/left"), path(instance, "/user/hand/right")};
@@ -71,6 +80,7 @@ ControllerActions::ControllerActions(XrInstance instance, XrSession session) : i
     trigger_ = createAction(instance, set_, "drill", "Drill with the held tool", XR_ACTION_TYPE_FLOAT_INPUT, hands_);
     moveVolume_ = createAction(instance, set_, "move_volume", "Move the volume", XR_ACTION_TYPE_BOOLEAN_INPUT, hands_);
     erase_ = createAction(instance, set_, "erase", "Erase with the held tool", XR_ACTION_TYPE_BOOLEAN_INPUT, hands_);
+    padClick_ = createAction(instance, set_, "trackpad_click", "Erase (lower third) or move the volume", XR_ACTION_TYPE_BOOLEAN_INPUT, hands_);
 
     const char* sides[] = {"/user/hand/left", "/user/hand/right"};
     for (const ProfileInputs& p : kProfiles) {
@@ -84,6 +94,7 @@ ControllerActions::ControllerActions(XrInstance instance, XrSession session) : i
             if (p.trigger) bindings.push_back({trigger_, path(instance, side + p.trigger)});
             if (const char* volume = p.moveVolume[static_cast<std::size_t>(h)]) bindings.push_back({moveVolume_, path(instance, side + volume)});
             if (p.erase) bindings.push_back({erase_, path(instance, side + p.erase)});
+            if (p.padClick) bindings.push_back({padClick_, path(instance, side + p.padClick)});
         }
         auto suggested = typed<XrInteractionProfileSuggestedBinding>(XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING);
         suggested.interactionProfile = path(instance, p.profile);
@@ -153,6 +164,9 @@ std::array<HandState, 2> ControllerActions::sync(XrTime time, XrSpace space) {
         get.action = erase_;
         check(instance_, xrGetActionStateBoolean(session_, &get, &button), "xrGetActionStateBoolean");
         hand.erase = button.isActive && button.currentState;
+        get.action = padClick_;
+        check(instance_, xrGetActionStateBoolean(session_, &get, &button), "xrGetActionStateBoolean");
+        if (button.isActive && button.currentState) hand = trackpadClicked(hand);
     }
     return hands;
 }

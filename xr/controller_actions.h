@@ -22,8 +22,16 @@ struct HandState {
     bool shadingPressed = false;     // the shading button went down since the last sync
     glm::dvec2 thumbstick{0.0};      // -1..1 (a trackpad on the Vive; none on the simple controller)
     bool moveVolume = false;         // the volume button is held (none on the simple controller)
-    bool erase = false;              // the erase button is held (none on the simple controller or the Vive)
+    bool erase = false;              // the erase button is held (the Vive: its trackpad clicked low; none on
+                                     // the simple controller)
 };
+
+// The Vive's trackpad is its stick and its only spare click: clicked in its lower third it erases with the held
+// tool, elsewhere it carries the volume (a click near the centre never erases). A click
+// is a press, not a stroke of the stick, so the stick reads zero meanwhile (the lower third would otherwise
+// shrink the tool as it erases).
+inline constexpr double kTrackpadEraseBelow = -1.0 / 3.0;
+HandState trackpadClicked(HandState hand);
 
 class ControllerActions {
 public:
@@ -41,7 +49,7 @@ private:
     XrSession session_;
     XrActionSet set_ = XR_NULL_HANDLE;
     XrAction grip_ = XR_NULL_HANDLE, squeeze_ = XR_NULL_HANDLE, shading_ = XR_NULL_HANDLE, thumbstick_ = XR_NULL_HANDLE,
-             trigger_ = XR_NULL_HANDLE, moveVolume_ = XR_NULL_HANDLE, erase_ = XR_NULL_HANDLE;
+             trigger_ = XR_NULL_HANDLE, moveVolume_ = XR_NULL_HANDLE, erase_ = XR_NULL_HANDLE, padClick_ = XR_NULL_HANDLE;
     std::array<XrPath, 2> hands_{};
     std::array<XrSpace, 2> gripSpaces_{XR_NULL_HANDLE, XR_NULL_HANDLE};
 };

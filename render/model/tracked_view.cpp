@@ -30,7 +30,7 @@ glm::dquat RoomAnchor::orientationToWorld(glm::dquat orientation) const {
 }
 
 glm::dvec3 RoomAnchor::roomToWorldMm(glm::dvec3 roomM) const {
-    return volumeCentreWorldMm + 1000.0 * directionToWorld(roomM - volumeCentreRoomM);
+    return volumeCentreWorldMm + (1000.0 / volumeScale) * directionToWorld(roomM - volumeCentreRoomM);
 }
 
 RoomAnchor RoomAnchor::carried(const TrackedView& before, const TrackedView& after) const {
@@ -40,6 +40,28 @@ RoomAnchor RoomAnchor::carried(const TrackedView& before, const TrackedView& aft
     a.volumeCentreRoomM = turn * (volumeCentreRoomM - before.positionM) + after.positionM;
     a.volumeTurnRoom = glm::normalize(turn * volumeTurnRoom);
     return a;
+}
+
+RoomAnchor RoomAnchor::heldByTwo(glm::dvec3 leftBefore, glm::dvec3 rightBefore, glm::dvec3 leftAfter, glm::dvec3 rightAfter) const {
+    const glm::dvec3 before = rightBefore - leftBefore, after = rightAfter - leftAfter;
+    const double lengthBefore = glm::length(before), lengthAfter = glm::length(after);
+    if (!(lengthBefore > kTwoHandMinimumM) || !(lengthAfter > kTwoHandMinimumM)) return *this;   // hands together: no scale to read
+    // The shortest turn from one direction to the other: q = (1 + a.b, a x b), normalised; opposite directions
+    // (a hand passed through the other) take a half turn about an axis across them.
+    const glm::dvec3 a = before / lengthBefore, b = after / lengthAfter;
+    glm::dquat turn(1.0 + glm::dot(a, b), glm::cross(a, b));
+    if (turn.w < 1e-9) {
+        const glm::dvec3 across = std::abs(a.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        turn = glm::dquat(0.0, glm::normalize(glm::cross(a, across)));
+    }
+    turn = glm::normalize(turn);
+    const double ratio = lengthAfter / lengthBefore;
+    const glm::dvec3 midBefore = 0.5 * (leftBefore + rightBefore), midAfter = 0.5 * (leftAfter + rightAfter);
+    RoomAnchor held = *this;
+    held.volumeCentreRoomM = midAfter + ratio * (turn * (volumeCentreRoomM - midBefore));
+    held.volumeTurnRoom = glm::normalize(turn * volumeTurnRoom);
+    held.volumeScale = volumeScale * ratio;
+    return held;
 }
 
 RoomAnchor tableAnchor(const VolumeGeometry& geometry, RoomSpace space) {
@@ -87,7 +109,7 @@ TrackedEye trackedEye(const FrameDescription& base, const TrackedView& view, con
     const glm::dvec3 r = c.right(), u = c.up();
     c.rollDeg = glm::degrees(std::atan2(glm::dot(upAxis, r), glm::dot(upAxis, u)));
     c.fovYDeg = glm::degrees(2.0 * std::atan(halfHeight * pitch));
-    c.nearMm = 20.0;     // a head-mounted display's near plane (2 cm): the volume may come close to the eyes
+    c.nearMm = 20.0 / anchor.volumeScale;   // a head-mounted display's near plane (2 cm of the room): the volume may come close to the eyes
     c.farMm = 10000.0;
     eye.frame.size = {2 * halfWidth, 2 * halfHeight};
     return eye;

@@ -41,17 +41,25 @@ enum class RoomSpace { Stage, Local };
 // Where the volume stands in the room: a table top kTableHeightM above the floor carries the volume box's
 // lowest corner, its centre kTableDistanceM in front of the space's origin (tableAnchor), the volume's axes as
 // the header says. A hand moving the volume (session/xr_hands.h) carries it, turned by volumeTurnRoom, about
-// the room: the scene moves rigidly in the room, nothing in world (RAS) space moves.
+// the room: the scene moves rigidly in the room, nothing in world (RAS) space moves. Two hands holding it also
+// scale it (volumeScale: its size in the room over its real size), again without moving anything in world space.
 struct RoomAnchor {
     glm::dvec3 volumeCentreRoomM{0.0};
     glm::dvec3 volumeCentreWorldMm{0.0};
     glm::dquat volumeTurnRoom{1.0, 0.0, 0.0, 0.0};   // the volume's turn in the room since the table (identity there)
+    double volumeScale = 1.0;                        // room metres per real metre (1: real size)
     glm::dvec3 roomToWorldMm(glm::dvec3 roomM) const;               // a point
     glm::dvec3 directionToWorld(glm::dvec3 roomDirection) const;    // a direction
     glm::dquat orientationToWorld(glm::dquat roomOrientation) const;   // a tracked object's (a grip's)
     // The anchor after the volume followed a grip rigidly from `before` to `after` (room poses): the grip keeps
     // its place on the anatomy.
     RoomAnchor carried(const TrackedView& before, const TrackedView& after) const;
+    // The anchor after two hands holding the volume moved from (leftBefore, rightBefore) to (leftAfter,
+    // rightAfter) (room positions): scaled by the ratio of the hands' distances about their midpoint, turned by
+    // the shortest turn of the line between them, moved with the midpoint; each hand keeps its place on the
+    // anatomy as far as a similarity can keep two points (exactly, for positions; the turn about the line
+    // between the hands is left as it was).
+    RoomAnchor heldByTwo(glm::dvec3 leftBefore, glm::dvec3 rightBefore, glm::dvec3 leftAfter, glm::dvec3 rightAfter) const;
     // The fixed axes: room (x right, y up, z towards the user) to RAS, the volume unturned.
     static glm::dvec3 roomDirectionToWorld(glm::dvec3 direction);
     static glm::dquat roomOrientationToWorld(glm::dquat orientation);
@@ -61,6 +69,7 @@ struct RoomAnchor {
 inline constexpr double kTableHeightM = 0.9;      // an operating or standing work table
 inline constexpr double kTableDistanceM = 0.5;    // within arm's reach
 inline constexpr double kStandingEyeHeightM = 1.6;
+inline constexpr double kTwoHandMinimumM = 0.01;   // hands closer than this give no scale (RoomAnchor::heldByTwo)
 
 RoomAnchor tableAnchor(const VolumeGeometry& geometry, RoomSpace space);
 

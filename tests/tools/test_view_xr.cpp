@@ -59,26 +59,35 @@ nlohmann::json poseScript() {
             {"frames", frames}};
 }
 
-// The environment of a run against the test runtime with the core validation layer writing to `validation`.
-std::string xrEnvironment(const std::filesystem::path& script, const std::filesystem::path& out, const std::filesystem::path& validation) {
-    return "env XR_RUNTIME_JSON=" + std::string(CURETTE_XR_TEST_RUNTIME_JSON) + " CURETTE_XR_TEST_SCRIPT=" + script.string() +
-           " CURETTE_XR_TEST_OUT=" + out.string() + " XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation" +
-           " XR_CORE_VALIDATION_EXPORT_TYPE=text XR_CORE_VALIDATION_FILE_NAME=" + validation.string() + " XR_LOADER_DEBUG=info";
-}
+// How `view --xr` meets the test runtime: under Xvfb with the core validation layer (a GLX binding), or
+// headless (no X server: an EGL binding, which the runtime offers only with `offerEgl`; the layer is left out,
+// see HeadlessThroughEglWhereTheRuntimeOffersIt).
+struct XrLaunch {
+    bool headless = false;
+    bool offerEgl = false;
+};
 
-// `view --xr` of `scene` (with `arguments`) under Xvfb against the test runtime playing `script` (written to
-// dir/script.json), the core validation layer on: the run, the runtime's folder (eyes, runtime.log) and the
-// layer's report file.
+// `view --xr` of `scene` (with `arguments`; exact quality unless they say otherwise, so every submitted eye is
+// the exact frame of its views) against the test runtime playing `script` (written to dir/script.json): the
+// run, the runtime's folder (eyes, runtime.log) and the layer's report file (none headless).
 struct XrRun {
     ShellRun shell;
     std::filesystem::path eyes, validation;
 };
-XrRun runViewXr(const std::filesystem::path& dir, const nlohmann::json& script, const std::filesystem::path& scene, const std::string& arguments = "") {
+XrRun runViewXr(const std::filesystem::path& dir, const nlohmann::json& script, const std::filesystem::path& scene, const std::string& arguments = "",
+                XrLaunch launch = {}) {
     auto scriptPath = dir / "script.json";
     std::ofstream(scriptPath) << script.dump(2);
     XrRun run{{}, dir / "eyes", dir / "validation.txt"};
-    run.shell = runShell("xvfb-run -a -s '-screen 0 640x480x24' " + xrEnvironment(scriptPath, run.eyes, run.validation) + " " + CURETTE_BINARY +
-                         " view --xr --scene " + scene.string() + arguments);
+    std::string runtime = "env" + std::string(launch.headless ? " -u DISPLAY" : "") + " XR_RUNTIME_JSON=" + CURETTE_XR_TEST_RUNTIME_JSON +
+                          " CURETTE_XR_TEST_SCRIPT=" + scriptPath.string() + " CURETTE_XR_TEST_OUT=" + run.eyes.string() +
+                          (launch.offerEgl ? " CURETTE_XR_TEST_EGL=1" : "");
+    if (!launch.headless)
+        runtime = "xvfb-run -a -s '-screen 0 640x480x24' " + runtime + " XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation" +
+                  " XR_CORE_VALIDATION_EXPORT_TYPE=text XR_CORE_VALIDATION_FILE_NAME=" + run.validation.string() + " XR_LOADER_DEBUG=info";
+    const std::string quality = arguments.find("--quality") == std::string::npos ? " --quality exact" : "";
+    run.shell = runShell(runtime + " " + CURETTE_BINARY + " view --xr" + (launch.headless ? " --headless" : "") + " --scene " + scene.string() + quality +
+                         arguments);
     return run;
 }
 
@@ -244,8 +253,8 @@ TEST(ViewXr, ARecordedTwoControllerSessionReplaysBitForBit) {
     expectValidationSilent(xr.validation);
     std::string log = curette::testing::readTextFile(out / "runtime.log");
     // The trigger is bound in every profile that has one: not the simple controller (its one button grabs). Per
-    // hand: grip, squeeze, shading, stick, trigger, volume and erase; the Vive's trackpad click carries the volume,
-    // leaving no erase button.
+    // hand: grip, squeeze, shading, stick, trigger, volume and erase; the Vive has one trackpad click for volume
+    // and erase (split by where it is pressed).
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/oculus/touch_controller: 14"), std::string::npos) << log;
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/htc/vive_controller: 12"), std::string::npos) << log;
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/khr/simple_controller: 6"), std::string::npos) << log;
@@ -483,19 +492,19 @@ TEST(ViewXr, AVolumeMovedByHandCarriesTheSceneAndTheCarveIsUnchanged) {
     EXPECT_NE(r.output.find("DIFFERENT"), std::string::npos) << r.output;
 }
 
-// Erase, undo and redo on the controllers (Valve Index under validation): the right hand's burr drills a stroke
-// with the trigger, erases part of it back with the erase button (the thumbstick's click), then a thumbstick flick
-// left undoes the erase and a flick right redoes it. The session records each as the action layer applied it
-// (drill, erase, undo, redo), and the removal after each step, re-derived from the recorded hands, is what it
-// should be: the erase changes it, the undo brings back the drilled one, the redo the erased one.
-TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
-    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
-    auto dir = scratch("erase-undo");
+// Erase, undo and redo on the controllers of `profile` under validation: the right hand's burr drills a stroke
+// with the trigger, erases part of it back with the erase control (`eraseStickY`: where the thumb is on the stick
+// or trackpad as it clicks), then a flick left undoes the erase and a flick right redoes it. The session records
+// each as the action layer applied it (drill, erase, undo, redo), and the removal after each step, re-derived
+// from the recorded hands, is what it should be: the erase changes it, the undo brings back the drilled one, the
+// redo the erased one.
+void eraseUndoAndRedo(const std::string& name, const std::string& profile, double eraseStickY) {
+    auto dir = scratch(name);
     auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "phong", "clip_meshes": [
         {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 44]},
         {"name": "burr", "mesh": {"shape": "sphere", "radius_mm": 5}, "position_mm": [24, 34, 30]}]})"));
     nlohmann::json script = poseScript();
-    script["interaction_profile"] = "/interaction_profiles/valve/index_controller";
+    script["interaction_profile"] = profile;
     struct Step {
         int at;   // the burr's place: 0, 1, 2 steps of 4 mm
         double squeeze, trigger;
@@ -515,7 +524,7 @@ TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
                       {"squeeze", st.squeeze},
                       {"trigger", st.trigger},
                       {"thumbstick_click", st.erase},
-                      {"thumbstick", {st.stickX, 0.0}}};
+                      {"thumbstick", {st.stickX, st.erase ? eraseStickY : 0.0}}};
         frames.push_back(f);
     }
     script["frames"] = frames;
@@ -525,6 +534,7 @@ TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
     expectValidationSilent(xr.validation);
     std::string log = curette::testing::readTextFile(xr.eyes / "runtime.log");
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/valve/index_controller: 14"), std::string::npos) << log;
+    EXPECT_NE(log.find("bindings suggested for /interaction_profiles/htc/vive_controller: 12"), std::string::npos) << log;
     EXPECT_NE(log.find("bindings suggested for /interaction_profiles/khr/simple_controller: 6"), std::string::npos) << log;
     const std::string finalDigest = curette::testing::removalDigest(xr.shell.output);
     ASSERT_FALSE(finalDigest.empty()) << xr.shell.output;
@@ -541,11 +551,12 @@ TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
         EXPECT_EQ(drill, nlohmann::ordered_json::parse(expectedDrill)) << "frame " << i;
         EXPECT_EQ(history, nlohmann::ordered_json::parse(expectedHistory)) << "frame " << i;
         EXPECT_EQ(f["xr"]["hands"][1]["erase"].get<bool>(), i == 5) << "frame " << i;
+        EXPECT_FALSE(f["xr"]["hands"][1]["volume"].get<bool>()) << "frame " << i;
     }
 
     // The removal after each step, re-derived from the recorded hands.
-    auto digestAfter = [&](std::size_t frames) {
-        curette::testing::Invocation r = replayPrefix(recorded, frames, dir / ("prefix-" + std::to_string(frames) + ".jsonl"));
+    auto digestAfter = [&](std::size_t count) {
+        curette::testing::Invocation r = replayPrefix(recorded, count, dir / ("prefix-" + std::to_string(count) + ".jsonl"));
         EXPECT_EQ(r.exitCode, 0) << r.output;
         EXPECT_NE(r.output.find("identical to the recorded ones"), std::string::npos) << r.output;
         return curette::testing::removalDigest(r.output);
@@ -558,6 +569,200 @@ TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
     EXPECT_EQ(finalDigest, erased);
 }
 
+TEST(ViewXr, TheControllersEraseUndoAndRedoThroughTheActionLayer) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    eraseUndoAndRedo("erase-undo", "/interaction_profiles/valve/index_controller", 0.0);   // the thumbstick's click
+}
+
+// The Vive has no spare button: its trackpad clicked in the lower third erases (xr/controller_actions.h).
+TEST(ViewXr, TheViveErasesWithItsTrackpadClickedLow) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    eraseUndoAndRedo("erase-vive", "/interaction_profiles/htc/vive_controller", -0.8);
+}
+
+// Elsewhere on the Vive's trackpad the click carries the volume, and the stick reads zero while it is clicked.
+TEST(ViewXr, TheViveTrackpadClickedHighCarriesTheVolume) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    auto dir = scratch("vive-volume");
+    auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "phong"})"));
+    nlohmann::json script = poseScript();
+    script["interaction_profile"] = "/interaction_profiles/htc/vive_controller";
+    const double stickY[] = {0.0, 0.6, 0.1, -0.2};
+    const bool click[] = {false, true, true, true};
+    nlohmann::json frames = nlohmann::json::array();
+    for (int i = 0; i < 4; ++i) {
+        nlohmann::json f = script["frames"][0];
+        f["right"] = {{"grip", {{"position", {0.1, 1.0, -0.4}}, {"orientation", {0, 0, 0, 1}}}},
+                      {"thumbstick_click", click[i]},
+                      {"thumbstick", {0.0, stickY[i]}}};
+        frames.push_back(f);
+    }
+    script["frames"] = frames;
+    auto session = dir / "session.jsonl";
+    XrRun xr = runViewXr(dir, script, scene, " --record " + session.string());
+    ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
+    expectValidationSilent(xr.validation);
+    RecordedSession recorded = readRecorded(session);
+    ASSERT_EQ(recorded.frames.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
+        const nlohmann::ordered_json& hand = recorded.frames[i]["xr"]["hands"][1];
+        EXPECT_EQ(hand["volume"].get<bool>(), click[i]) << "frame " << i;
+        EXPECT_FALSE(hand["erase"].get<bool>()) << "frame " << i;
+        EXPECT_EQ(hand["thumbstick"][1].get<double>(), click[i] ? 0.0 : static_cast<double>(static_cast<float>(stickY[i]))) << "frame " << i;
+    }
+}
+
+// Previews in the headset (--quality adaptive, viewer/xr_frame_loop.h), Index under validation: the right hand
+// grabs its tool and carries it over the top of the ball, cutting it, for six frames, then holds still while the head sways by a
+// millimetre (below the head's stillness bound). While the tool moves every frame submits a preview of both eyes
+// (smaller than the exact eye: the projection view's imageRect, which the runtime reads back), the tool seen
+// moving from one to the next; once still the exact frame follows, in slices, the held eyes submitted meanwhile
+// (a frame every xrWaitFrame); the last submitted eyes are the exact frame of the views they were rendered from
+// (`render --xr-views` of --save-views), whole size, in spite of the sway. The recording re-derives bit for bit.
+TEST(ViewXr, PreviewsWhileATakenToolMovesThenTheExactFrameOnceStill) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    auto dir = scratch("previews");
+    auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "cao", "clip_meshes": [
+        {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 44]},
+        {"name": "burr", "mesh": {"shape": "sphere", "radius_mm": 9}, "position_mm": [20, 32, 58]}]})"));
+    nlohmann::json script = poseScript();
+    script["interaction_profile"] = "/interaction_profiles/valve/index_controller";
+    const int moving = 6, still = 60;   // the still frames: the settle time (9 frames at 90 Hz) and the slices
+    nlohmann::json frames = nlohmann::json::array();
+    for (int i = 0; i < 2 + moving + still; ++i) {
+        nlohmann::json f = script["frames"][0];
+        const int at = std::clamp(i - 1, 0, moving);
+        if (i >= 2 + moving) f["head"]["position"][1] = 1.03 + (i % 2 ? 0.001 : -0.001);   // sway, 2 mm in all
+        f["right"] = {{"grip", {{"position", {0.1 - 0.004 * at, 1.0, -0.4}}, {"orientation", {0, 0, 0, 1}}}}, {"squeeze", i >= 1 ? 1.0 : 0.0}};
+        frames.push_back(f);
+    }
+    script["frames"] = frames;
+    auto session = dir / "session.jsonl";
+    auto views = dir / "held-views.json";
+    XrRun xr = runViewXr(dir, script, scene, " --quality adaptive --record " + session.string() + " --save-views " + views.string());
+    ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
+    expectValidationSilent(xr.validation);
+    EXPECT_NE(xr.shell.output.find("xr quality: adaptive"), std::string::npos) << xr.shell.output;
+    EXPECT_FALSE(lineStartingWith(xr.shell.output, "xr left eye: ").empty()) << xr.shell.output;
+
+    auto eye = [&](int frame, const char* side) {
+        char name[48];
+        std::snprintf(name, sizeof name, "frame_%06d_%s.png", frame, side);
+        return readPng(xr.eyes / name);
+    };
+    // Every frame was submitted (a layer at every xrEndFrame), so the runtime wrote every one.
+    for (int i = 0; i < 2 + moving + still; ++i) ASSERT_FALSE(eye(i, "left").rgba.empty()) << "frame " << i;
+    // The exact eye is 31 x 35 (TheSessionRuns...); each moving frame's eyes are a preview, smaller, and the
+    // tool moved between them.
+    std::vector<std::uint8_t> before;
+    for (int i = 2; i < 2 + moving; ++i) {
+        curette::testing::Png left = eye(i, "left"), right = eye(i, "right");
+        EXPECT_LT(left.width, 31) << "frame " << i << ": the tool moved, but the eye submitted is not a preview";
+        EXPECT_LT(right.width, 31) << "frame " << i;
+        EXPECT_LT(left.height, 35) << "frame " << i;
+        if (!before.empty() && before.size() == left.rgba.size()) {
+            EXPECT_NE(left.rgba, before) << "frame " << i << ": the preview did not follow the tool";
+        }
+        before = left.rgba;
+    }
+    // The last submitted eyes: exact, whole size, `render --xr-views` of the views they were rendered from.
+    const int last = 1 + moving + still;
+    curette::testing::Png left = eye(last, "left"), right = eye(last, "right");
+    ASSERT_EQ(left.width, 31);
+    ASSERT_EQ(left.height, 35);
+    // The scene with the burr where the hand left it (the recorded pose, 17 digits: the same double).
+    RecordedSession recorded = readRecorded(session);
+    ASSERT_FALSE(recorded.frames.empty());
+    nlohmann::json moved = nlohmann::json::parse(curette::testing::readTextFile(scene));
+    moved["clip_meshes"][1]["position_mm"] = recorded.frames.back()["meshes"][1]["position_mm"];
+    ASSERT_NE(moved["clip_meshes"][1]["position_mm"][0].get<double>(), 20.0) << "the hand did not carry the burr";
+    auto movedScene = dir / "moved.json";
+    std::ofstream(movedScene) << moved.dump(2);
+    auto rendered = dir / "exact.png";
+    curette::testing::Invocation r = curette::testing::runCurette("render --scene " + movedScene.string() + " --xr-views " + views.string() +
+                                                                  " --stereo side-by-side --out " + rendered.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    curette::testing::Png pair = readPng(rendered);
+    ASSERT_EQ(pair.width, left.width + right.width);
+    EXPECT_TRUE(sideBySide(left, right) == pair.rgba) << "the last submitted eyes are not the exact frame";
+    // Held eyes went out while the exact frame was sliced, or once it was done.
+    EXPECT_NE(xr.shell.output.find("xr held eyes submitted again on "), std::string::npos) << xr.shell.output;
+
+    // What the session recorded re-derives bit for bit (previews record nothing of their own).
+    curette::testing::Invocation derived = curette::testing::runCurette("replay " + session.string() + " --from-reports --no-render");
+    ASSERT_EQ(derived.exitCode, 0) << derived.output;
+    EXPECT_NE(derived.output.find("identical to the recorded ones"), std::string::npos) << derived.output;
+}
+
+// Two hands scale the volume (session version 8, RoomAnchor::heldByTwo), Index under validation: both hands hold
+// their volume buttons (B) 0.25 m apart, draw apart to 0.375 m about a fixed midpoint, and let go. The recorded
+// anchor's scale is the ratio of the hands' distances, 1.5 (every position is dyadic: exact), the midpoint's
+// place on the anatomy stays, and the volume's centre moved away from it by that ratio; `replay --from-reports`
+// re-derives the anchor bit for bit and `replay --check` renders every frame with the recorded scale (its eyes
+// the submitted ones, CAO == LAO).
+TEST(ViewXr, TwoHandsScaleTheVolumeAboutTheirMidpoint) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (package xvfb)";
+    auto dir = scratch("two-hands");
+    auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "cao", "clip_meshes": [
+        {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 8}, "position_mm": [30, 30, 44]}]})"));
+    nlohmann::json script = poseScript();
+    script["interaction_profile"] = "/interaction_profiles/valve/index_controller";
+    const double half[] = {0.125, 0.125, 0.15625, 0.1875, 0.1875};
+    const bool held[] = {false, true, true, true, false};
+    const int n = 5;
+    nlohmann::json frames = nlohmann::json::array();
+    for (int i = 0; i < n; ++i) {
+        nlohmann::json f = script["frames"][0];
+        f["left"] = {{"grip", {{"position", {-half[i], 1.0, -0.5}}, {"orientation", {0, 0, 0, 1}}}}, {"b", held[i]}};
+        f["right"] = {{"grip", {{"position", {half[i], 1.0, -0.5}}, {"orientation", {0, 0, 0, 1}}}}, {"b", held[i]}};
+        frames.push_back(f);
+    }
+    script["frames"] = frames;
+    auto session = dir / "session.jsonl";
+    XrRun xr = runViewXr(dir, script, scene, " --record " + session.string());
+    ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
+    expectValidationSilent(xr.validation);
+    RecordedSession recorded = readRecorded(session);
+    ASSERT_EQ(recorded.frames.size(), static_cast<std::size_t>(n));
+    EXPECT_EQ(recorded.header["version"], 8);
+    const double expectedScale[] = {1.0, 1.0, 1.25, 1.5, 1.5};
+    const nlohmann::ordered_json& table = recorded.frames[0]["xr"]["anchor"];
+    for (int i = 0; i < n; ++i) {
+        const nlohmann::ordered_json& a = recorded.frames[static_cast<std::size_t>(i)]["xr"]["anchor"];
+        EXPECT_EQ(a["volume_scale"].get<double>(), expectedScale[i]) << "frame " << i;
+        // The hands' midpoint (0, 1, -0.5) is fixed: the centre's offset from it grows by the scale.
+        for (int k = 0; k < 3; ++k) {
+            const double mid = k == 1 ? 1.0 : k == 2 ? -0.5 : 0.0;
+            EXPECT_NEAR(a["volume_centre_m"][k].get<double>() - mid, expectedScale[i] * (table["volume_centre_m"][k].get<double>() - mid), 1e-12)
+                << "frame " << i << " axis " << k;
+        }
+        EXPECT_EQ(a["volume_turn"], table["volume_turn"]) << "frame " << i << ": hands drawn apart on one line turn nothing";
+    }
+    EXPECT_NE(xr.shell.output.find(", scaled by 1.5000"), std::string::npos) << xr.shell.output;
+
+    curette::testing::Invocation derived = curette::testing::runCurette("replay " + session.string() + " --from-reports --no-render");
+    ASSERT_EQ(derived.exitCode, 0) << derived.output;
+    EXPECT_NE(derived.output.find("identical to the recorded ones"), std::string::npos) << derived.output;
+    auto replayed = dir / "replay";
+    curette::testing::Invocation replay = curette::testing::runCurette("replay " + session.string() + " --check --out " + replayed.string());
+    ASSERT_EQ(replay.exitCode, 0) << replay.output;
+    EXPECT_NE(replay.output.find("CAO == LAO on 5 of 5 checked frames"), std::string::npos) << replay.output;
+    std::vector<std::uint8_t> first;
+    for (int frame = 0; frame < n; ++frame) {
+        char stem[32];
+        std::snprintf(stem, sizeof stem, "frame_%06d", frame);
+        curette::testing::Png left = readPng(xr.eyes / (std::string(stem) + "_left.png"));
+        curette::testing::Png right = readPng(xr.eyes / (std::string(stem) + "_right.png"));
+        curette::testing::Png pair = readPng(replayed / (std::string(stem) + ".png"));
+        ASSERT_EQ(pair.width, left.width + right.width) << stem;
+        EXPECT_TRUE(sideBySide(left, right) == pair.rgba) << stem << ": the replayed eyes differ from the submitted ones";
+        if (frame == 0) first = left.rgba;
+        if (frame == n - 1) {
+            EXPECT_NE(left.rgba, first) << "the volume grew, the eye did not change";
+        }
+    }
+}
+
 // Headless through XR_MNDX_egl_enable: with the test runtime offering the extension (its EGL mode, as Monado
 // does), `view --xr --headless` binds a headless EGL context (no X server: no xvfb-run), the runtime sees an EGL
 // binding, and every submitted eye pair is `render --xr-views --stereo` of its views. Without the extension
@@ -568,12 +773,9 @@ TEST(ViewXr, HeadlessThroughEglWhereTheRuntimeOffersIt) {
     auto dir = scratch("egl");
     auto scene = curette::testing::writeNoisyBallScene(dir, nlohmann::json::parse(R"({"shading": "cao", "clip_meshes": [
         {"name": "sphere", "mesh": {"shape": "sphere", "radius_mm": 12}, "position_mm": [32, 44, 40]}]})"));
-    auto scriptPath = dir / "script.json";
-    std::ofstream(scriptPath) << poseScript().dump(2);
-    auto out = dir / "eyes";
-    const std::string runtime = "env -u DISPLAY XR_RUNTIME_JSON=" + std::string(CURETTE_XR_TEST_RUNTIME_JSON) + " CURETTE_XR_TEST_SCRIPT=" +
-                                scriptPath.string() + " CURETTE_XR_TEST_OUT=" + out.string();
-    ShellRun run = runShell(runtime + " CURETTE_XR_TEST_EGL=1 " + CURETTE_BINARY + " view --xr --headless --scene " + scene.string());
+    XrRun xr = runViewXr(dir, poseScript(), scene, "", XrLaunch{true, true});
+    const ShellRun& run = xr.shell;
+    const std::filesystem::path& out = xr.eyes;
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find("xr session over: 3 frames rendered"), std::string::npos) << run.output;
     std::string log = curette::testing::readTextFile(out / "runtime.log");
@@ -594,7 +796,7 @@ TEST(ViewXr, HeadlessThroughEglWhereTheRuntimeOffersIt) {
         EXPECT_TRUE(sideBySide(left, right) == pair.rgba) << stem << ": the submitted eyes differ from render --xr-views";
         EXPECT_NE(std::count(left.rgba.begin(), left.rgba.end(), left.rgba[0]), static_cast<std::ptrdiff_t>(left.rgba.size())) << stem;
     }
-    ShellRun refused = runShell(runtime + " " + CURETTE_BINARY + " view --xr --headless --scene " + scene.string());
+    ShellRun refused = runViewXr(dir, poseScript(), scene, "", XrLaunch{true, false}).shell;
     EXPECT_NE(refused.exitCode, 0) << refused.output;
     EXPECT_NE(refused.output.find("XR_MNDX_egl_enable"), std::string::npos) << refused.output;
 }

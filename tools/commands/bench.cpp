@@ -122,6 +122,7 @@ std::vector<Command> benchCommands() {
            {"frames", true, "frames per run (default 6; the first runs step I)"},
            {"runs", true, "runs, each with a fresh renderer (default 3)"},
            {"drill", false, "with --test-runtime: the right trigger drills with its tool"},
+           {"quality", true, "exact: both eyes exact every frame; adaptive: previews while the hands move, then (the script holding still) the exact frame in slices (default: adaptive on a software renderer, exact on a GPU)", "exact|adaptive"},
            {"json", true, "JSON output file (default bench-xr.json)"}}},
          &bench::benchXr},
     };

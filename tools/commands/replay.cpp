@@ -160,7 +160,8 @@ int replay(const CommandLine& cl) {
             // The re-derived poses, lights (version 2), shading and drilling must be the recorded ones, bit for bit.
             // A head-mounted display's volume (version 7): where the re-derived hands put it is where it was recorded.
             const bool sameVolume = !f.xr || !f.xr->anchor || (xrHands.anchor().volumeCentreRoomM == f.xr->anchor->volumeCentreRoomM &&
-                                                               xrHands.anchor().volumeTurnRoom == f.xr->anchor->volumeTurnRoom);
+                                                               xrHands.anchor().volumeTurnRoom == f.xr->anchor->volumeTurnRoom &&
+                                                               xrHands.anchor().volumeScale == f.xr->anchor->volumeScale);
             if (f.xr) anchor = xrHands.anchor();
             bool same = state.shading == f.shading && samePoses(state.sessionPoses(), f.meshes) && (!f.lights || state.lightDirections() == *f.lights) &&
                         (!drillFromInput || (state.appliedDrills == f.drills && state.appliedHistory == f.historyCommands &&

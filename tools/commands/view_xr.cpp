@@ -5,8 +5,10 @@
 // (V_AO, CAO steps I-V) is computed once a frame and both eyes read it; the eye images go into the session's
 // swapchains (xr/xr_session.h). A small window holds the GLX context the runtime binds to and mirrors the
 // right eye's frame (rendered last); with --headless there is no window: a headless EGL context is bound
-// through XR_MNDX_egl_enable, where the runtime offers it (Monado does). Every frame is an exact one (no preview loop yet: on a software renderer
-// this is slow). The loop is tools/xr_loop.h's.
+// through XR_MNDX_egl_enable, where the runtime offers it (Monado does). --quality adaptive (the default on a software
+// renderer) previews while the scene or the head moves and computes the exact frame in slices once still,
+// submitting the held eyes meanwhile; exact (a GPU's default) renders both eyes exact every frame
+// (viewer/xr_frame_loop.h). The loop is tools/xr_loop.h's.
 //
 // The controllers are action sources like the hidapi devices (xr/controller_actions.h, session/xr_hands.h):
 // the left hand's squeeze holds tool 0, the right hand's tool 1, each following its grip, its thumbstick
@@ -60,7 +62,7 @@ std::string sceneFromSession(const std::filesystem::path& scene, const std::file
 }  // namespace
 
 int viewXr(const CommandLine& cl) {
-    for (const char* option : {"play", "screenshot", "window-shot", "idle-seconds", "frame-log", "quality"})
+    for (const char* option : {"play", "screenshot", "window-shot", "idle-seconds", "frame-log"})
         if (cl.value(option)) throw InputError("<command line>", std::string("--") + option, "not with --xr");
     if (cl.flag("headless") && cl.value("size")) throw InputError("<command line>", "--size", "not with --headless (there is no mirror window)");
     XrLoopOptions options;
@@ -82,29 +84,48 @@ int viewXr(const CommandLine& cl) {
         window = gl::createWindowContext("curette - " + scenePath + " (OpenXR)", CommandLine::parseSize("size", cl.valueOr("size", "320x240")));
     }
     gl::Context& gl = headless ? *context : *window;
+    options.loop.quality = defaultViewQuality(gl.info().softwareRenderer);
+    if (auto q = cl.value("quality")) {
+        std::optional<ViewQuality> quality = parseViewQuality(*q);
+        if (!quality) throw InputError("<command line>", "--quality", "exact or adaptive", "\"" + *q + "\"");
+        options.loop.quality = *quality;
+    }
     Renderer renderer(gl, loaded.volume, loaded.scene.transferFunction);
     configureRenderer(loaded, renderer);
     SessionStep step(InteractionState::fromScene(loaded.scene), initialFrame(loaded.scene, renderer.geometry()));
     step.attachRemoval(loaded.volume.dims, loaded.volume.indexToWorld, loaded.removal.get());   // the scene's drilling
 
     XrLoopResult result = runXrLoop(gl, window.get(), renderer, step, loaded, options);
-    for (std::size_t eye = 0; eye < 2; ++eye) {
-        std::vector<double> ms;
-        for (const XrFrameTiming& t : result.rendered) ms.push_back(t.eyeMs[eye]);
-        Spread s = spread(ms);
-        std::printf("xr %s eye: %zu frames, %.1f ms per frame (min %.1f, max %.1f)\n", eye == 0 ? "left" : "right", s.count, s.mean, s.min, s.max);
+    std::printf("xr quality: %s\n", viewQualityName(options.loop.quality));
+    // Per eye, the frames that rendered what they submitted: exact ones (in slices: the sum of the eye's slices)
+    // and previews.
+    for (bool exact : {true, false}) {
+        for (std::size_t eye = 0; eye < 2; ++eye) {
+            std::vector<double> ms;
+            for (const XrFrameTiming& t : result.rendered)
+                if (exact ? t.submittedExact : t.step == XrStep::Preview) ms.push_back(t.eyeMs[eye]);
+            if (ms.empty() && !exact) continue;
+            Spread s = spread(ms);
+            std::printf("xr %s eye: %zu %s frames, %.1f ms per frame (min %.1f, max %.1f)\n", eye == 0 ? "left" : "right", s.count,
+                        exact ? "exact" : "preview", s.mean, s.min, s.max);
+        }
     }
-    std::printf("xr session over: %zu frames rendered\n", result.rendered.size());
+    std::size_t heldFrames = result.rendered.size() - result.newImages();
+    if (heldFrames > 0) std::printf("xr held eyes submitted again on %zu frames (the exact frame in slices, or nothing new)\n", heldFrames);
+    std::printf("xr session over: %zu frames rendered\n", result.newImages());
     // The passes each frame ran for its first eye (the second reuses its V_AO): a moved volume runs no CAO step.
     for (const XrFrameTiming& t : result.rendered) {
+        if (t.firstEye.passes.empty()) continue;
         std::string passes;
         for (const FrameTimings::Entry& e : t.firstEye.passes) passes += (passes.empty() ? "" : ", ") + std::string(passInfo(e.pass).name);
-        std::printf("xr frame %zu passes: %s\n", t.frame, passes.c_str());
+        std::printf("xr %s %zu passes: %s\n", t.step == XrStep::Preview ? "preview" : "frame", t.frame, passes.c_str());
     }
     const RoomAnchor& a = result.finalAnchor;
     const glm::dvec3 c = a.volumeCentreRoomM + 0.0;           // + 0.0: a zero prints without its sign
     const glm::dvec4 q = glm::dvec4(a.volumeTurnRoom.w, a.volumeTurnRoom.x, a.volumeTurnRoom.y, a.volumeTurnRoom.z) + 0.0;
-    std::printf("xr volume left at %.4f, %.4f, %.4f m in the room, turned by [%.4f, %.4f, %.4f, %.4f]\n", c.x, c.y, c.z, q.x, q.y, q.z, q.w);
+    std::printf("xr volume left at %.4f, %.4f, %.4f m in the room, turned by [%.4f, %.4f, %.4f, %.4f]", c.x, c.y, c.z, q.x, q.y, q.z, q.w);
+    if (a.volumeScale != 1.0) std::printf(", scaled by %.4f", a.volumeScale);
+    std::printf("\n");
     for (const MeshState& m : step.state().meshes)
         std::printf("xr tool %d \"%s\" left at %.3f, %.3f, %.3f mm\n", m.id, m.name.c_str(), m.pose.position.x, m.pose.position.y, m.pose.position.z);
     const InteractionState& state = step.state();
