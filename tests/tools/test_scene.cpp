@@ -42,7 +42,7 @@ TEST(Scene, ShippedScenesParse) {
     EXPECT_EQ(carved.lao.directions.count, 26);
 }
 
-TEST(Scene, TubesAreBuiltOnTheCpuUnlessTheSceneAsksForTheGpu) {
+TEST(Scene, TubesAreBuiltOnTheCpuUnlessTheSceneAsksOtherwise) {
     EXPECT_EQ(parse("{" + kVolume + "}").tubeBuild, TubeBuild::Cpu);
     EXPECT_EQ(parse("{" + kVolume + R"(, "tube_rendering": {"build": "gpu"}})").tubeBuild, TubeBuild::Gpu);
     EXPECT_EQ(parse("{" + kVolume + R"(, "tube_rendering": {"build": "cpu"}})").tubeBuild, TubeBuild::Cpu);
