@@ -113,7 +113,8 @@ TubeSet::TubeSet(TubeBuffers buffers) : buffers_(std::move(buffers)), lines_(buf
     program_ = gl::Program::graphics("tube_gbuffer.vert", "tube_gbuffer.frag");
 }
 
-TubeSet::TubeSet(const TubeImpostors& impostors) : impostor_(true), impostorBundles_(impostors.bundles), pointCount_(impostors.points.size()) {
+TubeSet::TubeSet(const TubeImpostors& impostors, std::size_t windowPoints)
+    : impostor_(true), impostorBundles_(impostors.bundles), pointCount_(impostors.points.size()), windowPoints_(windowPoints) {
     for (const TubeImpostorBundle& b : impostors.bundles)
         if (b.firstPoint + b.pointCount > impostors.points.size() || !(b.radiusMm > 0))
             throw InputError("<tubes>", "impostor bundles", "point ranges within the points and positive radii");
@@ -126,7 +127,7 @@ TubeSet::TubeSet(const TubeImpostors& impostors) : impostor_(true), impostorBund
     quadIndices_ = gl::createBuffer();
     glNamedBufferStorage(quadIndices_.name(), static_cast<GLsizeiptr>(quads.size() * sizeof(std::uint32_t)), quads.data(), 0);
     impostorBytes_ = impostors.bytes() + quads.size() * sizeof(std::uint32_t);
-    glNamedBufferStorage(impostorPoints_.name(), static_cast<GLsizeiptr>(std::max<std::size_t>(impostorBytes_, 16)),
+    glNamedBufferStorage(impostorPoints_.name(), static_cast<GLsizeiptr>(std::max<std::size_t>(impostors.bytes(), 16)),
                          impostors.points.empty() ? nullptr : impostors.points.data(), 0);
     impostorTexture_ = gl::createTexture(GL_TEXTURE_BUFFER);
     vertexArray_ = gl::createVertexArray();   // no attributes: the vertex shader reads the points by gl_VertexID
@@ -218,7 +219,10 @@ void TubeSet::drawImpostors(const FrameDescription& frame, const clip::ClipMeshS
     glGetInteger64v(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &alignment);
     const std::size_t pointBytes = sizeof(TubeImpostorPoint), align = static_cast<std::size_t>(std::max<GLint64>(alignment, 1));
     const std::size_t slackPoints = (align + pointBytes - 1) / pointBytes;
-    const std::size_t window = std::min<std::size_t>(static_cast<std::size_t>(maxTexels), std::size_t(1) << 28) - slackPoints - 1;
+    std::size_t texels = std::min<std::size_t>(static_cast<std::size_t>(maxTexels), std::size_t(1) << 28);
+    if (windowPoints_) texels = std::min(texels, windowPoints_);
+    if (texels < slackPoints + 2) throw std::logic_error("TubeSet: an impostor window smaller than the texture buffer alignment");
+    const std::size_t window = texels - slackPoints - 1;
     const std::size_t end = first + count;
     program.use();
     glBindVertexArray(vertexArray_.name());

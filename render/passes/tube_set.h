@@ -50,8 +50,9 @@ public:
     // Uploads CPU-built vertices (the box is the vertices' own).
     explicit TubeSet(const TubeVertices& vertices);
     explicit TubeSet(TubeBuffers buffers);
-    // Uploads impostor points (16 bytes each); a primitive is then a point's quad.
-    explicit TubeSet(const TubeImpostors& impostors);
+    // Uploads impostor points (16 bytes each); a primitive is then a point's quad. They are drawn in windows of
+    // at most GL_MAX_TEXTURE_BUFFER_SIZE points, or `windowPoints` (tests force small windows).
+    explicit TubeSet(const TubeImpostors& impostors, std::size_t windowPoints = 0);
     bool impostors() const { return impostor_; }
     std::size_t vertexCount() const { return buffers_.vertexCount; }
     // The vertex streams read back from the GPU (tests and bench tracts compare the two builders): all, or
@@ -83,7 +84,7 @@ private:
     gl::Buffer impostorPoints_, quadIndices_;   // the points; the two triangles of kQuadsPerDraw quads, shared by every draw
     gl::Texture impostorTexture_;
     std::vector<TubeImpostorBundle> impostorBundles_;
-    std::size_t pointCount_ = 0, impostorBytes_ = 0;
+    std::size_t pointCount_ = 0, impostorBytes_ = 0, windowPoints_ = 0;
     gl::VertexArray vertexArray_;
     gl::Program program_;
     gl::Program unclippedProgram_;   // impostors when no mesh clips tubes (NO_CLIP_MESHES)

@@ -3,6 +3,7 @@
 // streamlines (the facets of the prism bound the difference); and a mesh that clips tubes clips them as it
 // clips the triangles.
 #include "render/renderer.h"
+#include "render/passes/tube_set.h"
 #include "tests/render/gl_test_support.h"
 #include "mesh/primitives.h"
 #include "render/model/tube_geometry.h"
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
 
 namespace curette {
 namespace {
@@ -239,6 +241,36 @@ TEST(TubeImpostors, AClipMeshRemovesTheirPixelsAsItDoesTriangleTubes) {
     std::printf("[ impostor  ] clipped: triangles %d pixels, impostors %d, %d differ (of %d unclipped)\n", count(cutTriangles),
                 count(cutImpostors), differ, count(fullImpostors));
     EXPECT_LE(differ, count(fullImpostors) / 20) << "the same pixels clipped, but for the prism's silhouette";
+}
+
+// A set larger than a buffer texture's limit is drawn in windows, each bound at an aligned offset at or below its
+// first point: forced down to 40 points, the windows draw the G-buffer one window draws.
+TEST(TubeImpostors, WindowsOfFewPointsDrawWhatOneWindowDraws) {
+    glContext();
+    Renderer renderer(glContext(), emptyVolume(), clearTransferFunction());
+    std::mt19937 random(8);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<std::vector<glm::dvec3>> lines;
+    for (int s = 0; s < 60; ++s) {
+        glm::dvec3 p = 8.0 * glm::dvec3(u(random), u(random), u(random)), step(u(random), u(random), u(random));
+        lines.emplace_back();
+        for (int i = 0; i < 5 + s % 20; ++i, p += 0.8 * step + 0.3 * glm::dvec3(u(random), u(random), u(random))) lines.back().push_back(p);
+    }
+    TubeImpostors impostors = sweepTubeImpostors(polyline(lines), plainSettings(0.5, false));
+    impostors.append(sweepTubeImpostors(polyline({{{-9, -9, 0}, {0, -6, 1}, {9, -9, 2}}}), plainSettings(1.2, true)));
+    ASSERT_GT(impostors.points.size(), 10u * 40u);
+    FrameDescription frame = viewFrom(30, 25, {64, 64});
+    TubeSet one(impostors), windows(impostors, 40);
+    GBuffer a, b;
+    one.drawGBuffer(frame, renderer.clipMeshes(), a);
+    windows.drawGBuffer(frame, renderer.clipMeshes(), b);
+    std::vector<float> depthA = a.readDepth(), depthB = b.readDepth();
+    int covered = 0;
+    for (float d : depthA) covered += d > 0;
+    EXPECT_GT(covered, 400);
+    EXPECT_EQ(depthA, depthB);
+    EXPECT_TRUE(a.readColor() == b.readColor());
+    EXPECT_TRUE(a.readNormal() == b.readNormal());
 }
 
 }  // namespace
