@@ -31,6 +31,7 @@ inline constexpr unsigned labelField = 23;
 inline constexpr unsigned labelOpacity = 24;
 inline constexpr unsigned drilledFraction = 25;
 inline constexpr unsigned drillNearBricks = 26;
+inline constexpr unsigned tubeImpostorPoints = 27;
 
 inline constexpr unsigned imageOutput = 0;
 inline constexpr unsigned imageOpacity = 1;

@@ -45,6 +45,7 @@ Lookup sampler(unsigned unit) {
         case b::ismosLayerBack: return {R::IsmosLayerBacks};
         case b::ismosFit: return {R::IsmosFit};
         case b::seenBricks: return {R::SeenBricks};
+        case b::tubeImpostorPoints: return {R::TubeGeometry};
         default: return {};
     }
 }

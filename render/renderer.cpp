@@ -178,6 +178,13 @@ void Renderer::setTubeRings(const TubeRings& rings, const TubeShading& shading) 
     ++appearanceVersion_;
 }
 
+void Renderer::setTubeImpostors(const TubeImpostors& impostors, const TubeShading& shading) {
+    tubes_.reset();
+    tubes_ = std::make_unique<TubeSet>(impostors);
+    tubeShading_ = shading;
+    ++appearanceVersion_;
+}
+
 void Renderer::setTubeShading(const TubeShading& shading) {
     tubeShading_ = shading;
     ++appearanceVersion_;
@@ -325,7 +332,8 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
     if (ismos_)
         for (const GpuAllocation& a : ismos_->allocations()) list.push_back(a);
     if (tubes_) {
-        list.push_back({Resource::TubeGeometry, tubes_->gpuBytes(), tubes_->lines() ? "line vertex buffers" : "triangle vertex buffers"});
+        list.push_back({Resource::TubeGeometry, tubes_->gpuBytes(), tubes_->impostors() ? "impostor points, RGBA32UI"
+                                                             : tubes_->lines() ? "line vertex buffers" : "triangle vertex buffers"});
         list.push_back({Resource::GBuffer, gbuffer_.gpuBytes(), {}});
     }
     return list;

@@ -65,6 +65,8 @@ public:
     // Tubes expanded from their swept rings on the GPU (render/passes/gpu_tube_builder.h): setTubes(expandTubeRings(
     // rings)) within float rounding, with no vertex stream on the CPU.
     void setTubeRings(const TubeRings& rings, const TubeShading& shading);
+    // Impostor tubes (render/model/tube_impostors.h): only the swept points go to the GPU.
+    void setTubeImpostors(const TubeImpostors& impostors, const TubeShading& shading);
     const TubeSet* tubes() const { return tubes_.get(); }
     void setTubeShading(const TubeShading& shading);
     void clearTubes();

@@ -214,7 +214,7 @@ Scene parseScene(std::string_view text, const fs::path& path) {
     if (auto r = root.find("tube_rendering")) {
         TubeRendering t = readTubeRendering(*r);
         scene.tubesAsLines = t.lines;
-        scene.tubesBuiltOnGpu = t.builtOnGpu;
+        scene.tubeBuild = t.build;
         scene.tubeShading = t.shading;
     }
     if (auto d = root.find("dos")) scene.dos = readDos(*d);

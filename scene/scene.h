@@ -30,7 +30,7 @@
 //   "tubes": [{"path": "AF_L.trk" | "x.tck" | "x.trk.gz" | "x.tck.gz" | "x.trx" (zip or folder), "radius_mm": 0.5, "sides": 8, "caps": true,
 //              "smoothing": "catmull-rom" | "none", "step_mm": 0.5,
 //              "color": "direction" | "scalar" | [r,g,b], "scalar": "FA", "scalar_range": [lo, hi]}],
-//   "tube_rendering": {"mode": "tubes" | "lines", "build": "cpu" | "gpu", "geometry_opacity": 0.9, "vicinity_distance_mm": 3,
+//   "tube_rendering": {"mode": "tubes" | "lines", "build": "cpu" | "gpu" | "impostor", "geometry_opacity": 0.9, "vicinity_distance_mm": 3,
 //                      "vicinity_samples": 64, "depth_bias_mm": 0.5, "line_diffuse_exponent": 2,
 //                      "material": {"ambient": .25, "diffuse": .75, "specular": .35, "specular_power": 32}},
 //   "dos": {"cone_angle_deg": 60, "grid": 3, "slice_distance_mm": 0 (auto), "ambient": 1.0},
@@ -117,7 +117,7 @@ struct Scene {
     ClipMeshDisplaySpec clipMeshDisplay;
     std::vector<SceneTubes> tubes;
     bool tubesAsLines = false;
-    bool tubesBuiltOnGpu = false;            // tube rings expanded by render/passes/gpu_tube_builder.h (tubes mode)
+    TubeBuild tubeBuild = TubeBuild::Cpu;    // where tube geometry is made (tubes mode; scene_keys.h)
     TubeShading tubeShading;
     DosSettings dos;
     IsmosSettings ismos;

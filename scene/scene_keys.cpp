@@ -121,7 +121,10 @@ TubeRendering readTubeRendering(const JsonReader& r) {
     TubeRendering out;
     TubeShading& t = out.shading;
     if (auto v = r.find("mode")) out.lines = v->oneOf({"tubes", "lines"}) == "lines";
-    if (auto v = r.find("build")) out.builtOnGpu = v->oneOf({"cpu", "gpu"}) == "gpu";
+    if (auto v = r.find("build")) {
+        std::string build = v->oneOf({"cpu", "gpu", "impostor"});
+        out.build = build == "gpu" ? TubeBuild::Gpu : build == "impostor" ? TubeBuild::Impostor : TubeBuild::Cpu;
+    }
     if (auto v = r.find("geometry_opacity")) t.geometryOpacity = v->number(0, 1);
     if (auto v = r.find("vicinity_distance_mm")) t.vicinityDistanceMm = v->number(0, 1000);
     if (auto v = r.find("vicinity_samples")) t.vicinitySamples = v->integer(1, 256);

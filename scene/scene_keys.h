@@ -36,11 +36,16 @@ struct SceneTubes {
     bool protectedBundle = false;
 };
 
+// "tube_rendering"."build": where tube geometry is made: triangles on the CPU, triangles expanded from their
+// rings on the GPU (render/passes/gpu_tube_builder.h), or no triangles: impostors ray-cast from the swept
+// points (render/model/tube_impostors.h).
+enum class TubeBuild { Cpu, Gpu, Impostor };
+
 // "tube_rendering": whether tubes are drawn as illuminated lines, and their shading.
 struct TubeRendering {
     bool lines = false;
     TubeShading shading;
-    bool builtOnGpu = false;     // "build": "gpu": tube rings expanded by render/passes/gpu_tube_builder.h
+    TubeBuild build = TubeBuild::Cpu;
     bool operator==(const TubeRendering&) const = default;
 };
 

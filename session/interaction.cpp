@@ -47,7 +47,7 @@ void adoptSceneSettings(const Scene& scene, InteractionState& s) {
     s.dos = scene.dos;
     s.ismos = scene.ismos;
     s.tubes = scene.tubes;
-    s.tubeRendering = {scene.tubesAsLines, scene.tubeShading, scene.tubesBuiltOnGpu};
+    s.tubeRendering = {scene.tubesAsLines, scene.tubeShading, scene.tubeBuild};
     s.clipMeshDisplay = scene.clipMeshDisplay;
     s.sceneLightKeys.clear();
     const nlohmann::json* lights = scene.json.is_object() && scene.json.contains("lights") ? &scene.json.at("lights") : nullptr;
@@ -365,7 +365,7 @@ void InteractionState::applyEdits(const std::vector<SettingEdit>& edits, const s
             }
             case Setting::TubeRendering: {
                 const TubeRendering& v = std::get<TubeRendering>(value);
-                if (v.lines != tubeRendering.lines || v.builtOnGpu != tubeRendering.builtOnGpu)
+                if (v.lines != tubeRendering.lines || v.build != tubeRendering.build)
                     ++tubesVersion;   // lines and tubes, and where tubes are built, are other geometry
                 tubeRendering = v;
                 ++tubeShadingVersion;

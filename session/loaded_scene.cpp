@@ -5,6 +5,7 @@
 #include "session/session_step.h"
 #include "base/error.h"
 #include "base/log.h"
+#include "base/progress.h"
 
 #include <algorithm>
 
@@ -40,6 +41,12 @@ void configureRenderer(const LoadedScene& loaded, Renderer& renderer) {
 
 namespace {
 
+double streamlineCount(const std::vector<Tractogram>& tracts) {
+    double n = 0;
+    for (const Tractogram& t : tracts) n += double(t.streamlineCount());
+    return n;
+}
+
 void logSkipped(const SceneTubes& tubes, const TubeBuildStats& stats) {
     if (stats.skippedSinglePoint)
         log::info(tubes.path.string() + ": " + std::to_string(stats.skippedSinglePoint) + " one-point streamlines skipped");
@@ -54,15 +61,30 @@ void setSceneTubes(Renderer& renderer, const std::vector<SceneTubes>& tubes, con
         return;
     }
     TubeShading shading = sceneTubeShading(tubes, rendering.shading);
-    if (rendering.builtOnGpu && !rendering.lines) renderer.setTubeRings(sceneTubeRings(tubes, tracts), shading);
+    if (!rendering.lines && rendering.build == TubeBuild::Gpu) renderer.setTubeRings(sceneTubeRings(tubes, tracts), shading);
+    else if (!rendering.lines && rendering.build == TubeBuild::Impostor) renderer.setTubeImpostors(sceneTubeImpostors(tubes, tracts), shading);
     else renderer.setTubes(sceneTubeVertices(tubes, rendering.lines, tracts), shading);
+}
+
+TubeImpostors sceneTubeImpostors(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts) {
+    TubeImpostors all;
+    Progress progress("sweeping tubes", streamlineCount(tracts));
+    for (std::size_t i = 0; i < tubes.size(); ++i) {
+        TubeBuildStats stats;
+        TubeImpostors points = sweepTubeImpostors(tracts[i], tubes[i].settings, &stats, &progress);
+        logSkipped(tubes[i], stats);
+        if (i == 0) all = std::move(points);
+        else all.append(points);
+    }
+    return all;
 }
 
 TubeRings sceneTubeRings(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts) {
     TubeRings all;
+    Progress progress("sweeping tubes", streamlineCount(tracts));
     for (std::size_t i = 0; i < tubes.size(); ++i) {
         TubeBuildStats stats;
-        TubeRings rings = sweepTubeRings(tracts[i], tubes[i].settings, &stats);
+        TubeRings rings = sweepTubeRings(tracts[i], tubes[i].settings, &stats, &progress);
         logSkipped(tubes[i], stats);
         if (i == 0) all = std::move(rings);
         else all.append(rings);

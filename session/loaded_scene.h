@@ -33,7 +33,9 @@ TubeVertices sceneTubeVertices(const std::vector<SceneTubes>& tubes, bool lines,
 TubeShading sceneTubeShading(const std::vector<SceneTubes>& tubes, const TubeShading& shading);
 // Every bundle's swept rings, for tubes expanded on the GPU ("build": "gpu", render/passes/gpu_tube_builder.h).
 TubeRings sceneTubeRings(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts);
-// The scene's tubes into the renderer as `rendering` says (lines, CPU-built or GPU-built tubes).
+// Every bundle's swept points, for impostor tubes ("build": "impostor", render/model/tube_impostors.h).
+TubeImpostors sceneTubeImpostors(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts);
+// The scene's tubes into the renderer as `rendering` says (lines, CPU-built, GPU-built or impostor tubes).
 void setSceneTubes(Renderer& renderer, const std::vector<SceneTubes>& tubes, const TubeRendering& rendering,
                    const std::vector<Tractogram>& tracts);
 

@@ -27,6 +27,7 @@
 #define BINDING_LABEL_OPACITY 24       // sampler3D r8: ... and their smoothed opacity * shown
 #define BINDING_DRILLED_FRACTION 25    // sampler3D r8: per voxel the drilled fraction (plan/removal_volume.h)
 #define BINDING_DRILL_NEAR_BRICKS 26   // usampler3D r8ui: per 4^3 brick 1 within the dilation radius of a drilled voxel
+#define BINDING_TUBE_IMPOSTOR_POINTS 27  // usamplerBuffer rgba32ui: impostor tube points (xyz float bits, colour and flags)
 
 #define IMAGE_OUTPUT 0              // image2D: the rendered RGBA
 #define IMAGE_OPACITY 1             // image3D r16: V_o written by step IV

@@ -22,7 +22,7 @@ constexpr ResourceInfo kResources[] = {
     {Resource::RecomputeList, "recompute list", "uint32 buffer", "step V: the voxels to recompute of one chunk of at most 16384 visited bricks (compacted dispatch)", true},
     {Resource::VisitedBricks, "visited bricks", "uint32 buffer", "steps IV and V: the bricks they visit; step IV flags those whose V_o changed or whose LAO can", true},
     {Resource::LaoDirections, "LAO directions", "vec4 buffer", "the K rays of eq. 3 with their weights"},
-    {Resource::TubeGeometry, "tube geometry", "vertex buffers", "tubes (triangles) or illuminated lines"},
+    {Resource::TubeGeometry, "tube geometry", "vertex buffers", "tubes (triangles or impostor points) or illuminated lines"},
     {Resource::GBuffer, "G-buffer + partial occlusion", "RGBA16F x2, R32F x2, D32F", "tube colour, normal, depth; occlusion at the surface"},
     {Resource::OcclusionBuffers, "DOS occlusion buffers (2, ping-pong)", "RG32F 2D x2", "the slab pass's cone-blurred visibility"},
     {Resource::OutputImage, "output image", "RGBA32F 2D", "the frame"},

@@ -158,13 +158,14 @@ void validate(const TubeSettings& s) {
 
 }  // namespace
 
-TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats) {
+TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats, Progress* progress) {
     validate(settings);
     Colorer color(tracts, settings);
     TubeRings out;
     TubeBuildStats local;
     for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
         ++local.streamlines;
+        if (progress && s % 1024 == 1023) progress->advance(1024.0);   // the clock read per call is not free
         SweptCurve curve = sweepCurve(tracts, s, settings, &local.duplicatePointsRemoved);
         std::size_t n = curve.points.size();
         if (n < 2) {
@@ -189,6 +190,37 @@ TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings,
             throw InputError(tracts.source, "tubes", "at most 2^32 tube vertices and indices (fewer sides, a longer step_mm, fewer streamlines)",
                              std::to_string(out.vertexCount) + " vertices");
         out.streamlines.push_back(line);
+    }
+    if (stats) *stats = local;
+    return out;
+}
+
+TubeImpostors sweepTubeImpostors(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats, Progress* progress) {
+    validate(settings);
+    Colorer color(tracts, settings);
+    TubeImpostors out;
+    TubeBuildStats local;
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
+        ++local.streamlines;
+        if (progress && s % 1024 == 1023) progress->advance(1024.0);   // the clock read per call is not free
+        SweptCurve curve = sweepCurve(tracts, s, settings, &local.duplicatePointsRemoved);
+        std::size_t n = curve.points.size();
+        if (n < 2) {
+            ++local.skippedSinglePoint;
+            continue;
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            std::uint32_t flags = (i + 1 < n ? kImpostorSegmentStarts : 0u) | (i > 0 ? kImpostorSegmentEnds : 0u);
+            out.points.push_back({glm::vec3(curve.points[i]), packImpostorColor(color(s, curve.tangents[i], double(i) / double(n - 1)), flags)});
+            lo = glm::min(lo, curve.points[i]), hi = glm::max(hi, curve.points[i]);
+        }
+        local.rings += n;
+        ++out.streamlines;
+    }
+    if (!out.points.empty()) {
+        out.bundles.push_back({0, out.points.size(), settings.radiusMm, settings.caps});
+        out.boundsMin = lo - settings.radiusMm, out.boundsMax = hi + settings.radiusMm;
     }
     if (stats) *stats = local;
     return out;

@@ -4,8 +4,10 @@
 // circle is swept along it with rotation-minimising frames (the double reflection method of Wang, Jüttler,
 // Zheng and Liu 2008: parallel transport, never Frenet, so no flips at inflections and no twist).
 
+#include "base/progress.h"
 #include "base/tractogram.h"
 #include "base/transfer_function.h"
+#include "render/model/tube_impostors.h"
 #include "render/model/tube_vertices.h"
 
 #include <string>
@@ -59,8 +61,13 @@ struct TubeRings {
     // Appends `other`, its vertices and indices numbered after these.
     void append(const TubeRings& other);
 };
-TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats = nullptr);
+// `progress`, when given, advances by one per streamline (a whole-brain set takes seconds).
+TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats = nullptr, Progress* progress = nullptr);
 TubeVertices expandTubeRings(const TubeRings& rings);
+// The same sweep's points for impostor tubes (render/model/tube_impostors.h): one bundle of the settings'
+// radius and caps, its points where the rings would be, coloured as they are. `sides` is not used.
+TubeImpostors sweepTubeImpostors(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats = nullptr,
+                                 Progress* progress = nullptr);
 // Line segments with tangents for illuminated-line shading (TubeVertices::lines == true).
 TubeVertices buildIlluminatedLines(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats = nullptr);
 

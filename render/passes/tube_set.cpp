@@ -4,11 +4,16 @@
 #include "gl/bindings.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
 
 namespace curette {
+
+namespace {
+constexpr std::uint32_t kQuadsPerDraw = 1u << 16;
+}
 
 void GBuffer::ensure(glm::ivec2 size) {
     if (size == size_ && framebuffer_) return;
@@ -108,7 +113,34 @@ TubeSet::TubeSet(TubeBuffers buffers) : buffers_(std::move(buffers)), lines_(buf
     program_ = gl::Program::graphics("tube_gbuffer.vert", "tube_gbuffer.frag");
 }
 
+TubeSet::TubeSet(const TubeImpostors& impostors, std::size_t windowPoints)
+    : impostor_(true), impostorBundles_(impostors.bundles), pointCount_(impostors.points.size()), windowPoints_(windowPoints) {
+    for (const TubeImpostorBundle& b : impostors.bundles)
+        if (b.firstPoint + b.pointCount > impostors.points.size() || !(b.radiusMm > 0))
+            throw InputError("<tubes>", "impostor bundles", "point ranges within the points and positive radii");
+    impostorPoints_ = gl::createBuffer();
+    // Quads as indexed triangles: llvmpipe shades each index once within a draw's chunk, so a quad's vertex
+    // shader runs 4 times, not 6 as with glDrawArrays. One pattern serves every draw (glDrawElementsBaseVertex).
+    std::vector<std::uint32_t> quads(kQuadsPerDraw * 6);
+    for (std::uint32_t q = 0; q < kQuadsPerDraw; ++q)
+        for (std::uint32_t k = 0; k < 6; ++k) quads[q * 6 + k] = 4 * q + std::array<std::uint32_t, 6>{0, 1, 2, 0, 2, 3}[k];
+    quadIndices_ = gl::createBuffer();
+    glNamedBufferStorage(quadIndices_.name(), static_cast<GLsizeiptr>(quads.size() * sizeof(std::uint32_t)), quads.data(), 0);
+    impostorBytes_ = impostors.bytes() + quads.size() * sizeof(std::uint32_t);
+    glNamedBufferStorage(impostorPoints_.name(), static_cast<GLsizeiptr>(std::max<std::size_t>(impostors.bytes(), 16)),
+                         impostors.points.empty() ? nullptr : impostors.points.data(), 0);
+    impostorTexture_ = gl::createTexture(GL_TEXTURE_BUFFER);
+    vertexArray_ = gl::createVertexArray();   // no attributes: the vertex shader reads the points by gl_VertexID
+    glVertexArrayElementBuffer(vertexArray_.name(), quadIndices_.name());
+    buffers_.boundsMin = impostors.boundsMin, buffers_.boundsMax = impostors.boundsMax;
+    program_ = gl::Program::graphics("tube_impostor.vert", "tube_impostor.frag");
+    // llvmpipe runs a branch under a lane mask, so a clip test behind a false uniform still costs its texture
+    // reads at each of the fragment's five crossings: without a mesh that clips tubes, a variant without it.
+    unclippedProgram_ = gl::Program::graphics("tube_impostor.vert", "tube_impostor.frag", {{"NO_CLIP_MESHES", "1"}});
+}
+
 TubeVertices TubeSet::readBack(std::size_t firstVertex, std::size_t vertexCount, std::size_t firstIndex, std::size_t indexCount) const {
+    if (impostor_) throw std::logic_error("TubeSet::readBack: impostor tubes have no vertex streams");
     if (firstVertex + vertexCount > buffers_.vertexCount || firstIndex + indexCount > buffers_.indexCount)
         throw InputError("<tubes>", "read back", "a range within the tube set's vertices and indices");
     TubeVertices v;
@@ -151,6 +183,14 @@ void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
+    if (impostor_) drawImpostors(frame, clip, first, count);
+    else drawElements(frame, clip, first, count);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+void TubeSet::drawElements(const FrameDescription& frame, const clip::ClipMeshSet& clip, std::size_t first, std::size_t count) {
     program_.set("viewProjection", glm::mat4(frame.camera.viewProjection(frame.size)));
     program_.set("eyeWorld", glm::vec3(frame.camera.position()));
     program_.set("viewForward", glm::vec3(frame.camera.forward()));
@@ -161,9 +201,52 @@ void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet
     const std::size_t indicesPer = lines_ ? 2 : 3;
     glDrawElements(lines_ ? GL_LINES : GL_TRIANGLES, static_cast<GLsizei>(count * indicesPer), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(first * indicesPer * sizeof(std::uint32_t)));
-    glDisable(GL_DEPTH_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+void TubeSet::drawImpostors(const FrameDescription& frame, const clip::ClipMeshSet& clip, std::size_t first, std::size_t count) {
+    bool clipping = false;
+    for (int i = 0; i < clip.count(); ++i) clipping = clipping || clip.clipsTubes(i);
+    gl::Program& program = clipping ? program_ : unclippedProgram_;
+    program.set("viewProjection", glm::mat4(frame.camera.viewProjection(frame.size)));
+    program.set("eyeWorld", glm::vec3(frame.camera.position()));
+    program.set("viewForward", glm::vec3(frame.camera.forward()));
+    if (clipping) clip.apply(program);
+    // A buffer texture is limited to GL_MAX_TEXTURE_BUFFER_SIZE texels and its range must start at a multiple of
+    // GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT bytes: larger sets are drawn in windows, each bound from the aligned
+    // offset at or below its first point (the shader is told how many points into the range that is).
+    GLint64 maxTexels = 0, alignment = 0;
+    glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    glGetInteger64v(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &alignment);
+    const std::size_t pointBytes = sizeof(TubeImpostorPoint), align = static_cast<std::size_t>(std::max<GLint64>(alignment, 1));
+    const std::size_t slackPoints = (align + pointBytes - 1) / pointBytes;
+    std::size_t texels = std::min<std::size_t>(static_cast<std::size_t>(maxTexels), std::size_t(1) << 28);
+    if (windowPoints_) texels = std::min(texels, windowPoints_);
+    if (texels < slackPoints + 2) throw std::logic_error("TubeSet: an impostor window smaller than the texture buffer alignment");
+    const std::size_t window = texels - slackPoints - 1;
+    const std::size_t end = first + count;
+    program.use();
+    glBindVertexArray(vertexArray_.name());
+    for (const TubeImpostorBundle& bundle : impostorBundles_) {
+        std::size_t s = std::max(first, bundle.firstPoint), e = std::min(end, bundle.firstPoint + bundle.pointCount);
+        if (s >= e) continue;
+        program.set("radiusMm", static_cast<float>(bundle.radiusMm));
+        program.set("caps", bundle.caps ? 1 : 0);
+        while (s < e) {
+            std::size_t n = std::min(e - s, window);
+            std::size_t startByte = s * pointBytes / align * align;
+            std::size_t lastPoint = std::min(s + n, pointCount_ - 1);   // a segment's second point
+            glTextureBufferRange(impostorTexture_.name(), GL_RGBA32UI, impostorPoints_.name(), static_cast<GLintptr>(startByte),
+                                 static_cast<GLsizeiptr>((lastPoint + 1) * pointBytes - startByte));
+            glBindTextureUnit(binding::tubeImpostorPoints, impostorTexture_.name());
+            program.set("firstPoint", static_cast<unsigned>(s - startByte / pointBytes));
+            program.use();
+            for (std::size_t q = 0; q < n; q += kQuadsPerDraw)
+                glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(6 * std::min<std::size_t>(kQuadsPerDraw, n - q)), GL_UNSIGNED_INT, nullptr,
+                                         static_cast<GLint>(4 * q));
+            s += n;
+        }
+    }
+    glBindTextureUnit(binding::tubeImpostorPoints, 0);
 }
 
 std::vector<glm::vec2> poissonDisk(int count, std::uint32_t seed) {

@@ -2,11 +2,13 @@
 // Tubes (or illuminated lines) on the GPU and the G-buffer they are drawn into (seed 000 section 3.1.1):
 // colour, world normal (tubes) or tangent (lines) with the surface kind, and the view depth along the camera
 // axis. The geometry is built in world millimetres on the CPU (render/model/tube_geometry.h) or, for tubes, expanded
-// from its swept rings on the GPU (render/passes/gpu_tube_builder.h).
+// from its swept rings on the GPU (render/passes/gpu_tube_builder.h); or, as impostors, only the swept points are
+// uploaded and each segment is ray-cast on a quad (render/model/tube_impostors.h, shaders/tube_impostor.*).
 
 #include "render/passes/clip_mesh_set.h"
 #include "gl/program.h"
 #include "render/model/frame.h"
+#include "render/model/tube_impostors.h"
 #include "render/model/tube_vertices.h"
 
 #include <vector>
@@ -48,6 +50,10 @@ public:
     // Uploads CPU-built vertices (the box is the vertices' own).
     explicit TubeSet(const TubeVertices& vertices);
     explicit TubeSet(TubeBuffers buffers);
+    // Uploads impostor points (16 bytes each); a primitive is then a point's quad. They are drawn in windows of
+    // at most GL_MAX_TEXTURE_BUFFER_SIZE points, or `windowPoints` (tests force small windows).
+    explicit TubeSet(const TubeImpostors& impostors, std::size_t windowPoints = 0);
+    bool impostors() const { return impostor_; }
     std::size_t vertexCount() const { return buffers_.vertexCount; }
     // The vertex streams read back from the GPU (tests and bench tracts compare the two builders): all, or
     // `vertexCount` vertices from `firstVertex` and `indexCount` indices from `firstIndex` (a whole-brain set
@@ -57,11 +63,11 @@ public:
     bool lines() const { return lines_; }
     std::size_t triangleCount() const { return lines_ ? 0 : buffers_.indexCount / 3; }
     std::size_t segmentCount() const { return lines_ ? buffers_.indexCount / 2 : 0; }
-    std::size_t gpuBytes() const { return buffers_.bytes(); }
+    std::size_t gpuBytes() const { return impostor_ ? impostorBytes_ : buffers_.bytes(); }
     // The world box around every vertex (the frame plan leaves tubes out of a frame they cannot be seen in).
     glm::dvec3 boundsMin() const { return buffers_.boundsMin; }
     glm::dvec3 boundsMax() const { return buffers_.boundsMax; }
-    std::size_t primitiveCount() const { return lines_ ? segmentCount() : triangleCount(); }
+    std::size_t primitiveCount() const { return impostor_ ? impostorBundles_.empty() ? 0 : pointCount_ : lines_ ? segmentCount() : triangleCount(); }
     // The whole set into a cleared G-buffer; or, for an exact frame in slices, the G-buffer cleared and then the
     // primitives [first, first + count) drawn over what earlier ranges drew. Ranges drawn in order give one
     // draw's G-buffer: each fragment is depth-tested against those before it, ties keep the first drawn.
@@ -70,9 +76,18 @@ public:
     void drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target, std::size_t first, std::size_t count);
 
 private:
+    void drawElements(const FrameDescription& frame, const clip::ClipMeshSet& clip, std::size_t first, std::size_t count);
+    void drawImpostors(const FrameDescription& frame, const clip::ClipMeshSet& clip, std::size_t first, std::size_t count);
+
     TubeBuffers buffers_;
+    bool impostor_ = false;
+    gl::Buffer impostorPoints_, quadIndices_;   // the points; the two triangles of kQuadsPerDraw quads, shared by every draw
+    gl::Texture impostorTexture_;
+    std::vector<TubeImpostorBundle> impostorBundles_;
+    std::size_t pointCount_ = 0, impostorBytes_ = 0, windowPoints_ = 0;
     gl::VertexArray vertexArray_;
     gl::Program program_;
+    gl::Program unclippedProgram_;   // impostors when no mesh clips tubes (NO_CLIP_MESHES)
     bool lines_ = false;
 };
 

@@ -5,6 +5,7 @@
 // contract). The slab pass (dos, with and without tubes) in its view-aligned slices gives render()'s image too, with
 // previews drawn between its slices.
 #include "tests/render/moving_sphere_scene.h"
+#include "render/model/tube_geometry.h"
 
 #include <gtest/gtest.h>
 
@@ -305,6 +306,43 @@ TEST(ExactInSlices, TheTubeGBufferInSlicesEqualsOneDraw) {
                 EXPECT_GE(sliced.renderer->exactProgress(), progress) << "the progress falls within the G-buffer";
                 progress = sliced.renderer->exactProgress();
             }
+        }
+        EXPECT_GE(onGBuffer, 3) << "the G-buffer was not sliced";
+        EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "the G-buffer in slices differs from one draw";
+    }
+}
+
+// Impostor tubes: a slice is a range of points' quads, drawn over the earlier ranges' depth, so the sliced
+// G-buffer equals one draw's.
+TEST(ExactInSlices, TheImpostorGBufferInSlicesEqualsOneDraw) {
+    std::mt19937 random(6);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Tractogram tracts;
+    tracts.source = "random polylines";
+    for (int s = 0; s < 2400; ++s) {
+        glm::dvec3 p = 12.0 * glm::dvec3(u(random), u(random), u(random)), step(u(random), u(random), u(random));
+        for (int i = 0; i < 24; ++i, p += 0.6 * step + 0.2 * glm::dvec3(u(random), u(random), u(random))) tracts.points.emplace_back(glm::vec3(p));
+        tracts.offsets.push_back(static_cast<std::uint32_t>(tracts.points.size()));
+    }
+    TubeSettings settings;
+    settings.radiusMm = 0.4;
+    settings.smoothing = TubeSettings::Smoothing::None;
+    const TubeImpostors impostors = sweepTubeImpostors(tracts, settings);
+    ASSERT_GT(impostors.points.size(), 3u * 16384u) << "enough points for several slices";
+    for (ShadingMode mode : {ShadingMode::Phong, ShadingMode::Dos}) {
+        SCOPED_TRACE(shadingModeName(mode));
+        MovingSphereScene sliced(mode), whole(mode);
+        for (MovingSphereScene* s : {&sliced, &whole}) {
+            s->frame.size = {64, 56};
+            s->renderer->setTubeImpostors(impostors, TubeShading{});
+        }
+        whole.renderer->render(whole.frame);
+        ASSERT_TRUE(whole.renderer->lastPlan().runs(Pass::TubeGBuffer));
+        const std::string gbuffer = passInfo(Pass::TubeGBuffer).activity;
+        int calls = 0, onGBuffer = 0;
+        while (!sliced.renderer->advanceExact(sliced.frame, 0.0, 1)) {
+            ASSERT_LT(++calls, 200000);
+            onGBuffer += sliced.renderer->exactProgressLabel() == gbuffer;
         }
         EXPECT_GE(onGBuffer, 3) << "the G-buffer was not sliced";
         EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "the G-buffer in slices differs from one draw";

@@ -42,12 +42,13 @@ TEST(Scene, ShippedScenesParse) {
     EXPECT_EQ(carved.lao.directions.count, 26);
 }
 
-TEST(Scene, TubesAreBuiltOnTheCpuUnlessTheSceneAsksForTheGpu) {
-    EXPECT_FALSE(parse("{" + kVolume + "}").tubesBuiltOnGpu);
-    EXPECT_TRUE(parse("{" + kVolume + R"(, "tube_rendering": {"build": "gpu"}})").tubesBuiltOnGpu);
-    EXPECT_FALSE(parse("{" + kVolume + R"(, "tube_rendering": {"build": "cpu"}})").tubesBuiltOnGpu);
+TEST(Scene, TubesAreBuiltOnTheCpuUnlessTheSceneAsksOtherwise) {
+    EXPECT_EQ(parse("{" + kVolume + "}").tubeBuild, TubeBuild::Cpu);
+    EXPECT_EQ(parse("{" + kVolume + R"(, "tube_rendering": {"build": "gpu"}})").tubeBuild, TubeBuild::Gpu);
+    EXPECT_EQ(parse("{" + kVolume + R"(, "tube_rendering": {"build": "cpu"}})").tubeBuild, TubeBuild::Cpu);
+    EXPECT_EQ(parse("{" + kVolume + R"(, "tube_rendering": {"build": "impostor"}})").tubeBuild, TubeBuild::Impostor);
     EXPECT_THROW(parse("{" + kVolume + R"(, "tube_rendering": {"build": "fpga"}})"), InputError);
-    EXPECT_TRUE(loadScene(kScenes / "tracts-100k.json").tubesBuiltOnGpu);
+    EXPECT_EQ(loadScene(kScenes / "tracts-100k.json").tubeBuild, TubeBuild::Impostor);
 }
 
 TEST(Scene, ClipMeshDisplayIsTheCommandsDefaultUnlessTheSceneSaysHow) {

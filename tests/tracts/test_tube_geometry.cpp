@@ -136,6 +136,45 @@ TEST(TubeGeometry, StraightLinesKeepAStableFrameAndDirectionColour) {
 }
 
 // Seed 004 eq. 3.12-3.15 for known configurations.
+// Impostor points are the rings' centres and colours (RGB8, rounded), with the segment flags marking each
+// streamline's first and last point; a one-point streamline has none; appending renumbers the bundles.
+TEST(TubeImpostors, PointsAreTheRingsWithSegmentFlags) {
+    Tractogram t = tractogram({{{0, 0, 0}, {3, 1, 0}, {6, 0, 2}, {9, 3, 1}}, {{1, 1, 1}}, {{0, 5, 0}, {0, 5, 4}}});
+    TubeSettings s;
+    s.radiusMm = 0.7;
+    s.caps = false;
+    s.stepMm = 0.8;
+    TubeRings rings = sweepTubeRings(t, s);
+    TubeBuildStats stats;
+    TubeImpostors impostors = sweepTubeImpostors(t, s, &stats);
+    EXPECT_EQ(stats.skippedSinglePoint, 1u);
+    EXPECT_EQ(impostors.streamlines, 2u);
+    ASSERT_EQ(impostors.points.size(), rings.rings.size());
+    ASSERT_EQ(impostors.bundles.size(), 1u);
+    EXPECT_EQ(impostors.bundles[0].pointCount, rings.rings.size());
+    EXPECT_EQ(impostors.bundles[0].radiusMm, 0.7);
+    EXPECT_FALSE(impostors.bundles[0].caps);
+    for (const TubeStreamline& line : rings.streamlines)
+        for (std::uint32_t i = 0; i < line.ringCount; ++i) {
+            const TubeRing& ring = rings.rings[line.firstRing + i];
+            const TubeImpostorPoint& p = impostors.points[line.firstRing + i];
+            EXPECT_EQ(p.position, glm::vec3(ring.point));
+            EXPECT_LE(glm::distance(unpackImpostorColor(p.colorAndFlags), glm::vec3(ring.color)), 0.5f * std::sqrt(3.0f) / 255.0f + 1e-6f);
+            EXPECT_EQ((p.colorAndFlags & kImpostorSegmentStarts) != 0, i + 1 < line.ringCount);
+            EXPECT_EQ((p.colorAndFlags & kImpostorSegmentEnds) != 0, i > 0);
+        }
+    for (const glm::vec3& p : t.points) {
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(glm::dvec3(p), impostors.boundsMin + 0.7 - 1e-9)) || p == glm::vec3(1, 1, 1));
+        EXPECT_TRUE(glm::all(glm::lessThanEqual(glm::dvec3(p), impostors.boundsMax - 0.7 + 1e-9)) || p == glm::vec3(1, 1, 1));
+    }
+    TubeImpostors twice = impostors;
+    twice.append(impostors);
+    ASSERT_EQ(twice.bundles.size(), 2u);
+    EXPECT_EQ(twice.bundles[1].firstPoint, impostors.points.size());
+    EXPECT_EQ(twice.streamlines, 4u);
+    EXPECT_EQ(twice.bytes(), 2 * 16 * impostors.points.size());
+}
+
 TEST(IlluminatedLines, OracleMatchesTheEquations) {
     TransferFunction::Material m{0.1, 0.6, 0.3, 20};
     glm::dvec3 albedo(1, 0.5, 0.25);

@@ -3,6 +3,6 @@
 
 namespace curette::bench {
 // curette bench tracts [--scene S] [--counts 1000,10000,100000] [--size WxH] [--frames N] [--modes phong,dos]
-//                      [--images DIR] [--json FILE]
+//                      [--geometries lines,cpu,gpu,impostor] [--million FILE] [--images DIR] [--json FILE]
 int benchTracts(const CommandLine& cl);
 }  // namespace curette::bench

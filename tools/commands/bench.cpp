@@ -112,6 +112,8 @@ std::vector<Command> benchCommands() {
                 {"size", true, "image size (default 512x512)", "WxH"},
                 {"frames", true, "frames timed per configuration and mode (default 3)"},
                 {"modes", true, "shading modes timed (default phong,dos)"},
+                {"geometries", true, "which of lines,cpu,gpu,impostor to measure (default all; impostor errors need cpu)"},
+                {"million", true, "also a tractogram of about a million streamlines (.tck, .trk, .trx), first: load time, peak memory, impostor GPU bytes, one frame per mode", "FILE"},
                 {"images", true, "folder to write each configuration's first frame to (PNG)"},
                 {"json", true, "JSON output file (default bench-tracts.json)"}})},
          &bench::benchTracts},
