@@ -83,6 +83,9 @@ int GpuVolume::textureSizeLimit(const gl::ContextInfo& info) {
 GpuVolume::GpuVolume(const gl::ContextInfo& info, const VolumeData& data)
     : format_(data.format), valueScale_(data.valueScale), valueOffset_(data.valueOffset), noData_(data) {
     layout_ = VolumeLayout::forLimit(data.dims, textureSizeLimit(info), data.source);
+    if (data.voxels.size() != data.voxelCount() * bytesPerVoxel(data.format))
+        throw SystemError(data.source + ": " + std::to_string(data.voxels.size()) + " bytes of voxels for " + std::to_string(data.voxelCount()) +
+                          " voxels (a reader's bug)");
     geometry_.dims = data.dims;
     geometry_.indexToWorld = data.indexToWorld;
 

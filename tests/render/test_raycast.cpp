@@ -458,18 +458,19 @@ TEST(Raycast, ObliqueVolumeRendersSameObjectAsAxisAligned) {
     }
 }
 
-TEST(Raycast, VolumeLargerThanTextureLimitIsAnInputError) {
+// One axis over GL_MAX_3D_TEXTURE_SIZE is folded (FoldedVolume.*); two cannot be, and are an InputError naming
+// the file and the dimensions before anything is allocated.
+TEST(Raycast, VolumeLargerThanTextureLimitOnTwoAxesIsAnInputError) {
     glContext();
     VolumeData huge;
-    huge.dims = glm::ivec3(glContext().info().max3DTextureSize + 1, 2, 2);
+    huge.dims = glm::ivec3(glContext().info().max3DTextureSize + 1, glContext().info().max3DTextureSize + 1, 1);
     huge.source = "huge.nii";
     try {
         GpuVolume gpu(glContext().info(), huge);
         FAIL() << "expected an InputError";
     } catch (const InputError& e) {
         EXPECT_EQ(e.file(), "huge.nii");
-        EXPECT_EQ(e.field(), "dim[1]");
-        EXPECT_NE(std::string(e.what()).find("GL_MAX_3D_TEXTURE_SIZE"), std::string::npos);
+        EXPECT_EQ(e.field(), "dim");
     }
 }
 

@@ -178,7 +178,7 @@ TEST(BenchTracts, RunsAtATinySizeAndWritesItsJson) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     std::ifstream in(json);
     nlohmann::json doc = nlohmann::json::parse(in);
-    ASSERT_EQ(doc.at("rows").size(), 6u) << "lines, CPU tubes and GPU tubes at two counts";
+    ASSERT_EQ(doc.at("rows").size(), 8u) << "lines, CPU tubes, GPU tubes and impostors at two counts";
     for (const nlohmann::json& row : doc.at("rows")) {
         EXPECT_GT(row.at("gpu_bytes").get<double>(), 0) << row.dump();
         EXPECT_GT(row.at("bytes_per_streamline").get<double>(), 0) << row.dump();
@@ -187,13 +187,16 @@ TEST(BenchTracts, RunsAtATinySizeAndWritesItsJson) {
         EXPECT_GT(row.at("frame_ms").at("dos").get<double>(), 0) << row.dump();
         EXPECT_TRUE(row.contains("build_total_ms")) << row.dump();
     }
-    const nlohmann::json& gpu = doc.at("rows")[5];
+    const nlohmann::json& gpu = doc.at("rows")[6];
     EXPECT_EQ(gpu.at("geometry"), "tubes (GPU)");
     EXPECT_EQ(gpu.at("streamlines"), 120);
     EXPECT_EQ(gpu.at("indices_and_colors_equal"), "yes");
     EXPECT_LT(gpu.at("max_vertex_error_mm").get<double>(), 1e-3);
-    EXPECT_EQ(gpu.at("vertices"), doc.at("rows")[4].at("vertices")) << "the GPU builds what the CPU builds";
-    EXPECT_EQ(doc.at("rows")[3].at("vertices").get<double>() < doc.at("rows")[4].at("vertices").get<double>(), true) << "lines are lighter than tubes";
+    EXPECT_EQ(gpu.at("vertices"), doc.at("rows")[5].at("vertices")) << "the GPU builds what the CPU builds";
+    EXPECT_EQ(doc.at("rows")[4].at("vertices").get<double>() < doc.at("rows")[5].at("vertices").get<double>(), true) << "lines are lighter than tubes";
+    const nlohmann::json& impostors = doc.at("rows")[7];
+    EXPECT_EQ(impostors.at("geometry"), "impostors");
+    EXPECT_LT(impostors.at("bytes_per_streamline").get<double>(), gpu.at("bytes_per_streamline").get<double>()) << "impostors hold points, not rings";
     EXPECT_NE(r.output.find("bytes/streamline"), std::string::npos) << r.output;
 }
 
