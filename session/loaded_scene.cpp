@@ -66,30 +66,29 @@ void setSceneTubes(Renderer& renderer, const std::vector<SceneTubes>& tubes, con
     else renderer.setTubes(sceneTubeVertices(tubes, rendering.lines, tracts), shading);
 }
 
-TubeImpostors sceneTubeImpostors(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts) {
-    TubeImpostors all;
+namespace {
+// Every tube entry swept by `sweep` (sweepTubeRings or sweepTubeImpostors) into one set, with one progress bar.
+template <class Set, class Sweep>
+Set sweepEachEntry(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts, Sweep sweep) {
+    Set all;
     Progress progress("sweeping tubes", streamlineCount(tracts));
     for (std::size_t i = 0; i < tubes.size(); ++i) {
         TubeBuildStats stats;
-        TubeImpostors points = sweepTubeImpostors(tracts[i], tubes[i].settings, &stats, &progress);
+        Set one = sweep(tracts[i], tubes[i].settings, &stats, &progress);
         logSkipped(tubes[i], stats);
-        if (i == 0) all = std::move(points);
-        else all.append(points);
+        if (i == 0) all = std::move(one);
+        else all.append(one);
     }
     return all;
 }
+}  // namespace
+
+TubeImpostors sceneTubeImpostors(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts) {
+    return sweepEachEntry<TubeImpostors>(tubes, tracts, sweepTubeImpostors);
+}
 
 TubeRings sceneTubeRings(const std::vector<SceneTubes>& tubes, const std::vector<Tractogram>& tracts) {
-    TubeRings all;
-    Progress progress("sweeping tubes", streamlineCount(tracts));
-    for (std::size_t i = 0; i < tubes.size(); ++i) {
-        TubeBuildStats stats;
-        TubeRings rings = sweepTubeRings(tracts[i], tubes[i].settings, &stats, &progress);
-        logSkipped(tubes[i], stats);
-        if (i == 0) all = std::move(rings);
-        else all.append(rings);
-    }
-    return all;
+    return sweepEachEntry<TubeRings>(tubes, tracts, sweepTubeRings);
 }
 
 TubeVertices sceneTubeVertices(const std::vector<SceneTubes>& tubes, bool lines, const std::vector<Tractogram>& tracts) {

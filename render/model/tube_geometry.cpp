@@ -156,6 +156,22 @@ void validate(const TubeSettings& s) {
     if (!(s.stepMm > 0) || !std::isfinite(s.stepMm)) throw InputError("<tubes>", "step_mm", "a positive resampling step", std::to_string(s.stepMm));
 }
 
+// Each streamline's swept curve with at least two points (one point has no direction: nothing to sweep), with
+// its index; counts the streamlines, the duplicate points removed and the streamlines skipped in `local`.
+template <class Visit>
+void forEachSweptCurve(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats& local, Progress* progress, Visit visit) {
+    for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
+        ++local.streamlines;
+        if (progress && s % 1024 == 1023) progress->advance(1024.0);   // the clock read per call is not free
+        SweptCurve curve = sweepCurve(tracts, s, settings, &local.duplicatePointsRemoved);
+        if (curve.points.size() < 2) {
+            ++local.skippedSinglePoint;
+            continue;
+        }
+        visit(s, curve);
+    }
+}
+
 }  // namespace
 
 TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings, TubeBuildStats* stats, Progress* progress) {
@@ -163,15 +179,8 @@ TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings,
     Colorer color(tracts, settings);
     TubeRings out;
     TubeBuildStats local;
-    for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
-        ++local.streamlines;
-        if (progress && s % 1024 == 1023) progress->advance(1024.0);   // the clock read per call is not free
-        SweptCurve curve = sweepCurve(tracts, s, settings, &local.duplicatePointsRemoved);
+    forEachSweptCurve(tracts, settings, local, progress, [&](std::size_t s, const SweptCurve& curve) {
         std::size_t n = curve.points.size();
-        if (n < 2) {
-            ++local.skippedSinglePoint;  // one point has no direction: nothing to sweep
-            continue;
-        }
         TubeStreamline line;
         line.firstRing = static_cast<std::uint32_t>(out.rings.size());
         line.ringCount = static_cast<std::uint32_t>(n);
@@ -190,7 +199,7 @@ TubeRings sweepTubeRings(const Tractogram& tracts, const TubeSettings& settings,
             throw InputError(tracts.source, "tubes", "at most 2^32 tube vertices and indices (fewer sides, a longer step_mm, fewer streamlines)",
                              std::to_string(out.vertexCount) + " vertices");
         out.streamlines.push_back(line);
-    }
+    });
     if (stats) *stats = local;
     return out;
 }
@@ -201,15 +210,8 @@ TubeImpostors sweepTubeImpostors(const Tractogram& tracts, const TubeSettings& s
     TubeImpostors out;
     TubeBuildStats local;
     glm::dvec3 lo(1e300), hi(-1e300);
-    for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
-        ++local.streamlines;
-        if (progress && s % 1024 == 1023) progress->advance(1024.0);   // the clock read per call is not free
-        SweptCurve curve = sweepCurve(tracts, s, settings, &local.duplicatePointsRemoved);
+    forEachSweptCurve(tracts, settings, local, progress, [&](std::size_t s, const SweptCurve& curve) {
         std::size_t n = curve.points.size();
-        if (n < 2) {
-            ++local.skippedSinglePoint;
-            continue;
-        }
         for (std::size_t i = 0; i < n; ++i) {
             std::uint32_t flags = (i + 1 < n ? kImpostorSegmentStarts : 0u) | (i > 0 ? kImpostorSegmentEnds : 0u);
             out.points.push_back({glm::vec3(curve.points[i]), packImpostorColor(color(s, curve.tangents[i], double(i) / double(n - 1)), flags)});
@@ -217,7 +219,7 @@ TubeImpostors sweepTubeImpostors(const Tractogram& tracts, const TubeSettings& s
         }
         local.rings += n;
         ++out.streamlines;
-    }
+    });
     if (!out.points.empty()) {
         out.bundles.push_back({0, out.points.size(), settings.radiusMm, settings.caps});
         out.boundsMin = lo - settings.radiusMm, out.boundsMax = hi + settings.radiusMm;
@@ -305,14 +307,8 @@ TubeVertices buildIlluminatedLines(const Tractogram& tracts, const TubeSettings&
     TubeVertices v;
     v.lines = true;
     TubeBuildStats local;
-    for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) {
-        ++local.streamlines;
-        SweptCurve curve = sweepCurve(tracts, s, settings, &local.duplicatePointsRemoved);
+    forEachSweptCurve(tracts, settings, local, nullptr, [&](std::size_t s, const SweptCurve& curve) {
         std::size_t n = curve.points.size();
-        if (n < 2) {
-            ++local.skippedSinglePoint;
-            continue;
-        }
         std::uint32_t first = static_cast<std::uint32_t>(v.positions.size());
         for (std::size_t i = 0; i < n; ++i) {
             v.positions.emplace_back(glm::vec3(curve.points[i]));
@@ -321,7 +317,7 @@ TubeVertices buildIlluminatedLines(const Tractogram& tracts, const TubeSettings&
         }
         for (std::size_t i = 0; i + 1 < n; ++i) v.indices.insert(v.indices.end(), {first + static_cast<std::uint32_t>(i), first + static_cast<std::uint32_t>(i + 1)});
         local.rings += n;
-    }
+    });
     if (stats) *stats = local;
     return v;
 }
