@@ -111,6 +111,7 @@ TubeSet::TubeSet(TubeBuffers buffers) : buffers_(std::move(buffers)), lines_(buf
     }
     glVertexArrayElementBuffer(va, buffers_.indices.name());
     program_ = gl::Program::graphics("tube_gbuffer.vert", "tube_gbuffer.frag");
+    unclippedProgram_ = gl::Program::graphics("tube_gbuffer.vert", "tube_gbuffer.frag", {{"NO_CLIP_MESHES", "1"}});
 }
 
 TubeSet::TubeSet(const TubeImpostors& impostors, std::size_t windowPoints)
@@ -134,8 +135,6 @@ TubeSet::TubeSet(const TubeImpostors& impostors, std::size_t windowPoints)
     glVertexArrayElementBuffer(vertexArray_.name(), quadIndices_.name());
     buffers_.boundsMin = impostors.boundsMin, buffers_.boundsMax = impostors.boundsMax;
     program_ = gl::Program::graphics("tube_impostor.vert", "tube_impostor.frag");
-    // llvmpipe runs a branch under a lane mask, so a clip test behind a false uniform still costs its texture
-    // reads at each of the fragment's five crossings: without a mesh that clips tubes, a variant without it.
     unclippedProgram_ = gl::Program::graphics("tube_impostor.vert", "tube_impostor.frag", {{"NO_CLIP_MESHES", "1"}});
 }
 
@@ -190,13 +189,24 @@ void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
+// llvmpipe runs a branch under a lane mask, so a clip test behind a false uniform still costs its texture reads
+// at every fragment (each of an impostor's five crossings): without a mesh that clips tubes, the variant without it.
+gl::Program& TubeSet::programFor(const clip::ClipMeshSet& clip) {
+    for (int i = 0; i < clip.count(); ++i)
+        if (clip.clipsTubes(i)) {
+            clip.apply(program_);
+            return program_;
+        }
+    return unclippedProgram_;
+}
+
 void TubeSet::drawElements(const FrameDescription& frame, const clip::ClipMeshSet& clip, std::size_t first, std::size_t count) {
-    program_.set("viewProjection", glm::mat4(frame.camera.viewProjection(frame.size)));
-    program_.set("eyeWorld", glm::vec3(frame.camera.position()));
-    program_.set("viewForward", glm::vec3(frame.camera.forward()));
-    program_.set("surfaceKind", lines_ ? binding::surfaceLine : binding::surfaceTube);
-    clip.apply(program_);
-    program_.use();
+    gl::Program& program = programFor(clip);
+    program.set("viewProjection", glm::mat4(frame.camera.viewProjection(frame.size)));
+    program.set("eyeWorld", glm::vec3(frame.camera.position()));
+    program.set("viewForward", glm::vec3(frame.camera.forward()));
+    program.set("surfaceKind", lines_ ? binding::surfaceLine : binding::surfaceTube);
+    program.use();
     glBindVertexArray(vertexArray_.name());
     const std::size_t indicesPer = lines_ ? 2 : 3;
     glDrawElements(lines_ ? GL_LINES : GL_TRIANGLES, static_cast<GLsizei>(count * indicesPer), GL_UNSIGNED_INT,
@@ -204,13 +214,10 @@ void TubeSet::drawElements(const FrameDescription& frame, const clip::ClipMeshSe
 }
 
 void TubeSet::drawImpostors(const FrameDescription& frame, const clip::ClipMeshSet& clip, std::size_t first, std::size_t count) {
-    bool clipping = false;
-    for (int i = 0; i < clip.count(); ++i) clipping = clipping || clip.clipsTubes(i);
-    gl::Program& program = clipping ? program_ : unclippedProgram_;
+    gl::Program& program = programFor(clip);
     program.set("viewProjection", glm::mat4(frame.camera.viewProjection(frame.size)));
     program.set("eyeWorld", glm::vec3(frame.camera.position()));
     program.set("viewForward", glm::vec3(frame.camera.forward()));
-    if (clipping) clip.apply(program);
     // A buffer texture is limited to GL_MAX_TEXTURE_BUFFER_SIZE texels and its range must start at a multiple of
     // GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT bytes: larger sets are drawn in windows, each bound from the aligned
     // offset at or below its first point (the shader is told how many points into the range that is).

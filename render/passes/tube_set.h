@@ -76,6 +76,7 @@ public:
     void drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target, std::size_t first, std::size_t count);
 
 private:
+    gl::Program& programFor(const clip::ClipMeshSet& clip);   // the clip-testing program only when a mesh clips tubes
     void drawElements(const FrameDescription& frame, const clip::ClipMeshSet& clip, std::size_t first, std::size_t count);
     void drawImpostors(const FrameDescription& frame, const clip::ClipMeshSet& clip, std::size_t first, std::size_t count);
 
@@ -87,7 +88,7 @@ private:
     std::size_t pointCount_ = 0, impostorBytes_ = 0, windowPoints_ = 0;
     gl::VertexArray vertexArray_;
     gl::Program program_;
-    gl::Program unclippedProgram_;   // impostors when no mesh clips tubes (NO_CLIP_MESHES)
+    gl::Program unclippedProgram_;   // when no mesh clips tubes (NO_CLIP_MESHES)
     bool lines_ = false;
 };
 
