@@ -84,7 +84,11 @@ NiftiUint64Reader::NiftiUint64Reader(std::span<const std::uint8_t> bytes, std::s
 
 NiftiUint64Reader::~NiftiUint64Reader() = default;
 
-void NiftiUint64Reader::readExactly(std::span<std::uint8_t> out, std::uint64_t claimed) {
+void NiftiUint64Reader::voxelsMissing(const std::string& found) const {
+    throw InputError(source_, "vox_offset", "352 or more, with " + std::to_string(voxelBytes_) + " bytes of voxels after it", found);
+}
+
+void NiftiUint64Reader::readExactly(std::span<std::uint8_t> out) {
     std::size_t got = 0;
     if (inflater_) got = inflater_->read(out);
     else {
@@ -93,7 +97,7 @@ void NiftiUint64Reader::readExactly(std::span<std::uint8_t> out, std::uint64_t c
         cursor_ += got;
     }
     if (got < out.size())
-        throw InputError(source_, "vox_offset", "352 or more, with " + std::to_string(claimed) + " bytes of voxels after it", "a file that ends before them");
+        voxelsMissing("a file that ends before them");
 }
 
 void NiftiUint64Reader::open(std::span<const std::uint8_t> stored) {
@@ -133,15 +137,13 @@ void NiftiUint64Reader::open(std::span<const std::uint8_t> stored) {
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) indexToWorld_[c][r] = load<float>(h, 280 + 16 * static_cast<std::size_t>(r) + 4 * static_cast<std::size_t>(c), swap_);
     float offset = load<float>(h, 108, swap_);
-    const std::uint64_t count = static_cast<std::uint64_t>(dims_.x) * static_cast<std::uint64_t>(dims_.y) * static_cast<std::uint64_t>(dims_.z) *
-                                static_cast<std::uint64_t>(words_);
-    const std::string expected = "352 or more, with " + std::to_string(count * 8) + " bytes of voxels after it";
-    if (!(offset >= static_cast<float>(kNiftiVoxOffset)) || offset != std::floor(offset) || static_cast<double>(offset) + 8.0 * double(count) > double(available))
-        throw InputError(source_, "vox_offset", expected,
-                         std::to_string(offset) + " in a file of " + std::to_string(stored.size()) + (gz ? " compressed" : "") + " bytes");
+    voxelBytes_ = 8 * static_cast<std::uint64_t>(dims_.x) * static_cast<std::uint64_t>(dims_.y) * static_cast<std::uint64_t>(dims_.z) *
+                  static_cast<std::uint64_t>(words_);
+    if (!(offset >= static_cast<float>(kNiftiVoxOffset)) || offset != std::floor(offset) || static_cast<double>(offset) + double(voxelBytes_) > double(available))
+        voxelsMissing(std::to_string(offset) + " in a file of " + std::to_string(stored.size()) + (gz ? " compressed" : "") + " bytes");
     // Extensions between the header and the voxels are skipped.
     std::vector<std::uint8_t> skipped(static_cast<std::size_t>(offset) - kNiftiVoxOffset);
-    readExactly(skipped, count * 8);
+    readExactly(skipped);
     buffer_.resize(std::min<std::size_t>(std::size_t(1) << 16, 8 * static_cast<std::size_t>(dims_.x) * static_cast<std::size_t>(dims_.y)));
 }
 
@@ -149,13 +151,12 @@ bool NiftiUint64Reader::next(int& word, int& z, std::span<std::uint64_t> out) {
     if (nextWord_ >= words_) return false;
     const std::size_t planeWords = static_cast<std::size_t>(dims_.x) * static_cast<std::size_t>(dims_.y);
     if (out.size() != planeWords) throw SystemError("NiftiUint64Reader::next: a plane of " + std::to_string(planeWords) + " values");
-    const std::uint64_t claimed = 8 * static_cast<std::uint64_t>(planeWords) * static_cast<std::uint64_t>(dims_.z) * static_cast<std::uint64_t>(words_);
     // In parts of the buffer, so a plane's bytes are never held twice. The voxels are in the header's byte order.
     const std::size_t perPart = buffer_.size() / 8;
     for (std::size_t first = 0; first < planeWords; first += perPart) {
         const std::size_t n = std::min(perPart, planeWords - first);
         std::span<std::uint8_t> part(buffer_.data(), 8 * n);
-        readExactly(part, claimed);
+        readExactly(part);
         for (std::size_t i = 0; i < n; ++i) out[first + i] = load<std::uint64_t>(part, 8 * i, swap_);
     }
     word = nextWord_;

@@ -53,7 +53,8 @@ public:
 
 private:
     void open(std::span<const std::uint8_t> stored);
-    void readExactly(std::span<std::uint8_t> out, std::uint64_t claimed);
+    void readExactly(std::span<std::uint8_t> out);
+    [[noreturn]] void voxelsMissing(const std::string& found) const;
     std::string source_;
     std::vector<std::uint8_t> stored_;   // the file as read from disk (compressed or not)
     std::span<const std::uint8_t> plain_;   // an uncompressed file: its bytes
@@ -62,6 +63,7 @@ private:
     glm::ivec3 dims_{0};
     glm::dmat4 indexToWorld_{1.0};
     int words_ = 1;
+    std::uint64_t voxelBytes_ = 0;   // what the header claims after vox_offset
     bool swap_ = false;
     int nextWord_ = 0, nextZ_ = 0;
     std::vector<std::uint8_t> buffer_;
