@@ -11,7 +11,7 @@
 namespace curette {
 
 Renderer::Renderer(gl::Context& context, const VolumeData& volume, const TransferFunction& tf)
-    : context_(context), volume_(context.info(), volume),
+    : context_(context), volume_(context.info(), volume), valueHistogram_(ValueHistogram::of(volume)),
       clip_(clip::ClipMapSettings{0.5 * volume_.geometry().minSpacing(), 64, 1024}) {
     timers_.setSynchronous(context.info().softwareRenderer);
     clip_.setDilationRadiusMm(AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()));
@@ -44,7 +44,14 @@ void Renderer::setTransferFunction(const TransferFunction& tf) {
     tf_->attachLabels(labels_.get());
     tf_->attachRemoval(removalTexture_.get());
     ++versions_.transferFunction;  // V_PAO and V_AO depend on the TF (the reference implementation's bug 4)
+    medianExtinctionPerMm_ = medianVisibleExtinctionPerMm(valueHistogram_, tf);
     updateOccupancy();
+}
+
+PhongShading Renderer::phongShading(const FrameDescription& frame) const {
+    if (phongShadingOverride_) return *phongShadingOverride_;
+    glm::dvec3 sides = glm::dvec3(volume_.geometry().dims) * volume_.geometry().spacing();
+    return phongShadingPlacement(medianExtinctionPerMm_, frame.raycast.earlyTerminationAlpha, (sides.x + sides.y + sides.z) / 3.0);
 }
 
 void Renderer::setLabels(std::unique_ptr<LabelOverlay> labels) {

@@ -14,6 +14,7 @@
 #include "render/model/gpu_resources.h"
 #include "render/gpu_volume.h"
 #include "render/model/image.h"
+#include "render/model/phong_shading_placement.h"
 #include "render/passes/ismos_pass.h"
 #include "render/recast_region.h"
 #include "render/shader_pieces.h"
@@ -168,6 +169,10 @@ public:
     glm::dvec2 rayStepsByDispatchHalf() const;
     // The ray caster's tile order (render/shader_pieces.h TileOrderPiece): rows per band, 1 = scanline order.
     void setTileRowsPerBand(int rows) { tileRowsPerBand_ = rows; }
+    // Where the ray cast shades phong's visible samples (render/model/phong_shading_placement.h): chosen from
+    // the TF and the volume's values unless set here (for `bench` and tests; the image is the same either way).
+    void setPhongShading(std::optional<PhongShading> placement) { phongShadingOverride_ = placement; }
+    PhongShading phongShading(const FrameDescription& frame) const;
     // Whether an exact frame after rigid motions of clip meshes alone casts only the pixels they can change and
     // keeps the others of the last exact image (render/recast_region.h; on by default, the image is the same bit
     // for bit); off casts every pixel (for `bench` and tests).
@@ -249,7 +254,10 @@ private:
 
     gl::Context& context_;
     GpuVolume volume_;
+    ValueHistogram valueHistogram_;            // of the volume's values, for phongShading()
     std::unique_ptr<TransferFunctionTexture> tf_;
+    double medianExtinctionPerMm_ = 0;         // the TF's over the histogram's visible voxels
+    std::optional<PhongShading> phongShadingOverride_;
     std::unique_ptr<LabelOverlay> labels_;
     std::shared_ptr<const plan::RemovalVolume> removal_;
     std::unique_ptr<RemovalTexture> removalTexture_;   // made at the first frame with a non-empty removal

@@ -399,6 +399,7 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
     if (tubes) defines.emplace_back("ISMOS_TUBES", "1");
     if (rayCastTubes) TubeSurfacePiece::addDefines(defines);
     if (countSamples_) defines.emplace_back("COUNT_SAMPLES", "1");
+    if (phongShading(frame) == PhongShading::InLoop) defines.emplace_back("PHONG_SHADED_IN_LOOP", "1");
     tf_->addDefines(defines);
     NoDataPiece{volume_}.addDefines(defines);
     VolumeLayoutPiece{volume_.layout()}.addDefines(defines);

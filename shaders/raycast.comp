@@ -57,8 +57,10 @@ bool intersectBox(vec3 origin, vec3 direction, vec3 lo, vec3 hi, out float tNear
 }
 
 // Phong's six gradient fetches are taken between rounds of the sample loop, for the visible samples only
-// (see castRay). Solid and lao/cao shading cost less than the rounds do, so they shade in the loop.
-#if SHADING == SHADING_PHONG && !defined(GRADIENT_OPACITY)
+// (see castRay), unless the renderer found most of a ray's steps visible (PHONG_SHADED_IN_LOOP:
+// render/model/phong_shading_placement.h). Solid and lao/cao shading cost less than the rounds do, so they
+// shade in the loop.
+#if SHADING == SHADING_PHONG && !defined(GRADIENT_OPACITY) && !defined(PHONG_SHADED_IN_LOOP)
 #define SHADE_BETWEEN_ROUNDS
 #endif
 // Without either reason for rounds the loop runs in one (the loop around it cost the solid head 10 %).

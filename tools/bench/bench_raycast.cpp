@@ -35,7 +35,7 @@ int benchRaycast(const CommandLine& cl) {
                 size.y, frames, context->info().renderer.c_str());
 
     Table table("Ray casting (step " + std::to_string(renderer.resolveStepMm(base.raycast)) + " mm)",
-                       {"shading", "empty space", "tile order", "ms/frame (median)", "ms/frame (min)", "GPU ms (median)",
+                       {"shading", "phong shades", "empty space", "tile order", "ms/frame (median)", "ms/frame (min)", "GPU ms (median)",
                         "Msamples/frame", "Mray steps/frame", "2-thread balance", "Msamples/s", "Mtexel fetches/s",
                         "max error vs CPU", "rms error vs CPU"});
     // Empty space: jumps by the distance map (the default), one empty brick per step (as before the distance
@@ -43,18 +43,28 @@ int benchRaycast(const CommandLine& cl) {
     // (the default) or scanline, how llvmpipe's worker threads share the frame (shaders/tile_order.glsl).
     // 2-thread balance: the ray steps of the busier half of the dispatch over the mean of both halves (two
     // threads each take one half; 1 = balanced; the frame takes about this factor longer than balanced).
-    struct Configuration { const char* emptySpace; bool skip; int jumpLimit; const char* order; int rowsPerBand; };
-    const Configuration kConfigurations[] = {{"distance map", true, 255, "bands", TileOrderPiece::defaultRowsPerBand()},
-                                             {"distance map", true, 255, "scanline", 1},
-                                             {"one brick", true, 1, "bands", TileOrderPiece::defaultRowsPerBand()},
-                                             {"off", false, 1, "bands", TileOrderPiece::defaultRowsPerBand()}};
+    // Phong shades its visible samples where the renderer chooses (render/model/phong_shading_placement.h), and
+    // once more in the other place, which takes the same samples and gives the same image.
+    struct Configuration { const char* emptySpace; bool skip; int jumpLimit; const char* order; int rowsPerBand; bool otherPhongPlace; };
+    const Configuration kConfigurations[] = {{"distance map", true, 255, "bands", TileOrderPiece::defaultRowsPerBand(), false},
+                                             {"distance map", true, 255, "scanline", 1, false},
+                                             {"one brick", true, 1, "bands", TileOrderPiece::defaultRowsPerBand(), false},
+                                             {"off", false, 1, "bands", TileOrderPiece::defaultRowsPerBand(), false},
+                                             {"distance map", true, 255, "bands", TileOrderPiece::defaultRowsPerBand(), true}};
     for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong}) {
         for (const Configuration& configuration : kConfigurations) {
+            if (configuration.otherPhongPlace && mode != ShadingMode::Phong) continue;
             FrameDescription frame = base;
             frame.shading = mode;
             frame.raycast.skipEmptySpace = configuration.skip;
             renderer.setEmptySpaceJumpLimit(configuration.jumpLimit);
             renderer.setTileRowsPerBand(configuration.rowsPerBand);
+            renderer.setPhongShading(std::nullopt);
+            const PhongShading chosen = renderer.phongShading(frame);
+            if (configuration.otherPhongPlace)
+                renderer.setPhongShading(chosen == PhongShading::InLoop ? PhongShading::BetweenRounds : PhongShading::InLoop);
+            std::string phongShades = mode != ShadingMode::Phong ? "-"
+                                      : std::string(phongShadingName(renderer.phongShading(frame))) + (configuration.otherPhongPlace ? "" : " (chosen)");
             auto frameAt = [&](int i) {
                 FrameDescription f = frame;
                 f.camera.azimuthDeg = base.camera.azimuthDeg + 360.0 * i / frames;
@@ -112,7 +122,7 @@ int benchRaycast(const CommandLine& cl) {
                 }
             }
             double rms = sampled ? std::sqrt(sumSquares / (4.0 * sampled)) : 0.0;
-            table.add({shadingModeName(mode), configuration.emptySpace, configuration.order, ms,
+            table.add({shadingModeName(mode), phongShades, configuration.emptySpace, configuration.order, ms,
                        *std::min_element(wall.begin(), wall.end()), median(gpu), samples * 1e-6, steps * 1e-6, balance,
                        samples / ms * 1e-3, samples * fetchesPerSample / ms * 1e-3,
                        referencePixels ? nlohmann::json(maxError) : nlohmann::json(),
