@@ -257,7 +257,9 @@ TEST(ExactInSlices, TheRayCastInPartsOfBandsEqualsRender) {
                 onRayCast += sliced.renderer->exactProgressLabel() == rayCast;
             }
             const int bands = (72 / 8 + TileOrderPiece::defaultRowsPerBand() - 1) / TileOrderPiece::defaultRowsPerBand();
-            if (step == 1) EXPECT_GT(onRayCast, bands) << "the ray cast went in whole bands";
+            if (step == 1) {
+                EXPECT_GT(onRayCast, bands) << "the ray cast went in whole bands";
+            }
             EXPECT_TRUE(sameImage(sliced.renderer->readImage(), whole.renderer->readImage())) << "the ray cast in parts differs from render()";
         }
     }

@@ -211,9 +211,9 @@ TEST(PanelSessions, UndoAndRedoOfStrokesAndEditsReplay) {
     auto session = dir / "undo.jsonl";
     Script script;
     script.frames = 12;
-    script.edits = [](int f, const InteractionState& state, const Scene& scene) {
+    script.edits = [](int f, const InteractionState& state, const Scene& loadedScene) {
         if (f != 3) return std::vector<SettingEdit>{};
-        nlohmann::json tf = state.keyJson(scene, "transfer_function");
+        nlohmann::json tf = state.keyJson(loadedScene, "transfer_function");
         tf["opacity"][2] = {110, 0.45};
         return std::vector<SettingEdit>{{Setting::TransferFunction, -1, tf}};
     };

@@ -177,9 +177,9 @@ int benchDos(const CommandLine& cl) {
             f.raycast.jitterSeed = jitter;
             Result r = measure(f, false);
             renderer.render(f);
-            Image image = renderer.readImage();
+            Image rendered = renderer.readImage();
             rings.add({jitter ? "jittered (seed " + std::to_string(jitter) + ")" : std::string("on the planes"), d0, r.ms,
-                       boxFilteredRmsDifference(image, expected, 2), boxFilteredRmsDifference(image, expected, 0)});
+                       boxFilteredRmsDifference(rendered, expected, 2), boxFilteredRmsDifference(rendered, expected, 0)});
         }
     }
     rings.print();
