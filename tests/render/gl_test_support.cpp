@@ -39,6 +39,21 @@ VolumeData makeVolume(glm::ivec3 dims, const glm::dmat4& indexToWorld, ScalarTyp
     return buildVolume("<synthetic>", dims, type, bytes.data(), false, 1.0, 0.0, indexToWorld);
 }
 
+FrameDescription frameLookingAt(glm::dvec3 target, double distanceMm, double azimuthDeg, double elevationDeg, glm::ivec2 size,
+                                ShadingMode shading) {
+    FrameDescription f;
+    f.camera.target = target;
+    f.camera.distanceMm = distanceMm;
+    f.camera.azimuthDeg = azimuthDeg;
+    f.camera.elevationDeg = elevationDeg;
+    f.camera.fovYDeg = 30;
+    f.camera.nearMm = 1;
+    f.camera.farMm = 1000;
+    f.size = size;
+    f.shading = shading;
+    return f;
+}
+
 glm::dmat4 centredAffine(glm::ivec3 dims, glm::dvec3 spacing) {
     glm::dmat4 m(1.0);
     for (int a = 0; a < 3; ++a) m[a][a] = spacing[a];

@@ -5,6 +5,7 @@
 #include "gl/context.h"
 #include "base/transfer_function.h"
 #include "base/volume.h"
+#include "render/model/frame.h"
 #include "render/model/image.h"
 #include "render/model/tube_vertices.h"
 
@@ -22,6 +23,10 @@ gl::Context& glContext();
 // rounded and clamped to 0..255; Float32 exact).
 VolumeData makeVolume(glm::ivec3 dims, const glm::dmat4& indexToWorld, ScalarType type,
                       const std::function<double(glm::dvec3)>& f);
+
+// A frame of the orbit camera around `target` (fov 30 degrees, near 1 mm, far 1000 mm unless changed after).
+FrameDescription frameLookingAt(glm::dvec3 target, double distanceMm, double azimuthDeg, double elevationDeg, glm::ivec2 size,
+                                ShadingMode shading);
 
 // An axis-aligned volume of `dims` 1 mm voxels centred on the world origin.
 glm::dmat4 centredAffine(glm::ivec3 dims, glm::dvec3 spacing = glm::dvec3(1.0));

@@ -19,16 +19,9 @@ namespace {
 using test::glContext;
 
 FrameDescription frameAt(double distance, double azimuth, double elevation, glm::ivec2 size) {
-    FrameDescription f;
-    f.camera.target = glm::dvec3(0.0);
-    f.camera.distanceMm = distance;
-    f.camera.azimuthDeg = azimuth;
-    f.camera.elevationDeg = elevation;
+    FrameDescription f = test::frameLookingAt(glm::dvec3(0.0), distance, azimuth, elevation, size, ShadingMode::Ismos);
     f.camera.fovYDeg = 20;
-    f.camera.nearMm = 1;
     f.camera.farMm = 5000;
-    f.size = size;
-    f.shading = ShadingMode::Ismos;
     return f;
 }
 

@@ -44,16 +44,7 @@ struct LabelScene {
 };
 
 FrameDescription frame(ShadingMode mode) {
-    FrameDescription f;
-    f.camera.target = glm::dvec3(0.0);
-    f.camera.distanceMm = 100;
-    f.camera.azimuthDeg = 25;
-    f.camera.elevationDeg = 15;
-    f.camera.fovYDeg = 30;
-    f.camera.nearMm = 1;
-    f.camera.farMm = 1000;
-    f.size = glm::ivec2(64, 64);
-    f.shading = mode;
+    FrameDescription f = test::frameLookingAt(glm::dvec3(0.0), 100, 25, 15, {64, 64}, mode);
     f.raycast.stepMm = 0.5;
     return f;
 }

@@ -58,16 +58,7 @@ TEST(PhongShadingPlacement, RoundsWhereARayEndsShortlyIntoTissueTheLoopWhereItCr
 }
 
 FrameDescription phongFrame(bool cutFaces) {
-    FrameDescription f;
-    f.camera.target = glm::dvec3(1, -2, 0);
-    f.camera.distanceMm = 110;
-    f.camera.azimuthDeg = 65;
-    f.camera.elevationDeg = 35;
-    f.camera.fovYDeg = 30;
-    f.camera.nearMm = 1;
-    f.camera.farMm = 1000;
-    f.size = {80, 72};
-    f.shading = ShadingMode::Phong;
+    FrameDescription f = test::frameLookingAt(glm::dvec3(1, -2, 0), 110, 65, 35, {80, 72}, ShadingMode::Phong);
     f.raycast.jitterSeed = 5;
     f.raycast.cutFace.enabled = cutFaces;
     return f;

@@ -22,20 +22,7 @@ namespace {
 
 using test::glContext;
 
-FrameDescription frameLookingAt(glm::dvec3 target, double distance, double azimuth, double elevation, glm::ivec2 size,
-                                ShadingMode shading) {
-    FrameDescription f;
-    f.camera.target = target;
-    f.camera.distanceMm = distance;
-    f.camera.azimuthDeg = azimuth;
-    f.camera.elevationDeg = elevation;
-    f.camera.fovYDeg = 30;
-    f.camera.nearMm = 1;
-    f.camera.farMm = 1000;
-    f.size = size;
-    f.shading = shading;
-    return f;
-}
+using test::frameLookingAt;
 
 // The blobby field of the GL tests (gl_test_support.h).
 double blobs(glm::dvec3 p) { return test::blobField(p); }
