@@ -1,5 +1,7 @@
 #include "tests/render/gl_test_support.h"
 
+#include "render/renderer.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -59,6 +61,21 @@ glm::dmat4 centredAffine(glm::ivec3 dims, glm::dvec3 spacing) {
     for (int a = 0; a < 3; ++a) m[a][a] = spacing[a];
     m[3] = glm::dvec4(-0.5 * glm::dvec3(dims - 1) * spacing, 1.0);
     return m;
+}
+
+LaoSettings lightLao(int samples) {
+    LaoSettings lao;
+    parseLaoPattern("14", lao.directions);
+    lao.samples = samples;
+    lao.stepMm = 1.0;
+    lao.antiAliasingSamples = 16;
+    return lao;
+}
+
+AmbientAndImage renderAmbientAndImage(Renderer& renderer, const FrameDescription& frame) {
+    renderer.render(frame);
+    const AmbientOcclusion* ao = usesAmbientOcclusion(frame.shading) ? renderer.ambientOcclusion() : nullptr;
+    return {ao ? ao->readAmbient() : std::vector<std::uint16_t>{}, renderer.readImage()};
 }
 
 TransferFunction rampTransferFunction(double lo, double hi, double alpha) {

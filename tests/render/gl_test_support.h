@@ -7,12 +7,17 @@
 #include "base/volume.h"
 #include "render/model/frame.h"
 #include "render/model/image.h"
+#include "render/model/lao_settings.h"
 #include "render/model/tube_vertices.h"
 
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
+
+namespace curette {
+class Renderer;
+}
 
 namespace curette::test {
 
@@ -33,6 +38,16 @@ glm::dmat4 centredAffine(glm::ivec3 dims, glm::dvec3 spacing = glm::dvec3(1.0));
 
 // A smooth field of four Gaussian blobs in a 40 mm box around the origin, values 0..255.
 double blobField(glm::dvec3 p);
+
+// LAO light enough for small test volumes: K = 14 directions, M = `samples` steps of 1 mm, 16 anti-aliasing samples.
+LaoSettings lightLao(int samples);
+
+// A frame's V_AO (empty in a mode without ambient occlusion) and image, rendered whole.
+struct AmbientAndImage {
+    std::vector<std::uint16_t> ambient;
+    Image image;
+};
+AmbientAndImage renderAmbientAndImage(Renderer& renderer, const FrameDescription& frame);
 
 // The CAO contract's check: V_AO and the image of full LAO and of CAO equal bit for bit (gtest expectations
 // naming `what`).

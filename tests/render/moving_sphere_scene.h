@@ -24,12 +24,7 @@ struct MovingSphereScene {
         glm::ivec3 dims(45, 39, 42);
         volume = makeVolume(dims, centredAffine(dims), ScalarType::UInt8, blobField);
         renderer = std::make_unique<Renderer>(glContext(), volume, tf);
-        LaoSettings lao;
-        parseLaoPattern("14", lao.directions);
-        lao.samples = 4;
-        lao.stepMm = 1.0;
-        lao.antiAliasingSamples = 16;
-        renderer->setLaoSettings(lao);
+        renderer->setLaoSettings(lightLao(4));
         renderer->clipMeshes().add(sphere, glm::dvec3(1.0), pose(0), "sphere");
         frame.camera.fit(glm::dvec3(0), 0.9 * glm::length(glm::dvec3(dims)) / 2);
         frame.camera.azimuthDeg = 30;

@@ -25,26 +25,16 @@ struct DrillScene {
     explicit DrillScene(glm::ivec3 dims) {
         volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, test::blobField);
         renderer = std::make_unique<Renderer>(glContext(), volume, test::rampTransferFunction(30, 180, 0.3));
-        LaoSettings lao;
-        parseLaoPattern("14", lao.directions);
-        lao.samples = 4;   // reach 3 mm: most updates visit a box inside the 40^3 volume
-        lao.stepMm = 1.0;
-        lao.antiAliasingSamples = 16;
-        renderer->setLaoSettings(lao);
+        renderer->setLaoSettings(test::lightLao(4));   // reach 3 mm: most updates visit a box inside the 40^3 volume
         frame.camera.fit(glm::dvec3(0), 0.9 * glm::length(glm::dvec3(dims)) / 2);
         frame.camera.azimuthDeg = 30;
         frame.camera.elevationDeg = 20;
         frame.size = {48, 48};
     }
-    struct Result {
-        std::vector<std::uint16_t> ambient;
-        Image image;
-    };
+    using Result = test::AmbientAndImage;
     Result render(ShadingMode mode) {
         frame.shading = mode;
-        renderer->render(frame);
-        const AmbientOcclusion* ao = usesAmbientOcclusion(mode) ? renderer->ambientOcclusion() : nullptr;
-        return {ao ? ao->readAmbient() : std::vector<std::uint16_t>{}, renderer->readImage()};
+        return test::renderAmbientAndImage(*renderer, frame);
     }
 };
 

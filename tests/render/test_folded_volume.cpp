@@ -51,26 +51,16 @@ struct LongScene {
             renderer = std::make_unique<Renderer>(glContext(), volume, test::rampTransferFunction(30, 180, 0.3));
         }
         EXPECT_EQ(renderer->volumeLayout().folded(), folded);
-        LaoSettings lao;
-        parseLaoPattern("14", lao.directions);
-        lao.samples = 5;
-        lao.stepMm = 1.0;
-        lao.antiAliasingSamples = 16;
-        renderer->setLaoSettings(lao);
+        renderer->setLaoSettings(test::lightLao(5));
         frame.camera.fit(glm::dvec3(0), 0.55 * glm::length(glm::dvec3(kDims)) / 2);
         frame.camera.azimuthDeg = azimuth;
         frame.camera.elevationDeg = 15;
         frame.size = {40, 64};
     }
-    struct Result {
-        std::vector<std::uint16_t> ambient;
-        Image image;
-    };
+    using Result = test::AmbientAndImage;
     Result render(ShadingMode mode) {
         frame.shading = mode;
-        renderer->render(frame);
-        const AmbientOcclusion* ao = usesAmbientOcclusion(mode) ? renderer->ambientOcclusion() : nullptr;
-        return {ao ? ao->readAmbient() : std::vector<std::uint16_t>{}, renderer->readImage()};
+        return test::renderAmbientAndImage(*renderer, frame);
     }
 };
 
