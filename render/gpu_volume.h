@@ -18,7 +18,7 @@ namespace curette {
 
 class GpuVolume {
 public:
-    static constexpr int brickSize = 8;
+    static constexpr int brickSize = 4;
 
     // Throws InputError(source, "dim", ...) when no layout fits GL_MAX_3D_TEXTURE_SIZE (VolumeLayout::forLimit).
     GpuVolume(const gl::ContextInfo& info, const VolumeData& data);

@@ -156,7 +156,13 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
     int k, kLast;
     latticeRange(pixel, direction, tNear, tFar, jitter, k, kLast);
     ClipSpan span = ClipSpan(-1e30, 1e30, 0xffffffffu);
+#ifdef CUT_FACES
+    // Where the ray can cross a mesh: its empty-space jumps stay out (below), with or without the box tests.
+    ClipSpan crossings = rayClipSpan(eyeWorld, direction);
+    if (clipDepthBoxTests) span = crossings;
+#else
     if (clipDepthBoxTests) span = rayClipSpan(eyeWorld, direction);
+#endif
 #ifdef CUT_FACES
     // Cut faces (clip_test.glsl, shade_sample.glsl). Lattice sample k stands for the ray within half a
     // step of it (the sum over the lattice is the midpoint rule). Where the ray leaves a clip mesh, the
@@ -224,13 +230,20 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
 #endif
 #endif
 #ifdef CUT_FACES
-            // Inside a mesh the ray walks every lattice sample, so it finds the one past the crossing.
-            if (skipEmptySpace && meshBehind < 0 && !face) {
+            // Within the span of the meshes' depth boxes the ray walks every lattice sample, and a jump stops
+            // before it: a crossing in empty space is found as without skipping (the cut-face rules light the
+            // tissue behind it), so skipping cannot change the image.
+            if (skipEmptySpace && !insideSpan(crossings, t)) {
+                if (skipEmptyBricks(tex, originTex, directionTex, jitter, k)) {
+                    if (t < crossings.near) k = min(k, int(ceil(crossings.near / stepMm - jitter)) - 1);
+                    continue;
+                }
+            }
 #else
             if (skipEmptySpace) {
-#endif
                 if (skipEmptyBricks(tex, originTex, directionTex, jitter, k)) continue;
             }
+#endif
             // Step VI's shadow-test clipping: a sample inside any clip mesh is not there.
 #ifdef CUT_FACES
             int holding = -1;

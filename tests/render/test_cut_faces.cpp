@@ -244,28 +244,43 @@ TEST(CutFaces, PhongLightsTheFaceWithTheClipSurfacesNormal) {
 // sphere's own normal at the exact exit is the oracle. Newton steps on a bilinear reading of the maps placed
 // the face wrongly near that silhouette, and the face's normal there came from the wrong layer or from the
 // ray: a line of bright specular dots along the equator.
+// A block of noisy tissue (z <= 10 mm) with a sphere of 12 mm around (0, 0, 4) carved into its top: the sphere
+// stands 6 mm out of the tissue into the air above. Seen from above at 45 degrees.
+struct SphereCavity {
+    static constexpr double radius = 12.0;
+    const glm::dvec3 centre{0, 0, 4};
+    const double tissueTop;
+    TransferFunction tf;
+    VolumeData volume;
+    Renderer renderer;
+    FrameDescription frame;
+    explicit SphereCavity(double spacingMm = 1.0, double top = 10.0, TransferFunction transferFunction = flatTissue(0.97))
+        : tissueTop(top), tf(std::move(transferFunction)),
+          volume(test::makeVolume(glm::ivec3(48), test::centredAffine(glm::ivec3(48), glm::dvec3(spacingMm)), ScalarType::UInt8,
+                                  [random = std::make_shared<std::mt19937>(4), top](glm::dvec3 p) {
+                                      std::uniform_int_distribution<int> jitter(-10, 10);
+                                      return p.z <= top ? 200.0 + jitter(*random) : 0.0;
+                                  })),
+          renderer(glContext(), volume, tf), frame(lookingDown(ShadingMode::Phong, true)) {
+        renderer.clipMeshes().add(std::make_shared<const clip::TriangleMesh>(clip::makeSphere(radius, 5)), glm::dvec3(1.0),
+                                  clip::RigidPose{centre, glm::dquat(1, 0, 0, 0)}, "sphere");
+        renderer.clipMeshes().update();
+        frame.camera.target = centre;
+        frame.camera.elevationDeg = 45;
+        frame.camera.fovYDeg = 14;
+        frame.size = {96, 96};
+        frame.raycast.cutFace.normalDepthMm = 3.0;
+    }
+};
+
 TEST(CutFaces, PhongLightsASphereFaceUpToItsMapsSilhouette) {
-    const glm::ivec3 dims(48);
-    const glm::dvec3 centre(0, 0, 4);
-    const double radius = 12.0, tissueTop = 10.0;
-    TransferFunction tf = flatTissue(0.97);
-    auto random = std::make_shared<std::mt19937>(4);
-    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8, [&](glm::dvec3 p) {
-        std::uniform_int_distribution<int> jitter(-10, 10);
-        return p.z <= tissueTop ? 200.0 + jitter(*random) : 0.0;
-    });
-    Renderer renderer(glContext(), volume, tf);
-    renderer.clipMeshes().add(std::make_shared<const clip::TriangleMesh>(clip::makeSphere(radius, 5)), glm::dvec3(1.0),
-                              clip::RigidPose{centre, glm::dquat(1, 0, 0, 0)}, "sphere");
-    renderer.clipMeshes().update();
-    FrameDescription frame = lookingDown(ShadingMode::Phong, true);
-    frame.camera.target = centre;
-    frame.camera.elevationDeg = 45;
-    frame.camera.fovYDeg = 14;
-    frame.size = {96, 96};
-    frame.raycast.cutFace.normalDepthMm = 3.0;
-    renderer.render(frame);
-    Image image = renderer.readImage();
+    SphereCavity s;
+    const glm::dvec3 centre = s.centre;
+    const double radius = SphereCavity::radius, tissueTop = s.tissueTop;
+    const TransferFunction& tf = s.tf;
+    const FrameDescription& frame = s.frame;
+    s.renderer.render(frame);
+    Image image = s.renderer.readImage();
     const glm::dvec3 light = worldLightDirection(frame.lights[0], frame.camera);
     const TransferFunction::Material& m = tf.material;
     double sum = 0, worst = 0, sumEquator = 0, worstEquator = 0;
@@ -305,6 +320,38 @@ TEST(CutFaces, PhongLightsASphereFaceUpToItsMapsSilhouette) {
     EXPECT_LT(rms, 0.02) << "RMS colour error over " << pixels << " face pixels (max " << worst << ")";
     EXPECT_LT(rmsEquator, 0.02) << "RMS near the equator over " << equator << " pixels (max " << worstEquator << ")";
     EXPECT_LT(worstEquator, 0.06) << "no specular dots along the maps' silhouette";
+}
+
+// Where the ray leaves the sphere in the air just above the tissue, the tissue behind the face is lit by the
+// face's rules. Empty-space jumps must not pass over such a crossing: skipping changes no pixel, in every mode
+// the faces shade. Here the sphere's part in the air lies in a row of empty bricks of 8 mm (2 mm voxels; the
+// tissue's top, 6 mm, just below the bricks from 8 mm up and their one-voxel apron), which a jump crossed whole:
+// those rays lost their face, and the rim showed the brick grid as steps (the head-cut-face scene: 4305 of
+// its 512 x 512 phong pixels, up to 151 levels apart).
+TEST(CutFaces, EmptySpaceSkippingChangesNothingWhereAFaceLiesInTheAir) {
+    TransferFunction tf = flatTissue(0.97);
+    tf.opacity = {{0, 0.0}, {50, 0.0}, {255, 0.97}};   // the air transparent with the table's margin: its bricks empty
+    SphereCavity s(2.0, 6.0, tf);
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong, ShadingMode::Cao}) {
+        SCOPED_TRACE(shadingModeName(mode));
+        FrameDescription frame = s.frame;
+        frame.shading = mode;
+        frame.camera.elevationDeg = 60;
+        frame.raycast.cutFace.normalDepthMm = 6.0;
+        s.renderer.setCountSamples(true);
+        frame.raycast.skipEmptySpace = false;
+        s.renderer.render(frame);
+        Image walked = s.renderer.readImage();
+        const std::uint64_t walkedSteps = s.renderer.rayStepsLastFrame();
+        frame.raycast.skipEmptySpace = true;
+        s.renderer.render(frame);
+        Image skipped = s.renderer.readImage();
+        EXPECT_LT(2 * s.renderer.rayStepsLastFrame(), walkedSteps) << "the jumps skip the air";
+        s.renderer.setCountSamples(false);
+        int differing = 0;
+        for (std::size_t i = 0; i < walked.pixels.size(); ++i) differing += walked.pixels[i] != skipped.pixels[i];
+        EXPECT_EQ(0, differing) << "pixels that skipping changed";
+    }
 }
 
 
