@@ -9,44 +9,66 @@
 #include <random>
 #include <string>
 #include <unistd.h>
+#include <utility>
 
 namespace curette {
 
 namespace fs = std::filesystem;
 
-void writeFileAtomically(const fs::path& path, std::span<const std::uint8_t> bytes) {
-    fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
+AtomicFileWriter::AtomicFileWriter(fs::path path) : path_(std::move(path)) {
+    fs::path directory = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
     std::random_device entropy;
     // Hidden sibling in the same directory, so the final rename cannot cross file systems.
     std::string temporaryName = ".";
-    temporaryName += path.filename().string();
+    temporaryName += path_.filename().string();
     temporaryName += ".tmp";
     temporaryName += std::to_string(entropy() % 1000000);
-    fs::path temporary = directory / temporaryName;
-    int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd < 0) throw SystemError(path.string() + ": cannot create a file there (" + std::strerror(errno) + ")");
+    temporary_ = directory / temporaryName;
+    fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw SystemError(path_.string() + ": cannot create a file there (" + std::strerror(errno) + ")");
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!temporary_.empty()) ::unlink(temporary_.c_str());
+}
+
+void AtomicFileWriter::fail(const char* what, int error) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+    ::unlink(temporary_.c_str());
+    temporary_.clear();
+    throw SystemError(path_.string() + ": " + what + " failed (" + std::strerror(error) + ")");
+}
+
+void AtomicFileWriter::write(std::span<const std::uint8_t> bytes) {
+    if (fd_ < 0) throw SystemError(path_.string() + ": write after the file was committed or abandoned");
     std::size_t written = 0;
     while (written < bytes.size()) {
-        ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+        ssize_t n = ::write(fd_, bytes.data() + written, bytes.size() - written);
         if (n < 0) {
             if (errno == EINTR) continue;
-            int error = errno;
-            ::close(fd);
-            ::unlink(temporary.c_str());
-            throw SystemError(path.string() + ": write failed (" + std::strerror(error) + ")");
+            fail("write", errno);
         }
         written += static_cast<std::size_t>(n);
     }
-    if (::fsync(fd) != 0 || ::close(fd) != 0) {
-        int error = errno;
-        ::unlink(temporary.c_str());
-        throw SystemError(path.string() + ": flush failed (" + std::strerror(error) + ")");
-    }
-    if (::rename(temporary.c_str(), path.c_str()) != 0) {
-        int error = errno;
-        ::unlink(temporary.c_str());
-        throw SystemError(path.string() + ": rename failed (" + std::strerror(error) + ")");
-    }
+    size_ += bytes.size();
+}
+
+void AtomicFileWriter::commit() {
+    if (fd_ < 0) throw SystemError(path_.string() + ": commit after the file was committed or abandoned");
+    if (::fsync(fd_) != 0) fail("flush", errno);
+    int closed = ::close(fd_);
+    fd_ = -1;
+    if (closed != 0) fail("flush", errno);
+    if (::rename(temporary_.c_str(), path_.c_str()) != 0) fail("rename", errno);
+    temporary_.clear();
+}
+
+void writeFileAtomically(const fs::path& path, std::span<const std::uint8_t> bytes) {
+    AtomicFileWriter file(path);
+    file.write(bytes);
+    file.commit();
 }
 
 void writeFileAtomically(const fs::path& path, std::string_view text) {

@@ -2,6 +2,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "io/tract_writing.h"
 
 #include <algorithm>
 #include <bit>
@@ -40,9 +41,7 @@ std::string headerText(std::size_t count) {
 
 void writeTck(const std::filesystem::path& path, const Tractogram& tracts) {
     const std::string source = path.string();
-    if (tracts.offsets.empty() || tracts.offsets.front() != 0 || tracts.offsets.back() != tracts.points.size() ||
-        !std::is_sorted(tracts.offsets.begin(), tracts.offsets.end()))
-        throw InputError(source, "offsets", "increasing streamline offsets from 0 to the point count " + std::to_string(tracts.points.size()));
+    requireWritableTractogram(source, tracts);
     std::size_t written = 0;
     for (std::size_t s = 0; s < tracts.streamlineCount(); ++s) written += tracts.pointCount(s) > 0;
     const std::string header = headerText(written);
@@ -53,9 +52,6 @@ void writeTck(const std::filesystem::path& path, const Tractogram& tracts) {
         if (tracts.pointCount(s) == 0) continue;
         for (std::uint32_t p = tracts.offsets[s]; p < tracts.offsets[s + 1]; ++p) {
             const glm::vec3& v = tracts.points[p];
-            if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-                throw InputError(source, "points[" + std::to_string(p) + "]", "finite coordinates (NaN and Inf are the delimiters of .tck)",
-                                 "NaN or Inf");
             appendTriplet(bytes, v.x, v.y, v.z);
         }
         appendTriplet(bytes, nan, nan, nan);

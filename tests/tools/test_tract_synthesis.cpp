@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 namespace curette {
 namespace {
@@ -143,13 +144,36 @@ TEST(TractSynthesisCli, SameSeedSameFileDifferentSeedsDiffer) {
     EXPECT_EQ(read.pointCount(3), sources[1].pointCount(0));
 }
 
+TEST(TractSynthesisCli, TheExtensionPicksTheFormatAndEachReadsAsTheTck) {
+    fs::path dir = scratch();
+    io::writeTck(dir / "one.tck", bundles()[0]);
+    std::map<std::string, Tractogram> read;
+    for (const char* extension : {".tck", ".trk", ".trx"}) {
+        fs::path out = dir / (std::string("synth") + extension);
+        Invocation r = runCurette("tracts synth --from " + (dir / "one.tck").string() + " --count 40 --seed 3 --out " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        read[extension] = io::readTractogram(out);
+    }
+    std::vector<char> trk = fileBytes(dir / "synth.trk"), trx = fileBytes(dir / "synth.trx");
+    ASSERT_GE(trk.size(), 1000u);
+    EXPECT_EQ(std::string(trk.data(), 5), "TRACK");
+    EXPECT_EQ(std::string(trx.data(), 4), std::string("PK\3\4", 4)) << "a zip";
+    const Tractogram& tck = read[".tck"];
+    ASSERT_EQ(tck.streamlineCount(), 40u);
+    EXPECT_EQ(read[".trx"].offsets, tck.offsets);
+    EXPECT_EQ(read[".trx"].points, tck.points) << "TRX holds the float32 points as .tck does";
+    ASSERT_EQ(read[".trk"].offsets, tck.offsets);
+    for (std::size_t p = 0; p < tck.points.size(); ++p)  // .trk: float32 voxmm in a grid of a few hundred mm
+        ASSERT_LT(glm::length(read[".trk"].points[p] - tck.points[p]), 1e-4f) << p;
+}
+
 TEST(TractSynthesisCli, BadArgumentsAreOneErrorLineAndNoFile) {
     fs::path dir = scratch();
     io::writeTck(dir / "one.tck", bundles()[0]);
-    fs::path out = dir / "out.trk";
+    fs::path out = dir / "out.vtk";
     Invocation wrongFormat = runCurette("tracts synth --from " + (dir / "one.tck").string() + " --count 10 --out " + out.string());
     EXPECT_EQ(wrongFormat.exitCode, 2) << wrongFormat.output;
-    EXPECT_NE(wrongFormat.output.find("--out: expected a .tck file name"), std::string::npos) << wrongFormat.output;
+    EXPECT_NE(wrongFormat.output.find("--out: expected a .tck, .trk or .trx file name"), std::string::npos) << wrongFormat.output;
     EXPECT_FALSE(fs::exists(out));
     Invocation missing = runCurette("tracts synth --from " + (dir / "nowhere").string() + " --out " + (dir / "x.tck").string());
     EXPECT_EQ(missing.exitCode, 2) << missing.output;
