@@ -68,6 +68,15 @@ bool intersectBox(vec3 origin, vec3 direction, vec3 lo, vec3 hi, out float tNear
 #define SAMPLE_ROUNDS
 #endif
 
+// Phong lights the tissue behind a cut face by the face (shade_sample.glsl), also where the face lies in empty
+// space, so a jump must not pass over a crossing: within the span of the meshes' depth boxes the ray walks
+// every lattice sample, and a jump stops before it. The crossing is found as without skipping, so skipping
+// cannot change the image. (The other modes shade no sample by a face it has left, and a face sample in an
+// empty brick is transparent: their jumps only keep out of the meshes.)
+#if defined(CUT_FACES) && SHADING == SHADING_PHONG
+#define JUMPS_STAY_OUT_OF_CROSSINGS
+#endif
+
 #ifdef CUT_FACES
 float faceT;          // ray parameter of the last cut face crossed (-1: none)
 vec3 faceNormal;
@@ -156,7 +165,7 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
     int k, kLast;
     latticeRange(pixel, direction, tNear, tFar, jitter, k, kLast);
     ClipSpan span = ClipSpan(-1e30, 1e30, 0xffffffffu);
-#ifdef CUT_FACES
+#ifdef JUMPS_STAY_OUT_OF_CROSSINGS
     // Where the ray can cross a mesh: its empty-space jumps stay out (below), with or without the box tests.
     ClipSpan crossings = rayClipSpan(eyeWorld, direction);
     if (clipDepthBoxTests) span = crossings;
@@ -229,15 +238,17 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
             ++steps;
 #endif
 #endif
-#ifdef CUT_FACES
-            // Within the span of the meshes' depth boxes the ray walks every lattice sample, and a jump stops
-            // before it: a crossing in empty space is found as without skipping (the cut-face rules light the
-            // tissue behind it), so skipping cannot change the image.
+#if defined(JUMPS_STAY_OUT_OF_CROSSINGS)
             if (skipEmptySpace && !insideSpan(crossings, t)) {
                 if (skipEmptyBricks(tex, originTex, directionTex, jitter, k)) {
                     if (t < crossings.near) k = min(k, int(ceil(crossings.near / stepMm - jitter)) - 1);
                     continue;
                 }
+            }
+#elif defined(CUT_FACES)
+            // Inside a mesh the ray walks every lattice sample, so it finds the one past the crossing.
+            if (skipEmptySpace && meshBehind < 0 && !face) {
+                if (skipEmptyBricks(tex, originTex, directionTex, jitter, k)) continue;
             }
 #else
             if (skipEmptySpace) {
