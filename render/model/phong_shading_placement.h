@@ -24,7 +24,7 @@ struct ValueHistogram {
     double lo = 0, hi = 0;
     std::vector<std::uint64_t> counts;
     double binCentre(std::size_t bin) const;
-    static ValueHistogram of(const VolumeData& volume, int bins = 1024, std::size_t maxVoxels = std::size_t{1} << 22);
+    static ValueHistogram of(const VolumeData& volume, int bins = 1024, std::size_t maxVoxels = std::size_t{1} << 20);
 };
 
 // The median over the volume's visible voxels (the TF's opacity above 0) of the TF's extinction per mm,
