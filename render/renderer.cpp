@@ -11,7 +11,7 @@
 namespace curette {
 
 Renderer::Renderer(gl::Context& context, const VolumeData& volume, const TransferFunction& tf)
-    : context_(context), volume_(context.info(), volume), valueHistogram_(ValueHistogram::of(volume)),
+    : context_(context), volume_(context.info(), volume), valueHistogram_(ValueHistogram::of(volume, kPlacementHistogramBins, kPlacementHistogramVoxels)),
       clip_(clip::ClipMapSettings{0.5 * volume_.geometry().minSpacing(), 64, 1024}) {
     timers_.setSynchronous(context.info().softwareRenderer);
     clip_.setDilationRadiusMm(AmbientOcclusion::dilationRadiusMm(laoSettings_, volume_.geometry()));

@@ -1,9 +1,11 @@
 #include "scene/volume_statistics.h"
 
+#include "base/value_histogram.h"
 #include "render/model/volume_geometry.h"
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace curette {
 
@@ -11,12 +13,14 @@ VolumeStatistics computeStatistics(const VolumeData& volume, int bins) {
     VolumeStatistics s;
     s.min = volume.minValue;
     s.max = volume.maxValue;
-    s.histogram.assign(static_cast<std::size_t>(bins), 0);
+    ValueHistogram histogram = ValueHistogram::over(s.min, s.max, bins);
     // Voxels without data (NaN/Inf in the file) are left out of every number (min and max already are).
     const std::size_t total = volume.voxelCount();
     const std::size_t n = total - static_cast<std::size_t>(volume.noDataVoxels);
-    if (n == 0) return s;
-    double span = s.max > s.min ? s.max - s.min : 1.0;
+    if (n == 0) {
+        s.histogram = std::move(histogram.counts);
+        return s;
+    }
     double sum = 0, sumSquares = 0;
     std::uint64_t nonZero = 0;
     for (std::size_t i = 0; i < total; ++i) {
@@ -25,9 +29,9 @@ VolumeStatistics computeStatistics(const VolumeData& volume, int bins) {
         sum += v;
         sumSquares += v * v;
         nonZero += v != 0.0;
-        double unit = (v - s.min) / span;
-        s.histogram[static_cast<std::size_t>(std::clamp(static_cast<int>(unit * bins), 0, bins - 1))]++;
+        histogram.add(v);
     }
+    s.histogram = std::move(histogram.counts);
     s.mean = sum / static_cast<double>(n);
     s.standardDeviation = std::sqrt(std::max(0.0, sumSquares / static_cast<double>(n) - s.mean * s.mean));
     s.nonZeroFraction = static_cast<double>(nonZero) / static_cast<double>(n);

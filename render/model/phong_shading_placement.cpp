@@ -2,35 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace curette {
 
 const char* phongShadingName(PhongShading placement) {
     return placement == PhongShading::InLoop ? "in the loop" : "between rounds";
-}
-
-double ValueHistogram::binCentre(std::size_t bin) const {
-    return lo + (hi - lo) * (static_cast<double>(bin) + 0.5) / static_cast<double>(counts.size());
-}
-
-ValueHistogram ValueHistogram::of(const VolumeData& volume, int bins, std::size_t maxVoxels) {
-    ValueHistogram h;
-    h.lo = volume.minValue;
-    h.hi = volume.maxValue;
-    h.counts.assign(static_cast<std::size_t>(std::max(bins, 1)), 0);
-    const std::size_t n = volume.voxelCount();
-    const std::size_t stride = std::max<std::size_t>(1, (n + maxVoxels - 1) / std::max<std::size_t>(maxVoxels, 1));
-    const double width = h.hi - h.lo;
-    for (std::size_t i = 0; i < n; i += stride) {
-        if (volume.isNoData(i)) continue;
-        double value = volume.valueScale * volume.normalized(i) + volume.valueOffset;
-        double unit = width > 0 ? (value - h.lo) / width : 0.0;
-        auto bin = static_cast<std::size_t>(std::clamp(unit * static_cast<double>(h.counts.size()), 0.0,
-                                                       static_cast<double>(h.counts.size() - 1)));
-        ++h.counts[bin];
-    }
-    return h;
 }
 
 double medianVisibleExtinctionPerMm(const ValueHistogram& histogram, const TransferFunction& tf) {

@@ -8,24 +8,18 @@
 // Both places take the same samples and give the same image; this only picks the faster program.
 
 #include "base/transfer_function.h"
-#include "base/volume.h"
+#include "base/value_histogram.h"
 
-#include <cstdint>
-#include <vector>
+#include <cstddef>
 
 namespace curette {
 
 enum class PhongShading { BetweenRounds, InLoop };
 const char* phongShadingName(PhongShading placement);
 
-// Counts of the volume's physical values in equal bins over [minValue, maxValue], from every voxel of a
-// volume of up to `maxVoxels` voxels and an even stride through a larger one; voxels without data are left out.
-struct ValueHistogram {
-    double lo = 0, hi = 0;
-    std::vector<std::uint64_t> counts;
-    double binCentre(std::size_t bin) const;
-    static ValueHistogram of(const VolumeData& volume, int bins = 1024, std::size_t maxVoxels = std::size_t{1} << 20);
-};
+// The histogram phong's placement reads: a million voxels are enough for a median.
+constexpr int kPlacementHistogramBins = 1024;
+constexpr std::size_t kPlacementHistogramVoxels = std::size_t{1} << 20;
 
 // The median over the volume's visible voxels (the TF's opacity above 0) of the TF's extinction per mm,
 // -ln(1 - opacity) / unitLengthMm; 0 when no voxel is visible.

@@ -31,7 +31,7 @@ TEST(PhongShadingPlacement, TheMedianExtinctionIsTheVisibleVoxelsOwn) {
     glm::ivec3 dims(16, 16, 8);
     VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::UInt8,
                                          [](glm::dvec3 p) { return p.x < -4 ? 0.0 : 200.0; });
-    ValueHistogram all = ValueHistogram::of(volume, 256);
+    ValueHistogram all = ValueHistogram::of(volume, 256, volume.voxelCount());
     EXPECT_EQ(volume.voxelCount(), std::accumulate(all.counts.begin(), all.counts.end(), std::uint64_t{0}));
     EXPECT_EQ(volume.voxelCount() / 4, all.counts.front());
     EXPECT_EQ(volume.voxelCount() * 3 / 4, all.counts.back());
