@@ -239,22 +239,19 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
 #endif
 #endif
 #if defined(JUMPS_STAY_OUT_OF_CROSSINGS)
-            if (skipEmptySpace && !insideSpan(crossings, t)) {
-                if (skipEmptyBricks(tex, originTex, directionTex, jitter, k)) {
-                    if (t < crossings.near) k = min(k, int(ceil(crossings.near / stepMm - jitter)) - 1);
-                    continue;
-                }
-            }
+            bool mayJump = skipEmptySpace && !insideSpan(crossings, t);
 #elif defined(CUT_FACES)
             // Inside a mesh the ray walks every lattice sample, so it finds the one past the crossing.
-            if (skipEmptySpace && meshBehind < 0 && !face) {
-                if (skipEmptyBricks(tex, originTex, directionTex, jitter, k)) continue;
-            }
+            bool mayJump = skipEmptySpace && meshBehind < 0 && !face;
 #else
-            if (skipEmptySpace) {
-                if (skipEmptyBricks(tex, originTex, directionTex, jitter, k)) continue;
-            }
+            bool mayJump = skipEmptySpace;
 #endif
+            if (mayJump && skipEmptyBricks(tex, originTex, directionTex, jitter, k)) {
+#ifdef JUMPS_STAY_OUT_OF_CROSSINGS
+                if (t < crossings.near) k = min(k, int(ceil(crossings.near / stepMm - jitter)) - 1);
+#endif
+                continue;
+            }
             // Step VI's shadow-test clipping: a sample inside any clip mesh is not there.
 #ifdef CUT_FACES
             int holding = -1;
