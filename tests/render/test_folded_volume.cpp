@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 
 namespace curette {
 namespace {
@@ -44,10 +45,9 @@ struct LongScene {
     LongScene(bool folded, double azimuth = 75) {
         glContext();
         volume = test::makeVolume(kDims, test::centredAffine(kDims), ScalarType::UInt8, longBlobs);
-        if (folded) {
-            ForcedTextureLimit limit(kLimit);
-            renderer = std::make_unique<Renderer>(glContext(), volume, test::rampTransferFunction(30, 180, 0.3));
-        } else {
+        {
+            std::optional<ForcedTextureLimit> limit;   // while the renderer picks its layout
+            if (folded) limit.emplace(kLimit);
             renderer = std::make_unique<Renderer>(glContext(), volume, test::rampTransferFunction(30, 180, 0.3));
         }
         EXPECT_EQ(renderer->volumeLayout().folded(), folded);
