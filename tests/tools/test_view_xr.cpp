@@ -627,7 +627,7 @@ TEST(ViewXr, PreviewsWhileATakenToolMovesThenTheExactFrameOnceStill) {
         {"name": "burr", "mesh": {"shape": "sphere", "radius_mm": 9}, "position_mm": [20, 32, 58]}]})"));
     nlohmann::json script = poseScript();
     script["interaction_profile"] = "/interaction_profiles/valve/index_controller";
-    const int moving = 6, still = 60;   // the still frames: the settle time (9 frames at 90 Hz) and the slices
+    const int moving = 6, still = 180;   // the still frames: the settle time (9 frames at 90 Hz) and the slices, with room for a loaded machine
     nlohmann::json frames = nlohmann::json::array();
     for (int i = 0; i < 2 + moving + still; ++i) {
         nlohmann::json f = script["frames"][0];
