@@ -44,6 +44,11 @@ inline constexpr unsigned imageIsmosLayerFront = 7;
 inline constexpr unsigned imageIsmosLayerAlpha = 8;
 inline constexpr unsigned imageIsmosLayerBack = 9;
 inline constexpr unsigned imageIsmosFit = 10;
+inline constexpr unsigned imageTubeNearestDepth = 11;
+inline constexpr unsigned imageTubeNearestSegment = 12;
+inline constexpr unsigned imageTubeColor = 13;
+inline constexpr unsigned imageTubeNormal = 14;
+inline constexpr unsigned imageTubeDepth = 15;
 
 inline constexpr unsigned ssboSampleCounter = 0;
 inline constexpr unsigned ssboLaoDirections = 1;
@@ -64,6 +69,7 @@ inline constexpr unsigned ssboTubeDirections = 15;
 inline constexpr unsigned ssboTubeColors = 16;
 inline constexpr unsigned ssboTubeIndices = 17;
 inline constexpr unsigned ssboTileSpans = 18;
+inline constexpr unsigned ssboTubeCandidates = 19;
 
 inline constexpr unsigned uboClipMeshes = 0;
 

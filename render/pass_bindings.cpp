@@ -64,6 +64,11 @@ Lookup image(unsigned unit, Pass pass) {
         case b::imageIsmosLayerAlpha: return {R::IsmosLayers};
         case b::imageIsmosLayerBack: return {R::IsmosLayerBacks};
         case b::imageIsmosFit: return {R::IsmosFit};
+        case b::imageTubeNearestDepth:
+        case b::imageTubeNearestSegment:
+        case b::imageTubeColor:
+        case b::imageTubeNormal:
+        case b::imageTubeDepth: return {R::GBuffer};
         default: return {};
     }
 }
@@ -79,6 +84,7 @@ Lookup storageBlock(unsigned unit) {
         case b::ssboAntiAliasing:
         case b::ssboPoissonDisk:
         case b::ssboTileSpans: return {std::nullopt, true};
+        case b::ssboTubeCandidates: return {R::GBuffer};
         default: return {};
     }
 }

@@ -40,6 +40,11 @@
 #define IMAGE_ISMOS_LAYER_ALPHA 8   // image2D rgba32f: ... the layer opacities
 #define IMAGE_ISMOS_LAYER_BACK 9    // image2D rgba32f: ... the layer backs (exact opacity only)
 #define IMAGE_ISMOS_FIT 10          // image2D r32f: ... beta (transmittance fit only)
+#define IMAGE_TUBE_NEAREST_DEPTH 11     // uimage2D r32ui: impostor tubes, per pixel the nearest view depth's float bits
+#define IMAGE_TUBE_NEAREST_SEGMENT 12   // uimage2D r32ui: ... the first segment at that depth
+#define IMAGE_TUBE_COLOR 13             // image2D rgba16f: the G-buffer colour written by the impostor tubes
+#define IMAGE_TUBE_NORMAL 14            // image2D rgba16f: ... the normal + kind
+#define IMAGE_TUBE_DEPTH 15             // image2D r32f: ... the view depth
 
 #define SSBO_SAMPLE_COUNTER 0       // uint: samples taken (bench only)
 #define SSBO_LAO_DIRECTIONS 1       // vec4[]: LAO step in texture space, weight / (K * M)
@@ -60,6 +65,7 @@
 #define SSBO_TUBE_COLORS 16         // vec4[]: ... of the colour stream
 #define SSBO_TUBE_INDICES 17        // uint[]: ... of the triangle index stream
 #define SSBO_TILE_SPANS 18          // uvec2[]: per row of tiles, the columns a dispatch covers (tile_order.glsl)
+#define SSBO_TUBE_CANDIDATES 19     // uint[]: impostor tubes, a bit per point: its segment was the nearest at a pixel when phase 0 tested it
 
 #define UBO_CLIP_MESHES 0           // ClipMeshGpu[MAX_CLIP_MESHES]: per-mesh clipping camera
 

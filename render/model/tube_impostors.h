@@ -1,7 +1,7 @@
 #pragma once
 // Impostor tubes (issue 32): the GPU keeps only each streamline's swept points, 16 bytes a point, and the
-// G-buffer draw (shaders/tube_impostor.vert/.frag) expands every segment into a screen-facing quad that bounds
-// its capsule, on which the fragment shader intersects the pixel's ray with the exact tube. No vertex rings:
+// G-buffer pass (shaders/tube_impostor.comp) bounds every segment's capsule on the screen and intersects each
+// pixel's ray there with the exact tube. No vertex rings:
 // a 100k whole-brain set is about 1 kB per streamline instead of 25 kB of triangles.
 //
 // The tube of a bundle is the union, per segment between consecutive points p_i, p_i+1, of the cylinder of
@@ -25,8 +25,8 @@ struct TubeImpostorPoint {
 static_assert(sizeof(TubeImpostorPoint) == 16);
 
 // Flags (bits 24-31 of colorAndFlags): whether a segment starts at the point (it is not its streamline's last)
-// and whether one ends there (it is not the first). The GPU draws a quad per point; one without a segment
-// starting there is culled.
+// and whether one ends there (it is not the first). The GPU takes a segment per point; a point without a
+// segment starting there is passed over.
 inline constexpr std::uint32_t kImpostorSegmentStarts = 1u << 24;
 inline constexpr std::uint32_t kImpostorSegmentEnds = 1u << 25;
 

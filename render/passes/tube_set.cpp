@@ -2,9 +2,9 @@
 
 #include "base/error.h"
 #include "gl/bindings.h"
+#include "render/shader_pieces.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -12,7 +12,7 @@
 namespace curette {
 
 namespace {
-constexpr std::uint32_t kQuadsPerDraw = 1u << 16;
+constexpr std::size_t kPointsPerDispatch = std::size_t(1) << 20;
 }
 
 void GBuffer::ensure(glm::ivec2 size) {
@@ -31,6 +31,8 @@ void GBuffer::ensure(glm::ivec2 size) {
     normal_ = make(GL_RGBA16F, "G-buffer normal/tangent + kind");
     depth_ = make(GL_R32F, "G-buffer view depth");
     partial_ = make(GL_R32F, "partial occlusion buffer");
+    nearestDepth_ = make(GL_R32UI, "impostor nearest depth (float bits)");
+    nearestSegment_ = make(GL_R32UI, "impostor nearest segment");
     depthStencil_ = gl::createRenderbuffer();
     glNamedRenderbufferStorage(depthStencil_.name(), GL_DEPTH_COMPONENT32F, size.x, size.y);
     framebuffer_ = gl::createFramebuffer();
@@ -46,7 +48,18 @@ void GBuffer::ensure(glm::ivec2 size) {
 }
 
 std::size_t GBuffer::gpuBytes() const {
-    return static_cast<std::size_t>(size_.x) * static_cast<std::size_t>(size_.y) * (8u + 8u + 4u + 4u + 4u);
+    return static_cast<std::size_t>(size_.x) * static_cast<std::size_t>(size_.y) * (8u + 8u + 4u + 4u + 4u + 4u + 4u) + candidateWords_ * 4u;
+}
+
+GLuint GBuffer::candidates(std::size_t points) {
+    std::size_t words = (points + 31) / 32;
+    if (words > candidateWords_ || !candidates_) {
+        candidates_ = gl::createBuffer();
+        glNamedBufferStorage(candidates_.name(), static_cast<GLsizeiptr>(std::max<std::size_t>(words, 1) * 4), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        glObjectLabel(GL_BUFFER, candidates_.name(), -1, "impostor candidates (a bit per point)");
+        candidateWords_ = std::max<std::size_t>(words, 1);
+    }
+    return candidates_.name();
 }
 
 std::vector<float> GBuffer::readDepth() const {
@@ -120,22 +133,13 @@ TubeSet::TubeSet(const TubeImpostors& impostors, std::size_t windowPoints)
         if (b.firstPoint + b.pointCount > impostors.points.size() || !(b.radiusMm > 0))
             throw InputError("<tubes>", "impostor bundles", "point ranges within the points and positive radii");
     impostorPoints_ = gl::createBuffer();
-    // Quads as indexed triangles: llvmpipe shades each index once within a draw's chunk, so a quad's vertex
-    // shader runs 4 times, not 6 as with glDrawArrays. One pattern serves every draw (glDrawElementsBaseVertex).
-    std::vector<std::uint32_t> quads(kQuadsPerDraw * 6);
-    for (std::uint32_t q = 0; q < kQuadsPerDraw; ++q)
-        for (std::uint32_t k = 0; k < 6; ++k) quads[q * 6 + k] = 4 * q + std::array<std::uint32_t, 6>{0, 1, 2, 0, 2, 3}[k];
-    quadIndices_ = gl::createBuffer();
-    glNamedBufferStorage(quadIndices_.name(), static_cast<GLsizeiptr>(quads.size() * sizeof(std::uint32_t)), quads.data(), 0);
-    impostorBytes_ = impostors.bytes() + quads.size() * sizeof(std::uint32_t);
+    impostorBytes_ = impostors.bytes();
     glNamedBufferStorage(impostorPoints_.name(), static_cast<GLsizeiptr>(std::max<std::size_t>(impostors.bytes(), 16)),
                          impostors.points.empty() ? nullptr : impostors.points.data(), 0);
     impostorTexture_ = gl::createTexture(GL_TEXTURE_BUFFER);
-    vertexArray_ = gl::createVertexArray();   // no attributes: the vertex shader reads the points by gl_VertexID
-    glVertexArrayElementBuffer(vertexArray_.name(), quadIndices_.name());
     buffers_.boundsMin = impostors.boundsMin, buffers_.boundsMax = impostors.boundsMax;
-    program_ = gl::Program::graphics("tube_impostor.vert", "tube_impostor.frag");
-    unclippedProgram_ = gl::Program::graphics("tube_impostor.vert", "tube_impostor.frag", {{"NO_CLIP_MESHES", "1"}});
+    program_ = gl::Program::compute("tube_impostor.comp");
+    unclippedProgram_ = gl::Program::compute("tube_impostor.comp", {{"NO_CLIP_MESHES", "1"}});
 }
 
 TubeVertices TubeSet::readBack(std::size_t firstVertex, std::size_t vertexCount, std::size_t firstIndex, std::size_t indexCount) const {
@@ -169,12 +173,21 @@ void TubeSet::clearGBuffer(glm::ivec2 size, GBuffer& target) const {
     const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
     for (GLint i = 0; i < 3; ++i) glClearNamedFramebufferfv(target.framebuffer(), GL_COLOR, i, zero);
     glClearNamedFramebufferfv(target.framebuffer(), GL_DEPTH, 0, &one);
+    if (!impostor_) return;
+    const GLuint none = 0xFFFFFFFFu, noBits = 0;
+    glClearTexImage(target.nearestDepth(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+    glClearTexImage(target.nearestSegment(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+    glClearNamedBufferData(target.candidates(pointCount_), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &noBits);
 }
 
 void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target, std::size_t first, std::size_t count) {
     first = std::min(first, primitiveCount());
     count = std::min(count, primitiveCount() - first);
     if (count == 0) return;
+    if (impostor_) {
+        drawImpostors(frame, clip, target, first, count);
+        return;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
     glViewport(0, 0, frame.size.x, frame.size.y);
     glEnable(GL_DEPTH_TEST);
@@ -182,8 +195,7 @@ void TubeSet::drawGBuffer(const FrameDescription& frame, const clip::ClipMeshSet
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    if (impostor_) drawImpostors(frame, clip, first, count);
-    else drawElements(frame, clip, first, count);
+    drawElements(frame, clip, first, count);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
@@ -213,14 +225,39 @@ void TubeSet::drawElements(const FrameDescription& frame, const clip::ClipMeshSe
                    reinterpret_cast<const void*>(first * indicesPer * sizeof(std::uint32_t)));
 }
 
-void TubeSet::drawImpostors(const FrameDescription& frame, const clip::ClipMeshSet& clip, std::size_t first, std::size_t count) {
+// The impostor primitives are the points twice: [0, P) runs phase 0 of shaders/tube_impostor.comp on the points,
+// [P, 2P) phase 1, and the range that reaches 2P ends with phase 2 over the pixels.
+void TubeSet::drawImpostors(const FrameDescription& frame, const clip::ClipMeshSet& clip, GBuffer& target, std::size_t first, std::size_t count) {
     gl::Program& program = programFor(clip);
     program.set("viewProjection", glm::mat4(frame.camera.viewProjection(frame.size)));
-    program.set("eyeWorld", glm::vec3(frame.camera.position()));
     program.set("viewForward", glm::vec3(frame.camera.forward()));
-    // A buffer texture is limited to GL_MAX_TEXTURE_BUFFER_SIZE texels and its range must start at a multiple of
-    // GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT bytes: larger sets are drawn in windows, each bound from the aligned
-    // offset at or below its first point (the shader is told how many points into the range that is).
+    CameraRayPiece{frame}.apply(program);
+    glBindImageTexture(binding::imageTubeNearestDepth, target.nearestDepth(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(binding::imageTubeNearestSegment, target.nearestSegment(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(binding::imageTubeColor, target.color(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(binding::imageTubeNormal, target.normal(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(binding::imageTubeDepth, target.depth(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboTubeCandidates, target.candidates(pointCount_));
+    const std::size_t P = pointCount_, end = first + count;
+    if (first < P) impostorPhase(program, frame, 0, first, std::min(end, P) - first);
+    if (end > P) {
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        std::size_t from = std::max(first, P) - P;
+        impostorPhase(program, frame, 1, from, end - P - from);
+    }
+    if (end == 2 * P) {
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        impostorPhase(program, frame, 2, 0, P);
+    }
+    glBindTextureUnit(binding::tubeImpostorPoints, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+// One phase over the points [first, first + count), bundle by bundle (each its radius and caps) and window by
+// window: a buffer texture is limited to GL_MAX_TEXTURE_BUFFER_SIZE texels and its range must start at a
+// multiple of GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT bytes, so larger sets are bound in windows, each from the
+// aligned offset at or below its first point (the shader is told that offset's global index).
+void TubeSet::impostorPhase(gl::Program& program, const FrameDescription& frame, int phase, std::size_t first, std::size_t count) {
     GLint64 maxTexels = 0, alignment = 0;
     glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     glGetInteger64v(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &alignment);
@@ -231,8 +268,7 @@ void TubeSet::drawImpostors(const FrameDescription& frame, const clip::ClipMeshS
     if (texels < slackPoints + 2) throw std::logic_error("TubeSet: an impostor window smaller than the texture buffer alignment");
     const std::size_t window = texels - slackPoints - 1;
     const std::size_t end = first + count;
-    program.use();
-    glBindVertexArray(vertexArray_.name());
+    program.set("phase", phase);
     for (const TubeImpostorBundle& bundle : impostorBundles_) {
         std::size_t s = std::max(first, bundle.firstPoint), e = std::min(end, bundle.firstPoint + bundle.pointCount);
         if (s >= e) continue;
@@ -240,20 +276,29 @@ void TubeSet::drawImpostors(const FrameDescription& frame, const clip::ClipMeshS
         program.set("caps", bundle.caps ? 1 : 0);
         while (s < e) {
             std::size_t n = std::min(e - s, window);
-            std::size_t startByte = s * pointBytes / align * align;
-            std::size_t lastPoint = std::min(s + n, pointCount_ - 1);   // a segment's second point
-            glTextureBufferRange(impostorTexture_.name(), GL_RGBA32UI, impostorPoints_.name(), static_cast<GLintptr>(startByte),
-                                 static_cast<GLsizeiptr>((lastPoint + 1) * pointBytes - startByte));
+            std::size_t base = s * pointBytes / align * align / pointBytes;   // the window's texel 0
+            std::size_t lastPoint = std::min(s + n, pointCount_ - 1);      // a segment's second point
+            glTextureBufferRange(impostorTexture_.name(), GL_RGBA32UI, impostorPoints_.name(), static_cast<GLintptr>(base * pointBytes),
+                                 static_cast<GLsizeiptr>((lastPoint + 1 - base) * pointBytes));
             glBindTextureUnit(binding::tubeImpostorPoints, impostorTexture_.name());
-            program.set("firstPoint", static_cast<unsigned>(s - startByte / pointBytes));
-            program.use();
-            for (std::size_t q = 0; q < n; q += kQuadsPerDraw)
-                glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(6 * std::min<std::size_t>(kQuadsPerDraw, n - q)), GL_UNSIGNED_INT, nullptr,
-                                         static_cast<GLint>(4 * q));
+            program.set("globalBase", static_cast<unsigned>(base));
+            if (phase == 2) {
+                program.set("firstPoint", static_cast<unsigned>(s - base));
+                program.set("pointCount", static_cast<unsigned>(n));
+                program.dispatchCovering(glm::uvec3(frame.size.x, frame.size.y, 1));
+            } else {
+                // At most kPointsPerDispatch points a dispatch (a dimension holds 65535 groups); phase 1 takes a
+                // word of candidate bits an invocation and keeps the bits of the dispatch's points.
+                for (std::size_t q = 0; q < n; q += kPointsPerDispatch) {
+                    std::size_t m = std::min<std::size_t>(kPointsPerDispatch, n - q), from = s + q;
+                    program.set("firstPoint", static_cast<unsigned>(from - base));
+                    program.set("pointCount", static_cast<unsigned>(m));
+                    program.dispatchCovering(glm::uvec3(phase == 1 ? (from + m - 1) / 32 - from / 32 + 1 : m, 1, 1));
+                }
+            }
             s += n;
         }
     }
-    glBindTextureUnit(binding::tubeImpostorPoints, 0);
 }
 
 std::vector<glm::vec2> poissonDisk(int count, std::uint32_t seed) {

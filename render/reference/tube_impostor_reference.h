@@ -1,5 +1,5 @@
 #pragma once
-// The CPU double-precision twin of shaders/tube_impostor.frag: where a ray first meets the impostor tubes
+// The CPU double-precision twin of shaders/tube_impostor.comp: where a ray first meets the impostor tubes
 // (render/model/tube_impostors.h), every segment's cylinder (both crossings), the ball at each joint and, with
 // caps, the discs at a streamline's ends; a `clipped` predicate stands for the meshes that clip tubes (a
 // crossing inside one is skipped, as the shader skips it).

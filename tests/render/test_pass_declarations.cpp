@@ -5,6 +5,7 @@
 #include "tests/render/moving_sphere_scene.h"
 
 #include "render/label_overlay.h"
+#include "render/model/tube_impostors.h"
 
 #include <gtest/gtest.h>
 
@@ -58,19 +59,34 @@ struct Case {
     ShadingMode mode;
     bool tubes;
     bool ismosFit = false;
+    bool impostors = false;   // the tubes as impostors (the compute G-buffer)
 };
+
+// One straight impostor segment where test::straightTube lies.
+TubeImpostors straightImpostor() {
+    TubeImpostors t;
+    t.points = {{glm::vec3(0, -2, -7), packImpostorColor(glm::vec4(1), kImpostorSegmentStarts)},
+                {glm::vec3(0, -2, 7), packImpostorColor(glm::vec4(1), kImpostorSegmentEnds)}};
+    t.bundles = {TubeImpostorBundle{0, 2, 2.0, false}};
+    t.streamlines = 1;
+    t.boundsMin = glm::dvec3(-2, -4, -9), t.boundsMax = glm::dvec3(2, 0, 9);
+    return t;
+}
 
 TEST(PassDeclarations, EveryBoundResourceIsDeclared) {
     const Case cases[] = {{ShadingMode::Solid, false}, {ShadingMode::Phong, false}, {ShadingMode::Lao, false},
                           {ShadingMode::Cao, false},   {ShadingMode::Dos, false},   {ShadingMode::Ismos, false},
                           {ShadingMode::Ismos, false, true}, {ShadingMode::Cao, true}, {ShadingMode::Dos, true},
-                          {ShadingMode::Phong, true},  {ShadingMode::Ismos, true}};
+                          {ShadingMode::Phong, true},  {ShadingMode::Ismos, true}, {ShadingMode::Phong, true, false, true},
+                          {ShadingMode::Dos, true, false, true}};
     for (const Case& c : cases) {
-        std::string what = std::string(shadingModeName(c.mode)) + (c.tubes ? " with tubes" : "") + (c.ismosFit ? " (fit)" : "");
+        std::string what = std::string(shadingModeName(c.mode)) + (c.tubes ? c.impostors ? " with impostor tubes" : " with tubes" : "") +
+                           (c.ismosFit ? " (fit)" : "");
         SCOPED_TRACE(what);
         MovingSphereScene s(c.mode);
         addLabels(s);
-        if (c.tubes) s.renderer->setTubes(test::straightTube(glm::dvec3(0, -2, 0), glm::dvec3(0, 0, 1), 14.0, 2.0, glm::vec4(1)), TubeShading{});
+        if (c.impostors) s.renderer->setTubeImpostors(straightImpostor(), TubeShading{});
+        else if (c.tubes) s.renderer->setTubes(test::straightTube(glm::dvec3(0, -2, 0), glm::dvec3(0, 0, 1), 14.0, 2.0, glm::vec4(1)), TubeShading{});
         s.frame.ismos.partial = true;
         s.frame.ismos.fit = c.ismosFit;
         s.renderer->setAuditBindings(true);

@@ -1,4 +1,4 @@
-// Impostor tubes (render/model/tube_impostors.h, shaders/tube_impostor.*): the G-buffer they write against the
+// Impostor tubes (render/model/tube_impostors.h, shaders/tube_impostor.comp): the G-buffer they write against the
 // CPU twin (reference::firstImpostorHit) and an analytic cylinder; against the triangle tubes of the same
 // streamlines (the facets of the prism bound the difference); and a mesh that clips tubes clips them as it
 // clips the triangles.
@@ -147,6 +147,32 @@ TEST(TubeImpostors, BendsJointsAndCapsMatchTheCpuTwin) {
     for (auto [azimuth, elevation] : {std::pair{20.0, 15.0}, std::pair{75.0, -40.0}, std::pair{170.0, 80.0}}) {
         FrameDescription frame = viewFrom(azimuth, elevation, {72, 64});
         expectMatchesTwin(impostors, frame, renderGBuffer(renderer, frame), ("azimuth " + std::to_string(int(azimuth))).c_str());
+    }
+}
+
+// Two bundles on the same points in two colours: at every pixel both lie at exactly the same depth, and the
+// G-buffer shows the one drawn first, as a depth-tested draw keeps the first of equal depths (the compute pass
+// picks the lowest point index among the nearest).
+TEST(TubeImpostors, OfTwoSurfacesAtTheSameDepthTheFirstShows) {
+    glContext();
+    Renderer renderer(glContext(), emptyVolume(), clearTransferFunction());
+    TubeImpostors shape = sweepTubeImpostors(polyline({{{-8, -2, 0}, {-2, 1, 1}, {0, -3, 2}, {4, 2, -1}, {8, 0, 3}}}), plainSettings(1.1, true));
+    auto coloured = [&](std::uint32_t rgb) {
+        TubeImpostors t = shape;
+        for (TubeImpostorPoint& p : t.points) p.colorAndFlags = (p.colorAndFlags & 0xFF000000u) | rgb;
+        return t;
+    };
+    for (bool greenFirst : {true, false}) {
+        TubeImpostors both = coloured(greenFirst ? 0x00FF00u : 0x0000FFu);
+        both.append(coloured(greenFirst ? 0x0000FFu : 0x00FF00u));
+        renderer.setTubeImpostors(both, TubeShading{});
+        FrameDescription frame = viewFrom(30, 20, {72, 64});
+        GBufferImage g = renderGBuffer(renderer, frame);
+        int covered = 0, first = 0;
+        for (std::size_t i = 0; i < g.depth.size(); ++i)
+            if (g.depth[i] > 0) ++covered, first += greenFirst ? g.color[i].g == 1.0f && g.color[i].r == 0.0f : g.color[i].r == 1.0f && g.color[i].g == 0.0f;
+        EXPECT_GT(covered, 200);
+        EXPECT_EQ(first, covered) << (greenFirst ? "green" : "red") << " drawn first";
     }
 }
 

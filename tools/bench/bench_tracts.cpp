@@ -377,7 +377,7 @@ int benchTracts(const CommandLine& cl) {
                 "(lines: the whole line build); CPU expand = rings to vertices and indices on the CPU; upload / GPU build = "
                 "Renderer::setTubes until the GPU is idle (for GPU-built tubes: ring upload and the expansion shader); GPU MiB and "
                 "bytes/streamline = the tube vertex streams as Renderer::gpuAllocations reports them; primitives = segments "
-                "(lines) or triangles (impostors: vertices and primitives = points, a quad each); load ms = reading the --million file; "
+                "(lines) or triangles (impostors: vertices and primitives = points, a segment each); load ms = reading the --million file; "
                 "peak MiB = the process's peak resident memory after the row (getrusage); ms/frame = wall time of a whole frame (median); G-buffer ms = the tube G-buffer pass's GPU "
                 "time in it; errors = GPU-built tubes read back against the CPU-built ones (images: the first frame of each mode, "
                 "largest channel difference in 8-bit levels, and the share of pixels more than one level off: where nearly coincident "
