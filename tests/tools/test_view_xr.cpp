@@ -65,20 +65,21 @@ nlohmann::json poseScript() {
 struct XrLaunch {
     bool headless = false;
     bool offerEgl = false;
+    bool record = false;   // --record dir/session.jsonl (XrRun::session)
 };
 
 // `view --xr` of `scene` (with `arguments`; exact quality unless they say otherwise, so every submitted eye is
 // the exact frame of its views) against the test runtime playing `script` (written to dir/script.json): the
-// run, the runtime's folder (eyes, runtime.log) and the layer's report file (none headless).
+// run, the runtime's folder (eyes, runtime.log), the layer's report file (none headless) and the recorded session.
 struct XrRun {
     ShellRun shell;
-    std::filesystem::path eyes, validation;
+    std::filesystem::path eyes, validation, session;
 };
 XrRun runViewXr(const std::filesystem::path& dir, const nlohmann::json& script, const std::filesystem::path& scene, const std::string& arguments = "",
                 XrLaunch launch = {}) {
     auto scriptPath = dir / "script.json";
     std::ofstream(scriptPath) << script.dump(2);
-    XrRun run{{}, dir / "eyes", dir / "validation.txt"};
+    XrRun run{{}, dir / "eyes", dir / "validation.txt", launch.record ? dir / "session.jsonl" : std::filesystem::path()};
     std::string runtime = "env" + std::string(launch.headless ? " -u DISPLAY" : "") + " XR_RUNTIME_JSON=" + CURETTE_XR_TEST_RUNTIME_JSON +
                           " CURETTE_XR_TEST_SCRIPT=" + scriptPath.string() + " CURETTE_XR_TEST_OUT=" + run.eyes.string() +
                           (launch.offerEgl ? " CURETTE_XR_TEST_EGL=1" : "");
@@ -86,8 +87,9 @@ XrRun runViewXr(const std::filesystem::path& dir, const nlohmann::json& script, 
         runtime = "xvfb-run -a -s '-screen 0 640x480x24' " + runtime + " XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation" +
                   " XR_CORE_VALIDATION_EXPORT_TYPE=text XR_CORE_VALIDATION_FILE_NAME=" + run.validation.string() + " XR_LOADER_DEBUG=info";
     const std::string quality = arguments.find("--quality") == std::string::npos ? " --quality exact" : "";
+    const std::string record = launch.record ? " --record " + run.session.string() : "";
     run.shell = runShell(runtime + " " + CURETTE_BINARY + " view --xr" + (launch.headless ? " --headless" : "") + " --scene " + scene.string() + quality +
-                         arguments);
+                         record + arguments);
     return run;
 }
 
@@ -245,8 +247,8 @@ TEST(ViewXr, ARecordedTwoControllerSessionReplaysBitForBit) {
         frames.push_back(f);
     }
     script["frames"] = frames;
-    auto session = dir / "session.jsonl";
-    XrRun xr = runViewXr(dir, script, scene, " --record " + session.string());
+    XrRun xr = runViewXr(dir, script, scene, "", XrLaunch{.record = true});
+    const std::filesystem::path& session = xr.session;
     const ShellRun& live = xr.shell;
     const std::filesystem::path& out = xr.eyes;
     ASSERT_EQ(live.exitCode, 0) << live.output;
@@ -398,8 +400,8 @@ TEST(ViewXr, AVolumeMovedByHandCarriesTheSceneAndTheCarveIsUnchanged) {
     };
     auto dir = scratch("move-volume");
     auto scene = curette::testing::writeNoisyBallScene(dir, sceneChanges);
-    auto session = dir / "session.jsonl";
-    XrRun xr = runViewXr(dir, script(true), scene, " --record " + session.string());
+    XrRun xr = runViewXr(dir, script(true), scene, "", XrLaunch{.record = true});
+    const std::filesystem::path& session = xr.session;
     const ShellRun& live = xr.shell;
     ASSERT_EQ(live.exitCode, 0) << live.output;
     expectValidationSilent(xr.validation);
@@ -528,8 +530,8 @@ void eraseUndoAndRedo(const std::string& name, const std::string& profile, doubl
         frames.push_back(f);
     }
     script["frames"] = frames;
-    auto session = dir / "session.jsonl";
-    XrRun xr = runViewXr(dir, script, scene, " --record " + session.string());
+    XrRun xr = runViewXr(dir, script, scene, "", XrLaunch{.record = true});
+    const std::filesystem::path& session = xr.session;
     ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
     expectValidationSilent(xr.validation);
     std::string log = curette::testing::readTextFile(xr.eyes / "runtime.log");
@@ -598,8 +600,8 @@ TEST(ViewXr, TheViveTrackpadClickedHighCarriesTheVolume) {
         frames.push_back(f);
     }
     script["frames"] = frames;
-    auto session = dir / "session.jsonl";
-    XrRun xr = runViewXr(dir, script, scene, " --record " + session.string());
+    XrRun xr = runViewXr(dir, script, scene, "", XrLaunch{.record = true});
+    const std::filesystem::path& session = xr.session;
     ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
     expectValidationSilent(xr.validation);
     RecordedSession recorded = readRecorded(session);
@@ -637,9 +639,9 @@ TEST(ViewXr, PreviewsWhileATakenToolMovesThenTheExactFrameOnceStill) {
         frames.push_back(f);
     }
     script["frames"] = frames;
-    auto session = dir / "session.jsonl";
     auto views = dir / "held-views.json";
-    XrRun xr = runViewXr(dir, script, scene, " --quality adaptive --record " + session.string() + " --save-views " + views.string());
+    XrRun xr = runViewXr(dir, script, scene, " --quality adaptive --save-views " + views.string(), XrLaunch{.record = true});
+    const std::filesystem::path& session = xr.session;
     ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
     expectValidationSilent(xr.validation);
     EXPECT_NE(xr.shell.output.find("xr quality: adaptive"), std::string::npos) << xr.shell.output;
@@ -718,8 +720,8 @@ TEST(ViewXr, TwoHandsScaleTheVolumeAboutTheirMidpoint) {
         frames.push_back(f);
     }
     script["frames"] = frames;
-    auto session = dir / "session.jsonl";
-    XrRun xr = runViewXr(dir, script, scene, " --record " + session.string());
+    XrRun xr = runViewXr(dir, script, scene, "", XrLaunch{.record = true});
+    const std::filesystem::path& session = xr.session;
     ASSERT_EQ(xr.shell.exitCode, 0) << xr.shell.output;
     expectValidationSilent(xr.validation);
     RecordedSession recorded = readRecorded(session);
