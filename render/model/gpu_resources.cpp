@@ -23,7 +23,7 @@ constexpr ResourceInfo kResources[] = {
     {Resource::VisitedBricks, "visited bricks", "uint32 buffer", "steps IV and V: the bricks they visit; step IV flags those whose V_o changed or whose LAO can", true},
     {Resource::LaoDirections, "LAO directions", "vec4 buffer", "the K rays of eq. 3 with their weights"},
     {Resource::TubeGeometry, "tube geometry", "vertex buffers", "tubes (triangles or impostor points) or illuminated lines"},
-    {Resource::GBuffer, "G-buffer + partial occlusion", "RGBA16F x2, R32F x2, R32UI x2, D32F", "tube colour, normal, depth; occlusion at the surface; impostors' nearest depth and segment"},
+    {Resource::GBuffer, "G-buffer + partial occlusion", "RGBA16F/R32F/R32UI x2, D32F, bits", "tube colour, normal, depth; occlusion at the surface; impostors' nearest depth and segment, and candidates"},
     {Resource::OcclusionBuffers, "DOS occlusion buffers (2, ping-pong)", "RG32F 2D x2", "the slab pass's cone-blurred visibility"},
     {Resource::OutputImage, "output image", "RGBA32F 2D", "the frame"},
     {Resource::PreviewImage, "preview image", "RGBA32F 2D", "the viewer's preview frames"},

@@ -208,12 +208,12 @@ int render(const CommandLine& cl) {
         const double voxels = static_cast<double>(renderer.volumeLayout().voxelCount());
         std::size_t total = 0, perVoxel = 0;
         for (const GpuAllocation& a : renderer.gpuAllocations()) {
-            std::printf("  %-40s %-28s %10.2f MiB", a.name(), a.formatText().c_str(), static_cast<double>(a.bytes) / 1048576.0);
+            std::printf("  %-40s %-34s %10.2f MiB", a.name(), a.formatText().c_str(), static_cast<double>(a.bytes) / 1048576.0);
             if (resourceInfo(a.resource).volumeSized) std::printf(" %8.3f B/voxel", static_cast<double>(a.bytes) / voxels), perVoxel += a.bytes;
             std::printf("\n");
             total += a.bytes;
         }
-        std::printf("  %-40s %-28s %10.2f MiB %8.3f B/voxel (volume-sized)\n", "total", "", static_cast<double>(total) / 1048576.0,
+        std::printf("  %-40s %-34s %10.2f MiB %8.3f B/voxel (volume-sized)\n", "total", "", static_cast<double>(total) / 1048576.0,
                     static_cast<double>(perVoxel) / voxels);
         std::printf("  volume layout: %s\n", renderer.volumeLayout().describe().c_str());
         if (const AmbientOcclusion* ao = renderer.ambientOcclusion())
