@@ -119,18 +119,21 @@ Segment fetchSegment(int texel) {
     return Segment(uintBitsToFloat(a.xyz), uintBitsToFloat(b.xyz), uvec2(a.w, b.w));
 }
 
-// A world point to pixel coordinates, pixel centres at integers (pixel_ray.glsl's grid: row 0 at the top).
-vec2 toPixel(vec3 world) {
+// A world point to pixel coordinates, pixel centres at integers (pixel_ray.glsl's grid: row 0 at the top); false
+// for a point not in front of the eye.
+bool toPixel(vec3 world, out vec2 pixel) {
     vec4 clip = viewProjection * vec4(world, 1.0);
+    pixel = vec2(0.0);
+    if (!(clip.w > 1e-6)) return false;
     vec2 ndc = clip.xy / clip.w;
-    return vec2(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * vec2(outputSize) - 0.5;
+    pixel = vec2(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * vec2(outputSize) - 0.5;
+    return true;
 }
 
-// The rectangle around the segment's capsule (the box above) as a convex quadrilateral in pixel coordinates;
-// false when the capsule reaches the eye's side of the midpoint's plane (not drawn: such a segment is within a
-// radius of the eye).
-bool screenQuad(Segment s, out vec2 corners[4]) {
-    vec3 p0 = s.p0, p1 = s.p1;
+// The rectangle around the capsule of radius r about [p0, p1] (the box above) as a convex quadrilateral in pixel
+// coordinates; false when the capsule reaches the eye's side of the midpoint's plane or a corner is not in
+// front of the eye (drawSegment then bounds the capsule piece by piece).
+bool screenQuad(vec3 p0, vec3 p1, out vec2 corners[4]) {
     vec3 mid = 0.5 * (p0 + p1);
     float D = length(mid - eyeWorld);
     vec3 v = (mid - eyeWorld) / D;
@@ -144,11 +147,11 @@ bool screenQuad(Segment s, out vec2 corners[4]) {
     if (alongPlane > 1e-6 * rho) u /= alongPlane;
     else u = normalize(cross(v, abs(v.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
     vec3 w = cross(v, u);
-    corners[0] = toPixel(c0 - rho * u - rho * w);
-    corners[1] = toPixel(c0 - rho * u + rho * w);
-    corners[2] = toPixel(c1 + rho * u + rho * w);
-    corners[3] = toPixel(c1 + rho * u - rho * w);
-    return true;
+    bool inFront = toPixel(c0 - rho * u - rho * w, corners[0]);
+    inFront = toPixel(c0 - rho * u + rho * w, corners[1]) && inFront;
+    inFront = toPixel(c1 + rho * u + rho * w, corners[2]) && inFront;
+    inFront = toPixel(c1 + rho * u - rho * w, corners[3]) && inFront;
+    return inFront;
 }
 
 // pixel_ray.glsl's ray through a pixel centre, unnormalised, as base + ndc.x alongX + ndc.y alongY: the point it
@@ -165,14 +168,15 @@ PixelRays pixelRays() {
 }
 float ndcX(int x) { return (float(x) + 0.5) / float(outputSize.x) * 2.0 - 1.0; }
 float ndcY(int y) { return 1.0 - (float(y) + 0.5) / float(outputSize.y) * 2.0; }
+// The one expression every phase takes a pixel's ray by (walkQuad hoists its row part), so their depths agree
+// bit for bit.
+vec3 pixelRay(PixelRays rays, ivec2 pixel) { return rays.base + ndcY(pixel.y) * rays.alongY + ndcX(pixel.x) * rays.alongX; }
 
-// Phases 0 and 1 for one segment over the pixels of its box. Phase 0 marks the segment a candidate when it was
-// the nearest at a pixel as it tested it (the depth stored then was not nearer): a segment at the final nearest
-// depth of a pixel was so at its turn, since the stored depth only falls to that value; so phase 1 needs the
-// candidates alone.
-void drawSegment(Segment s, uint global) {
-    vec2 corners[4];
-    if (!screenQuad(s, corners)) return;
+// Phases 0 and 1 for one segment over the pixels of a quadrilateral that bounds (a piece of) its capsule.
+// Phase 0 marks the segment a candidate when it was the nearest at a pixel as it tested it (the depth stored
+// then was not nearer): a segment at the final nearest depth of a pixel was so at its turn, since the stored
+// depth only falls to that value; so phase 1 needs the candidates alone.
+void walkQuad(Segment s, uint global, vec2 corners[4], inout bool candidate) {
     float top = min(min(corners[0].y, corners[1].y), min(corners[2].y, corners[3].y));
     float bottom = max(max(corners[0].y, corners[1].y), max(corners[2].y, corners[3].y));
     PixelRays rays = pixelRays();
@@ -181,7 +185,6 @@ void drawSegment(Segment s, uint global) {
     // shading would. The stored depth only falls, so a stale read passes over less, never more.
     float nearest = min(dot(s.p0 - eyeWorld, viewForward), dot(s.p1 - eyeWorld, viewForward)) - radiusMm;
     uint nearestKey = floatBitsToUint(max(nearest * (1.0 - 1e-5) - 1e-4, 0.0));
-    bool candidate = false;
     for (int y = max(int(ceil(top)), 0); y <= min(int(floor(bottom)), outputSize.y - 1); ++y) {
         // The quadrilateral's span on this row of pixel centres (a little wider for rounding).
         float left = 1e30, right = -1e30;
@@ -193,7 +196,7 @@ void drawSegment(Segment s, uint global) {
             left = min(left, highY > lowY ? x : min(p.x, q.x));
             right = max(right, highY > lowY ? x : max(p.x, q.x));
         }
-        vec3 row = rays.base + ndcY(y) * rays.alongY;
+        vec3 row = rays.base + ndcY(y) * rays.alongY;   // pixelRay's expression, its row part once
         for (int x = max(int(ceil(left - 1e-3)), 0); x <= min(int(floor(right + 1e-3)), outputSize.x - 1); ++x) {
             ivec2 pixel = ivec2(x, y);
             uint stored = imageLoad(nearestDepth, pixel).x;
@@ -207,6 +210,20 @@ void drawSegment(Segment s, uint global) {
             else if (stored == key) imageAtomicMin(nearestSegment, pixel, global);
         }
     }
+}
+
+// A segment whose capsule comes near the eye's plane has no one rectangle in front of the eye: it is bounded
+// in kPieces pieces, each tested for the whole segment's crossings; a piece within about a radius of the eye,
+// or across the plane of the eye, is left out, as the near plane clips triangle tubes.
+const int kPieces = 8;
+
+void drawSegment(Segment s, uint global) {
+    vec2 corners[4];
+    bool candidate = false, whole = screenQuad(s.p0, s.p1, corners);
+    for (int k = 0, pieces = whole ? 1 : kPieces; k < pieces; ++k) {
+        if (!whole && !screenQuad(mix(s.p0, s.p1, float(k) / float(kPieces)), mix(s.p0, s.p1, float(k + 1) / float(kPieces)), corners)) continue;
+        walkQuad(s, global, corners, candidate);
+    }
     if (candidate) atomicOr(candidates[global / 32u], 1u << (global % 32u));
 }
 
@@ -218,7 +235,7 @@ void main() {
         if (winner < globalBase + firstPoint || winner - (globalBase + firstPoint) >= pointCount) return;
         Segment s = fetchSegment(int(winner - globalBase));
         PixelRays rays = pixelRays();
-        vec3 dir = normalize(rays.base + ndcY(pixel.y) * rays.alongY + ndcX(pixel.x) * rays.alongX);
+        vec3 dir = normalize(pixelRay(rays, pixel));
         float distance, along;
         vec3 normal;
         if (!hitSegment(s, dir, distance, normal, along)) return;

@@ -150,6 +150,22 @@ TEST(TubeImpostors, BendsJointsAndCapsMatchTheCpuTwin) {
     }
 }
 
+// One long segment from behind the eye to far in front of it, passing 3.5 mm beside the eye: its capsule has no
+// one rectangle in front of the eye, so it is bounded piece by piece, and every pixel still matches the twin
+// (the quads left such a segment out whole).
+TEST(TubeImpostors, ASegmentPassingBesideTheEyeIsDrawn) {
+    glContext();
+    Renderer renderer(glContext(), emptyVolume(), clearTransferFunction());
+    FrameDescription frame = viewFrom(20, 10, {64, 64});
+    frame.camera.distanceMm = 30.0;
+    const glm::dvec3 eye = frame.camera.position(), forward = frame.camera.forward(), side = frame.camera.right();
+    const glm::dvec3 from = eye - 10.0 * forward + 3.5 * side, to = eye + 40.0 * forward + 3.5 * side;
+    TubeImpostors impostors = sweepTubeImpostors(polyline({{from, to}}), plainSettings(1.0, true));
+    ASSERT_EQ(impostors.points.size(), 2u);
+    renderer.setTubeImpostors(impostors, TubeShading{});
+    expectMatchesTwin(impostors, frame, renderGBuffer(renderer, frame), "beside the eye");
+}
+
 // Two bundles on the same points in two colours: at every pixel both lie at exactly the same depth, and the
 // G-buffer shows the one drawn first, as a depth-tested draw keeps the first of equal depths (the compute pass
 // picks the lowest point index among the nearest).
