@@ -240,7 +240,8 @@ TEST(Raycast, CutFacesAreTheSameWithAndWithoutEmptySpaceSkipping) {
 }
 
 // The ray caster tests a sample against the clip maps only inside the ray's span (clip_test.glsl,
-// rayClipSpan): the image is the one that tests every sample against every mesh, bit for bit, with and without
+// rayClipSpan), and a ray that meets no mesh's depth box takes the sample loop without clip tests (raycast.comp
+// castRay): the image is the one that tests every sample against every mesh, bit for bit, with and without
 // cut faces, for a sphere, a turned box, a torus (two intervals) turned off the axes and a box that reaches out
 // of the volume, from two sides.
 TEST(Raycast, ClipTestsOnlyInTheRaysSpanChangeNoPixel) {
