@@ -4,7 +4,8 @@
 // the unreachable ones directly and append the voxels to recompute to a list (atomic append). A second
 // one-invocation pass turns the count into an indirect dispatch of lao.comp in LIST mode. The list holds the
 // voxels of one chunk of the visited bricks at a time (AmbientOcclusion::listChunkBricks_): with countChunks, this
-// pass appends nothing and counts each chunk's voxels to recompute instead, in listVoxels[chunk].
+// pass appends the first chunk's voxels and counts each later chunk's instead, in listVoxels[chunkCountsAt + chunk]
+// (a chunk's list is built when step V reaches it: the decisions, taken once more there, are the same).
 #include "bindings.glsl"
 #include "lao_common.glsl"
 
@@ -17,7 +18,8 @@ layout(std430, binding = SSBO_DISPATCH) buffer Dispatch { uvec3 dispatchSize; };
 uniform ivec3 volumeSize;
 uniform int prepareDispatch;   // 1: the single invocation that sizes the indirect dispatch
 uniform uint maxGroupsX;
-uniform uint countChunks;      // 0: append to the list; else the bricks of a chunk: count per chunk
+uniform uint countChunks;      // 0: append to the list; else the bricks of a chunk: count per chunk after the first
+uniform uint chunkCountsAt;    // with countChunks: where in listVoxels the counts begin (past a chunk's voxels)
 
 void main() {
     if (prepareDispatch == 1) {
@@ -37,8 +39,8 @@ void main() {
         VOLUME_STORE(ambientOut, v, VOLUME_FETCH(precomputedAmbient, v));
     } else if (decision == DECISION_UNREACHABLE) {
         VOLUME_STORE(ambientOut, v, vec4(1.0));
-    } else if (countChunks != 0u) {
-        atomicAdd(listVoxels[visitSlot() / countChunks], 1u);
+    } else if (countChunks != 0u && visitSlot() >= countChunks) {
+        atomicAdd(listVoxels[chunkCountsAt + visitSlot() / countChunks], 1u);
     } else {
         listVoxels[atomicAdd(listCount, 1u)] = indexFromVoxel(v, volumeSize);
     }

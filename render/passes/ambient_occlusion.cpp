@@ -66,9 +66,11 @@ AmbientOcclusion::AmbientOcclusion(const GpuVolume& volume, const LaoSettings& s
         listChunkBricks_ = static_cast<std::uint32_t>(std::min<long>(n, kListChunkBricks));
     }
     if (settings.dispatch == LaoSettings::Dispatch::Compacted) {
-        // A chunk's voxels, and room for every chunk's count (beginRecompute's counting pass).
+        // A chunk's voxels, then every chunk's count (beginRecompute's counting pass builds the first chunk's list
+        // while it counts the others).
         std::size_t chunks = (bricks + listChunkBricks_ - 1) / listChunkBricks_;
-        listCapacity_ = std::max(std::size_t(kVisitBrickSize * kVisitBrickSize * kVisitBrickSize) * std::min<std::size_t>(listChunkBricks_, bricks), chunks);
+        chunkCountsAt_ = std::size_t(kVisitBrickSize * kVisitBrickSize * kVisitBrickSize) * std::min<std::size_t>(listChunkBricks_, bricks);
+        listCapacity_ = chunkCountsAt_ + chunks;
         list_ = gl::createBuffer();
         glNamedBufferStorage(list_.name(), static_cast<GLsizeiptr>(8 + 4 * listCapacity_), nullptr, GL_DYNAMIC_STORAGE_BIT);
         dispatch_ = gl::createBuffer();
@@ -248,6 +250,7 @@ void AmbientOcclusion::buildRecomputeList(std::uint32_t firstSlot, std::uint32_t
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding::ssboDispatch, dispatch_.name());
     compactProgram_.set("prepareDispatch", 0);
     compactProgram_.set("countChunks", countChunks);
+    compactProgram_.set("chunkCountsAt", static_cast<std::uint32_t>(chunkCountsAt_));
     compactProgram_.use();
     glm::uvec2 grid = workGroupGrid(bricks);
     glDispatchCompute(grid.x, grid.y, 1);
@@ -318,12 +321,15 @@ std::uint32_t AmbientOcclusion::beginRecompute(const TransferFunctionTexture& tf
         chunkEntries_[0] = listCount_;
         chunkBuilt_ = true;
     } else {
-        // Each chunk's length first (the decisions write the copies here); its list is built when step V reaches it.
-        glNamedBufferSubData(list_.name(), 8, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
+        // Every chunk's length first (the decisions write the copies here), and the first chunk's list with it;
+        // the others are built when step V reaches them.
+        const GLintptr counts = static_cast<GLintptr>(8 + 4 * chunkCountsAt_);
+        glNamedBufferSubData(list_.name(), counts, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
         buildRecomputeList(0, visitCount_, listChunkBricks_);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glGetNamedBufferSubData(list_.name(), 8, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
-        chunkBuilt_ = false;
+        readRecomputeCounts();   // the first chunk's length
+        glGetNamedBufferSubData(list_.name(), counts, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
+        chunkEntries_[0] = listCount_;
+        chunkBuilt_ = true;
     }
     chunk_ = chunkGroupsDone_ = 0;
     recomputeExponent_ = exponent;

@@ -175,7 +175,8 @@ private:
     // after chunk. CURETTE_RECOMPUTE_LIST_BRICKS sets it (tests make small volumes take several chunks).
     static constexpr std::uint32_t kListChunkBricks = 16384;   // 1 Mi voxels, 4 MiB
     std::uint32_t listChunkBricks_ = kListChunkBricks;
-    std::size_t listCapacity_ = 0;               // entries
+    std::size_t listCapacity_ = 0;               // entries: a chunk's voxels, then one count per chunk
+    std::size_t chunkCountsAt_ = 0;              // where the counts begin (beginRecompute's counting pass)
     std::vector<std::uint32_t> chunkEntries_;    // sliced step V: each chunk's list length
     std::uint32_t chunk_ = 0, chunkGroupsDone_ = 0;
     bool chunkBuilt_ = false;
