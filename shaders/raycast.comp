@@ -344,12 +344,12 @@ void main() {
 #endif
     float tNear, tFar;
     bool hitsVolume = intersectBox(originTex, directionTex, vec3(0.0), vec3(1.0), tNear, tFar);
+    ClipSpan crossings = rayClipSpan(eyeWorld, direction);   // (NO_CLIP_MESHES: folds to the empty span)
 #ifdef NO_CLIP_MESHES
     // (A loop of one turn around the sample loop, as below, cost the head without meshes 5-10 %.)
-    if (hitsVolume) accumulated = castRay(pixel, direction, originTex, directionTex, tNear, tFar, ClipSpan(1e30, -1e30, 0u), false, samples, steps);
+    if (hitsVolume) accumulated = castRay(pixel, direction, originTex, directionTex, tNear, tFar, crossings, false, samples, steps);
 #else
     // Loops of at most one turn, not an if and an else: llvmpipe skips a loop no lane enters (castRay).
-    ClipSpan crossings = rayClipSpan(eyeWorld, direction);
     bool meshesNear = clipMeshCount > 0 && (crossings.meshes != 0u || !clipDepthBoxTests);
     for (int once = hitsVolume && !meshesNear ? 1 : 0; once > 0; --once)
         accumulated = castRay(pixel, direction, originTex, directionTex, tNear, tFar, crossings, false, samples, steps);

@@ -315,22 +315,15 @@ std::uint32_t AmbientOcclusion::beginRecompute(const TransferFunctionTexture& tf
     bindLao(ambient_.name(), exponent);
     const std::uint32_t chunks = (visitCount_ + listChunkBricks_ - 1) / listChunkBricks_;
     chunkEntries_.assign(chunks, 0);
-    if (chunks == 1) {
-        buildRecomputeList(0, visitCount_);
-        readRecomputeCounts();   // waits for the list's length: the slices are sized on the CPU
-        chunkEntries_[0] = listCount_;
-        chunkBuilt_ = true;
-    } else {
-        // Every chunk's length first (the decisions write the copies here), and the first chunk's list with it;
-        // the others are built when step V reaches them.
-        const GLintptr counts = static_cast<GLintptr>(8 + 4 * chunkCountsAt_);
-        glNamedBufferSubData(list_.name(), counts, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
-        buildRecomputeList(0, visitCount_, listChunkBricks_);
-        readRecomputeCounts();   // the first chunk's length
-        glGetNamedBufferSubData(list_.name(), counts, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
-        chunkEntries_[0] = listCount_;
-        chunkBuilt_ = true;
-    }
+    // Every chunk's length first (the decisions write the copies here), and the first chunk's list with it (with one
+    // chunk, the whole list); the others are built when step V reaches them. The slices are sized on the CPU.
+    const GLintptr counts = static_cast<GLintptr>(8 + 4 * chunkCountsAt_);
+    glNamedBufferSubData(list_.name(), counts, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
+    buildRecomputeList(0, visitCount_, listChunkBricks_);
+    readRecomputeCounts();   // the first chunk's length
+    glGetNamedBufferSubData(list_.name(), counts, static_cast<GLsizeiptr>(4 * chunkEntries_.size()), chunkEntries_.data());
+    chunkEntries_[0] = listCount_;
+    chunkBuilt_ = true;
     chunk_ = chunkGroupsDone_ = 0;
     recomputeExponent_ = exponent;
     recomputeGroups_ = 0;
