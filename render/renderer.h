@@ -317,7 +317,7 @@ private:
     std::unique_ptr<TubeSet> tubes_;
     TubeShading tubeShading_;
     GBuffer gbuffer_;
-    gl::Program compositeProgram_;
+    gl::ComputeVariants compositePrograms_{"tube_composite.comp"};   // by light count
     gl::Buffer poissonDisk_;
     std::unique_ptr<IsmosPass> ismos_;
     int poissonCount_ = 0;

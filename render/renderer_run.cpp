@@ -388,6 +388,7 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
     ShadingMode shading = ismosLayers ? frame.ismos.base : frame.shading;
     gl::Defines defines;
     SampleShadingPiece::addDefines(defines, shading);
+    addLightingDefines(defines, frame);
     SampleShadingPiece::addCutFaceDefines(defines, frame.raycast.cutFace, clip_.count());
     clip_.addDefines(defines);
     // Tubes in view: ISMOS's pass 1 stops at them (its compositor lays them behind); every other mode's ray cast
@@ -492,7 +493,6 @@ bool Renderer::slabSlice(const PassContext& context, FrameRun& run, double budge
 
 void Renderer::runComposite(const PassContext& context, int firstRow, int rows) {
     const FrameDescription& frame = context.frame;
-    if (!compositeProgram_) compositeProgram_ = gl::Program::compute("tube_composite.comp");
     if (poissonCount_ != tubeShading_.vicinitySamples) {
         std::vector<glm::vec2> disk = poissonDisk(tubeShading_.vicinitySamples);
         poissonDisk_ = gl::createBuffer();
@@ -500,7 +500,9 @@ void Renderer::runComposite(const PassContext& context, int firstRow, int rows) 
                              disk.data(), 0);
         poissonCount_ = tubeShading_.vicinitySamples;
     }
-    gl::Program& c = compositeProgram_;
+    gl::Defines defines;
+    addLightingDefines(defines, frame);
+    gl::Program& c = compositePrograms_.get(defines);
     CameraRayPiece{frame}.apply(c);
     setLightingUniforms(c, frame, tubeShading_.material);
     c.set("poissonCount", poissonCount_);

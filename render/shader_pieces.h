@@ -12,7 +12,7 @@
 //   transfer_function.glsl       TransferFunctionTexture::addDefines / apply (render/transfer_function_texture.h)
 //   classify_sample.glsl         (no uniforms: volume.glsl + transfer_function.glsl)
 //   shade_sample.glsl            SampleShadingPiece (below)
-//   phong.glsl                   setLightingUniforms (render/lighting.h)
+//   phong.glsl                   addLightingDefines / setLightingUniforms (render/lighting.h)
 //   clip_test.glsl               clip::ClipMeshSet::apply (render/passes/clip_mesh_set.h)
 //   tile_order.glsl              TileOrderPiece (below; it also dispatches)
 //   ismos_layers.glsl            IsmosPass::applyLayers (render/passes/ismos_pass.h); ismos_occlusion.comp: IsmosPass

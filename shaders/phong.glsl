@@ -1,9 +1,15 @@
 // Blinn-Phong: one definition of the diffuse and specular terms for volume samples (`phong` shading) and tube
 // surfaces (tube_composite.comp). Up to MAX_LIGHTS directional lights in world space.
-// Binder: setLightingUniforms (render/lighting.h).
+// Binder: addLightingDefines and setLightingUniforms (render/lighting.h).
 #define MAX_LIGHTS 4
 
-uniform int lightCount;
+// The number of lights is compiled in, so every loop over the lights unrolls: llvmpipe runs a loop with a
+// uniform count under lane masks with its array reads indexed, which cost the glass brain's phong ray cast
+// about a fifth of its time (docs/measurements.md). Each light count is its own program variant.
+#ifndef LIGHT_COUNT
+#error "phong.glsl needs LIGHT_COUNT (addLightingDefines)"
+#endif
+const int lightCount = LIGHT_COUNT;
 uniform vec3 lightDirection[MAX_LIGHTS];   // world, unit, from the surface towards the light
 uniform vec3 lightColor[MAX_LIGHTS];       // colour times intensity
 uniform vec4 material;                     // ambient, diffuse, specular, specular power

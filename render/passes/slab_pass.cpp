@@ -87,12 +87,13 @@ gl::Program& SlabPass::prepare(const SlabInputs& in, double d) {
     const DosSettings& settings = frame.dos;
     const GpuVolume& volume = in.volume;
     GBuffer* tubes = in.tubes;
-    gl::Defines clipDefines;
-    SampleShadingPiece::addCutFaceDefines(clipDefines, frame.raycast.cutFace, in.clip.count());
-    in.clip.addDefines(clipDefines);
-    NoDataPiece{volume}.addDefines(clipDefines);
-    VolumeLayoutPiece{volume.layout()}.addDefines(clipDefines);
-    gl::Program& p = program(frame.shading, tubes != nullptr, in.tf, std::move(clipDefines));
+    gl::Defines frameDefines;
+    SampleShadingPiece::addCutFaceDefines(frameDefines, frame.raycast.cutFace, in.clip.count());
+    addLightingDefines(frameDefines, frame);
+    in.clip.addDefines(frameDefines);
+    NoDataPiece{volume}.addDefines(frameDefines);
+    VolumeLayoutPiece{volume.layout()}.addDefines(frameDefines);
+    gl::Program& p = program(frame.shading, tubes != nullptr, in.tf, std::move(frameDefines));
     if (tubes) {
         glBindTextureUnit(binding::tubeDepth, tubes->depth());
         glBindImageTexture(binding::imagePartialOcclusion, tubes->partialOcclusion(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);

@@ -75,8 +75,9 @@ public:
     std::size_t gpuBytes() const;
 
 private:
-    // `clipDefines`: the clip meshes' and cut faces' (ClipMeshSet::addDefines, SampleShadingPiece::addCutFaceDefines).
-    gl::Program& program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, gl::Defines clipDefines);
+    // `frameDefines`: the clip meshes', cut faces', lights' and volume layout's (ClipMeshSet::addDefines,
+    // SampleShadingPiece::addCutFaceDefines, addLightingDefines, NoDataPiece, VolumeLayoutPiece).
+    gl::Program& program(ShadingMode mode, bool tubes, const TransferFunctionTexture& tf, gl::Defines frameDefines);
     void ensureBuffers(glm::ivec2 size);
     // The program of `in` with every uniform and binding the slices share.
     gl::Program& prepare(const SlabInputs& in, double sliceDistanceMm);

@@ -144,7 +144,7 @@ TEST(ShaderInterface, DeclaredUniformsAreParsedFromTheSource) {
 
 TEST(ShaderInterface, SettingAnUndeclaredUniformIsAnError) {
     test::glContext();
-    gl::Program p = gl::Program::compute("raycast.comp", {{"SHADING", "0"}});
+    gl::Program p = gl::Program::compute("raycast.comp", {{"SHADING", "0"}, {"LIGHT_COUNT", "1"}});
     EXPECT_NO_THROW(p.set("stepMm", 0.5f));
     EXPECT_NO_THROW(p.set("ambientScale", 2.0f)) << "declared under #if (lao/cao), compiled out in solid: ignored";
     EXPECT_THROW(p.set("stepMM", 0.5f), SystemError) << "a typo must not pass silently";

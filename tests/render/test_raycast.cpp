@@ -90,6 +90,28 @@ TEST(Raycast, MatchesCpuReferenceFloatVolumeSolidAndPhong) {
 // Gradient opacity is compiled into the ray caster only for a TF that has one (GRADIENT_OPACITY): the
 // variant must agree with the reference as closely as the plain one (the 256-entry gradient table is exact
 // for this piecewise-linear ramp, whose only kink is its last point), and it must change the picture.
+// Each light count is its own program (phong.glsl's LIGHT_COUNT): none, two and the most, with their own
+// directions and colours, match the reference as one light does, and every light shows in the picture.
+TEST(Raycast, PhongWithNoneTwoAndFourLightsMatchesCpuReference) {
+    glContext();
+    glm::ivec3 dims(40);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::Float32, blobs);
+    const std::vector<Light> all = {Light{{0.3, 0.5, 1.0}, {1.0, 0.9, 0.8}, true}, Light{{-0.8, 0.2, 0.4}, {0.2, 0.3, 0.9}, true},
+                                    Light{{0.0, -1.0, 0.2}, {0.5, 0.1, 0.1}, false}, Light{{0.6, 0.6, -0.3}, {0.1, 0.6, 0.2}, false}};
+    double previousMean = -1;
+    for (std::size_t count : {std::size_t(0), std::size_t(2), std::size_t(4)}) {
+        FrameDescription frame = frameLookingAt(glm::dvec3(0), 90, 30, 20, {96, 96}, ShadingMode::Phong);
+        frame.lights.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(count));
+        Comparison c = compareWithReference(volume, blobTransferFunction(), frame, 300, 7);
+        EXPECT_GT(c.nonEmpty, 100);
+        EXPECT_LT(c.maxError, 5e-4) << count << " lights, rms " << c.rmsError;
+        double mean = 0;
+        for (const glm::vec4& p : c.image.pixels) mean += p.r + p.g + p.b;
+        EXPECT_GT(mean, previousMean) << count << " lights: each light adds light";
+        previousMean = mean;
+    }
+}
+
 TEST(Raycast, GradientOpacityMatchesCpuReference) {
     glContext();
     glm::ivec3 dims(40);
