@@ -32,6 +32,7 @@ inline constexpr unsigned labelOpacity = 24;
 inline constexpr unsigned drilledFraction = 25;
 inline constexpr unsigned drillNearBricks = 26;
 inline constexpr unsigned tubeImpostorPoints = 27;
+inline constexpr unsigned gradientVolume = 28;
 
 inline constexpr unsigned imageOutput = 0;
 inline constexpr unsigned imageOpacity = 1;
@@ -49,6 +50,7 @@ inline constexpr unsigned imageTubeNearestSegment = 12;
 inline constexpr unsigned imageTubeColor = 13;
 inline constexpr unsigned imageTubeNormal = 14;
 inline constexpr unsigned imageTubeDepth = 15;
+inline constexpr unsigned imageGradientVolume = 16;
 
 inline constexpr unsigned ssboSampleCounter = 0;
 inline constexpr unsigned ssboLaoDirections = 1;

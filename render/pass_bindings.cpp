@@ -46,6 +46,7 @@ Lookup sampler(unsigned unit) {
         case b::ismosFit: return {R::IsmosFit};
         case b::seenBricks: return {R::SeenBricks};
         case b::tubeImpostorPoints: return {R::TubeGeometry};
+        case b::gradientVolume: return {R::GradientVolume};
         default: return {};
     }
 }
@@ -69,6 +70,7 @@ Lookup image(unsigned unit, Pass pass) {
         case b::imageTubeColor:
         case b::imageTubeNormal:
         case b::imageTubeDepth: return {R::GBuffer};
+        case b::imageGradientVolume: return {R::GradientVolume};
         default: return {};
     }
 }

@@ -247,6 +247,8 @@ PlanInputs Renderer::planInputs(const FrameDescription& frame) const {
     in.ambientCurrent = ao_ && freshness_.ambientCurrent(now, frame.shading);
     in.ismosExact = frame.ismos.partial && !frame.ismos.fit;
     in.ismosFit = frame.ismos.partial && frame.ismos.fit;
+    in.gradientVolume = gradientVolumeOn_ && gradientVolumeSupported();
+    in.gradientVolumeCurrent = gradients_.built();
     return in;
 }
 
@@ -325,6 +327,7 @@ std::vector<GpuAllocation> Renderer::gpuAllocations() const {
     if (images_[kPreviewImage].texture)
         list.push_back({Resource::PreviewImage,
                         static_cast<std::size_t>(images_[kPreviewImage].size.x) * static_cast<std::size_t>(images_[kPreviewImage].size.y) * 16u, {}});
+    if (gradients_.built()) list.push_back({Resource::GradientVolume, gradients_.gpuBytes(), {}});
     if (labels_) list.push_back({Resource::LabelVolume, labels_->gpuBytes(), {}});
     if (removalTexture_) list.push_back({Resource::DrilledRemoval, removalTexture_->gpuBytes(), {}});
     if (seenBricks_)

@@ -13,6 +13,7 @@
 #include "render/model/frame_plan.h"
 #include "render/model/gpu_resources.h"
 #include "render/gpu_volume.h"
+#include "render/gradient_volume.h"
 #include "render/model/image.h"
 #include "render/model/phong_shading_placement.h"
 #include "render/passes/ismos_pass.h"
@@ -173,6 +174,10 @@ public:
     // the TF and the volume's values unless set here (for `bench` and tests; the image is the same either way).
     void setPhongShading(std::optional<PhongShading> placement) { phongShadingOverride_ = placement; }
     PhongShading phongShading(const FrameDescription& frame) const;
+    // Whether phong reads its gradients from the gradient volume where the scan has one (render/gradient_volume.h;
+    // on by default); off takes the six reads (for `bench` and tests).
+    void setGradientVolume(bool on) { gradientVolumeOn_ = on; }
+    bool gradientVolumeSupported() const { return GradientVolume::supports(volume_); }
     // Whether an exact frame after rigid motions of clip meshes alone casts only the pixels they can change and
     // keeps the others of the last exact image (render/recast_region.h; on by default, the image is the same bit
     // for bit); off casts every pixel (for `bench` and tests).
@@ -311,6 +316,8 @@ private:
     int emptySpaceJumpLimit_ = 255;
     int tileRowsPerBand_ = TileOrderPiece::defaultRowsPerBand();
     gl::ComputeVariants raycastPrograms_{"raycast.comp"};
+    GradientVolume gradients_;
+    bool gradientVolumeOn_ = true;
     gl::TimerSet timers_;
     SlabPass slab_;
     bool slabUsed_ = false;

@@ -268,6 +268,7 @@ bool Renderer::runWhole(Pass pass, const PassContext& context, FrameRun& run) {
             ao_->recomputeLao(*tf_);
             finishStepV(run);
             return true;
+        case Pass::GradientVolume: gradients_.build(volume_); return true;
         case Pass::TubeGBuffer: tubes_->drawGBuffer(context.frame, clip_, gbuffer_); return true;
         case Pass::RayCast: runRayCast(context, false); return true;
         case Pass::SlabPass: runSlabPass(context); return true;
@@ -401,6 +402,8 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
     if (rayCastTubes) TubeSurfacePiece::addDefines(defines);
     if (countSamples_) defines.emplace_back("COUNT_SAMPLES", "1");
     if (phongShading(frame) == PhongShading::InLoop) defines.emplace_back("PHONG_SHADED_IN_LOOP", "1");
+    bool gradientVolume = context.plan.reads(ismosLayers ? Pass::IsmosRayCast : Pass::RayCast, Resource::GradientVolume);
+    if (gradientVolume) defines.emplace_back("GRADIENT_VOLUME", "1");
     tf_->addDefines(defines);
     NoDataPiece{volume_}.addDefines(defines);
     VolumeLayoutPiece{volume_.layout()}.addDefines(defines);
@@ -408,6 +411,7 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
 
     CameraRayPiece{frame}.apply(p);
     VolumePiece{volume_}.apply(p);
+    if (gradientVolume) gradients_.apply(p);
     NoDataPiece{volume_}.apply(p);
     VolumeLayoutPiece{volume_.layout()}.apply(p);
     tf_->apply(p);

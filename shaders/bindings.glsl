@@ -28,6 +28,7 @@
 #define BINDING_DRILLED_FRACTION 25    // sampler3D r8: per voxel the drilled fraction (plan/removal_volume.h)
 #define BINDING_DRILL_NEAR_BRICKS 26   // usampler3D r8ui: per 4^3 brick 1 within the dilation radius of a drilled voxel
 #define BINDING_TUBE_IMPOSTOR_POINTS 27  // usamplerBuffer rgba32ui: impostor tube points (xyz float bits, colour and flags)
+#define BINDING_GRADIENT_VOLUME 28       // sampler3D rgba16_snorm: phong's central differences per voxel, padded (8-bit scans)
 
 #define IMAGE_OUTPUT 0              // image2D: the rendered RGBA
 #define IMAGE_OPACITY 1             // image3D r16: V_o written by step IV
@@ -45,6 +46,7 @@
 #define IMAGE_TUBE_COLOR 13             // image2D rgba16f: the G-buffer colour written by the impostor tubes
 #define IMAGE_TUBE_NORMAL 14            // image2D rgba16f: ... the normal + kind
 #define IMAGE_TUBE_DEPTH 15             // image2D r32f: ... the view depth
+#define IMAGE_GRADIENT_VOLUME 16        // image3D rgba16_snorm: the gradient volume (gradient_volume.comp)
 
 #define SSBO_SAMPLE_COUNTER 0       // uint: samples taken (bench only)
 #define SSBO_LAO_DIRECTIONS 1       // vec4[]: LAO step in texture space, weight / (K * M)

@@ -16,6 +16,17 @@ vec3 toTexture(vec3 world) { return (worldToTexture * vec4(world, 1.0)).xyz; }
 // The stored value as the GPU filters it (normalized for UNorm formats).
 float sampleTexel(vec3 tex) { return VOLUME_SAMPLE(volumeData, tex).r; }
 
+#ifdef GRADIENT_VOLUME
+// The same central differences, per voxel, interpolated (render/gradient_volume.h): one read instead of six.
+layout(binding = BINDING_GRADIENT_VOLUME) uniform sampler3D gradientVolume;
+uniform vec3 gradientVolumeScale, gradientVolumeOffset;   // the volume's texture coordinate -> the padded texture's
+uniform float gradientVolumeUnit;                         // a stored difference -> normalized value units
+
+vec3 gradientWorld(vec3 tex) {
+    vec3 d = texture(gradientVolume, tex * gradientVolumeScale + gradientVolumeOffset).xyz * gradientVolumeUnit;
+    return gradientToWorld * (0.5 * d);
+}
+#else
 // Gradient of the physical value in world units (value per mm), by central differences one voxel apart
 // along each index axis (one-sided next to no data: no_data.glsl).
 vec3 gradientWorld(vec3 tex) {
@@ -26,3 +37,4 @@ vec3 gradientWorld(vec3 tex) {
     vec3 d = differencesAcross(minus, vec3(sampleTexel(tex)), plus);  // the centre: read only with NO_DATA
     return gradientToWorld * (0.5 * d);
 }
+#endif

@@ -22,7 +22,8 @@ const PassInfo kPasses[] = {
     {Pass::TubeGBuffer, "tubes G-buffer", "DOS+geometry section 3.1.1", {R::TubeGeometry, R::ClipMaps}, {R::GBuffer}, false, "fiber tubes"},
     // With tubes in view the ray stops at the G-buffer's surface and shades it (shaders/tube_surface.glsl).
     {Pass::RayCast, "VI ray casting", "CAO step VI: ray casting with shadow-test clipping",
-     {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::Occupancy, R::ClipMaps, R::Ambient, R::GBuffer}, {R::OutputImage}, false, "full-quality image"},
+     {R::Volume, R::GradientVolume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::Occupancy, R::ClipMaps, R::Ambient, R::GBuffer},
+     {R::OutputImage}, false, "full-quality image"},
     {Pass::SlabPass, "slab pass", "DOS Algorithms 1, 3; DOS+geometry Algorithms 2-4",
      {R::Volume, R::TransferFunction, R::GradientOpacity, R::LabelVolume, R::DrilledRemoval, R::ClipMaps, R::Ambient, R::GBuffer},
      {R::OcclusionBuffers, R::GBuffer, R::OutputImage}, false, "shadows (directional occlusion)"},
@@ -32,6 +33,8 @@ const PassInfo kPasses[] = {
      {R::OutputImage, R::IsmosLayers, R::IsmosLayerBacks, R::IsmosFit}, false, "full-quality image and its depth layers"},
     {Pass::IsmosOcclusion, "ISMOS 2 occlusion", "ISMOS sec. 3.3-3.7: full/partial occlusion, eq. 1-5, 13-16",
      {R::IsmosLayers, R::IsmosLayerBacks, R::IsmosFit, R::IsmosLightSamples, R::OutputImage}, {R::OutputImage}, true, "shadows (multidirectional occlusion)"},
+    {Pass::GradientVolume, "gradient volume", "phong's central differences per voxel (render/gradient_volume.h)", {R::Volume},
+     {R::GradientVolume}, false, "gradients of the scan"},
 };
 static_assert(std::size(kPasses) == static_cast<std::size_t>(Pass::Count));
 }  // namespace
@@ -52,6 +55,9 @@ bool Freshness::ambientCurrent(const InputVersions& now, ShadingMode mode) const
 FramePlan planFrame(const PlanInputs& in) {
     const ShadingModeTraits& mode = traits(in.shading);
     bool tubes = in.tubes && in.tubesInView;
+    // Phong's ray cast reads its gradients from the gradient volume where the scan has one (the slab pass and
+    // ISMOS keep the six reads).
+    bool gradients = in.gradientVolume && in.shading == ShadingMode::Phong;
     // Resources this frame has at all: a pass's declared input that the scene lacks is left out of its line.
     auto present = [&](Resource r) {
         switch (r) {
@@ -66,6 +72,7 @@ FramePlan planFrame(const PlanInputs& in) {
             case R::SeenBricks:
             case R::LaoDirections: return mode.ambientOcclusion;
             case R::LabelVolume: return in.labels;
+            case R::GradientVolume: return gradients;
             case R::DrilledRemoval: return in.drilled;
             case R::TubeGeometry:
             case R::GBuffer: return tubes;
@@ -85,6 +92,7 @@ FramePlan planFrame(const PlanInputs& in) {
             if (present(r)) planned.writes.push_back(r);
         plan.passes.push_back(std::move(planned));
     };
+    if (gradients && !in.gradientVolumeCurrent) add(Pass::GradientVolume);
     if (in.clipMeshes > 0 && !in.clipMapsCurrent) add(Pass::ClipMaps);
     if (mode.ambientOcclusion) {
         if (!in.precomputedCurrent) add(Pass::LaoPrecompute);
@@ -124,6 +132,12 @@ FramePlan planFrame(const PlanInputs& in) {
 
 bool FramePlan::runs(Pass pass) const {
     return std::any_of(passes.begin(), passes.end(), [&](const PlannedPass& p) { return p.pass == pass; });
+}
+
+bool FramePlan::reads(Pass pass, Resource resource) const {
+    return std::any_of(passes.begin(), passes.end(), [&](const PlannedPass& p) {
+        return p.pass == pass && std::find(p.reads.begin(), p.reads.end(), resource) != p.reads.end();
+    });
 }
 
 std::string FramePlan::describe() const {

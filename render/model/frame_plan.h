@@ -28,6 +28,7 @@ enum class Pass {
     Composite,       // seed 000 Algorithms 5, 6
     IsmosRayCast,    // seed 003 pass 1: ray casting with depth layers and the transmittance fit
     IsmosOcclusion,  // seed 003 pass 2: image-space occlusion, sections 3.3-3.7
+    GradientVolume,  // phong's central differences per voxel, once per volume (render/gradient_volume.h)
     Count
 };
 
@@ -84,6 +85,8 @@ struct PlanInputs {
     bool ambientCurrent = false;
     bool ismosExact = false;       // ismos: exact layer opacities (the layer backs) ...
     bool ismosFit = false;         // ... or the transmittance fit
+    bool gradientVolume = false;   // phong reads its gradients from the gradient volume (an 8-bit scan) ...
+    bool gradientVolumeCurrent = false;   // ... which is built
 };
 
 struct PlannedPass {
@@ -94,6 +97,8 @@ struct PlannedPass {
 struct FramePlan {
     std::vector<PlannedPass> passes;
     bool runs(Pass pass) const;
+    // Whether `pass` runs and reads `resource` this frame (its declared read, kept when the frame has it).
+    bool reads(Pass pass, Resource resource) const;
     // One line a pass: "name  (implements)  reads -> writes".
     std::string describe() const;
 };

@@ -7,6 +7,7 @@ namespace curette {
 namespace {
 constexpr ResourceInfo kResources[] = {
     {Resource::Volume, "V (data volume)", "R8, R16 or R32F 3D", "the scan, in its own storage type", true},
+    {Resource::GradientVolume, "gradient volume", "RGBA16_SNORM 3D", "phong's central differences per voxel, one texel of padding (8-bit scans, phong frames)", true},
     {Resource::TransferFunction, "transfer function", "RGBA32F 1D", "colour and opacity per unit length over the value range"},
     {Resource::GradientOpacity, "gradient opacity", "R32F 1D", "opacity factor over the gradient magnitude"},
     {Resource::Occupancy, "occupancy bricks", "R8 3D", "per 8^3 brick: 0 where a sample may be non-transparent, else the Chebyshev distance (bricks) to the nearest such brick", true},

@@ -11,6 +11,7 @@ namespace curette {
 
 enum class Resource {
     Volume,            // V
+    GradientVolume,    // phong's central differences per voxel (8-bit scans: render/gradient_volume.h)
     TransferFunction,  // colour and opacity table
     GradientOpacity,   // gradient-opacity table
     Occupancy,         // empty-space-skipping bricks

@@ -50,6 +50,30 @@ TEST(FramePlan, AStillSceneCostsStepSixAlone) {
     EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::RayCast});
 }
 
+// Phong on a scan with a gradient volume builds it once, first, and its ray cast reads it; no other mode does.
+TEST(FramePlan, OnlyPhongBuildsAndReadsTheGradientVolume) {
+    PlanInputs in;
+    in.shading = ShadingMode::Phong;
+    in.gradientVolume = true;
+    FramePlan first = planFrame(in);
+    EXPECT_EQ(passes(first), (std::vector<Pass>{Pass::GradientVolume, Pass::RayCast}));
+    EXPECT_TRUE(first.reads(Pass::RayCast, Resource::GradientVolume));
+    in.gradientVolumeCurrent = true;
+    EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::RayCast});
+    EXPECT_TRUE(planFrame(in).reads(Pass::RayCast, Resource::GradientVolume));
+    for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Cao, ShadingMode::Dos, ShadingMode::Ismos}) {
+        in.shading = mode;
+        in.gradientVolumeCurrent = false;
+        FramePlan plan = planFrame(in);
+        EXPECT_FALSE(plan.runs(Pass::GradientVolume)) << shadingModeName(mode);
+        EXPECT_FALSE(plan.reads(Pass::RayCast, Resource::GradientVolume)) << shadingModeName(mode);
+    }
+    in.shading = ShadingMode::Phong;
+    in.gradientVolume = false;   // a scan without one (16-bit, float, folded, no data)
+    EXPECT_EQ(passes(planFrame(in)), std::vector<Pass>{Pass::RayCast});
+    EXPECT_FALSE(planFrame(in).reads(Pass::RayCast, Resource::GradientVolume));
+}
+
 TEST(FramePlan, AmbientOcclusionPassesRunOnlyWhenTheirInputsChanged) {
     PlanInputs in;
     in.shading = ShadingMode::Cao;

@@ -35,7 +35,7 @@ int benchRaycast(const CommandLine& cl) {
                 size.y, frames, context->info().renderer.c_str());
 
     Table table("Ray casting (step " + std::to_string(renderer.resolveStepMm(base.raycast)) + " mm)",
-                       {"shading", "phong shades", "empty space", "tile order", "ms/frame (median)", "ms/frame (min)", "GPU ms (median)",
+                       {"shading", "phong shades", "phong gradients", "empty space", "tile order", "ms/frame (median)", "ms/frame (min)", "GPU ms (median)",
                         "Msamples/frame", "Mray steps/frame", "2-thread balance", "Msamples/s", "Mtexel fetches/s",
                         "max error vs CPU", "rms error vs CPU"});
     // Empty space: jumps by the distance map (the default), one empty brick per step (as before the distance
@@ -44,16 +44,30 @@ int benchRaycast(const CommandLine& cl) {
     // 2-thread balance: the ray steps of the busier half of the dispatch over the mean of both halves (two
     // threads each take one half; 1 = balanced; the frame takes about this factor longer than balanced).
     // Phong shades its visible samples where the renderer chooses (render/model/phong_shading_placement.h), and
-    // once more in the other place, which takes the same samples and gives the same image.
-    struct Configuration { const char* emptySpace; bool skip; int jumpLimit; const char* order; int rowsPerBand; bool otherPhongPlace; };
-    const Configuration kConfigurations[] = {{"distance map", true, 255, "bands", TileOrderPiece::defaultRowsPerBand(), false},
+    // once more in the other place, which takes the same samples and gives the same image. Phong's gradients
+    // come from the gradient volume on an 8-bit scan (render/gradient_volume.h), and once more from six reads of
+    // the scan (the same central differences; llvmpipe filters the scan with 8-bit weights, so the error differs).
+    struct Configuration {
+        const char* emptySpace;
+        bool skip;
+        int jumpLimit;
+        const char* order;
+        int rowsPerBand;
+        bool otherPhongPlace;
+        bool sixReads = false;
+    };
+    const int bands = TileOrderPiece::defaultRowsPerBand();
+    const Configuration kConfigurations[] = {{"distance map", true, 255, "bands", bands, false},
                                              {"distance map", true, 255, "scanline", 1, false},
-                                             {"one brick", true, 1, "bands", TileOrderPiece::defaultRowsPerBand(), false},
-                                             {"off", false, 1, "bands", TileOrderPiece::defaultRowsPerBand(), false},
-                                             {"distance map", true, 255, "bands", TileOrderPiece::defaultRowsPerBand(), true}};
+                                             {"one brick", true, 1, "bands", bands, false},
+                                             {"off", false, 1, "bands", bands, false},
+                                             {"distance map", true, 255, "bands", bands, true},
+                                             {"distance map", true, 255, "bands", bands, false, true}};
     for (ShadingMode mode : {ShadingMode::Solid, ShadingMode::Phong}) {
         for (const Configuration& configuration : kConfigurations) {
-            if (configuration.otherPhongPlace && mode != ShadingMode::Phong) continue;
+            if ((configuration.otherPhongPlace || configuration.sixReads) && mode != ShadingMode::Phong) continue;
+            if (configuration.sixReads && !renderer.gradientVolumeSupported()) continue;
+            renderer.setGradientVolume(!configuration.sixReads);
             FrameDescription frame = base;
             frame.shading = mode;
             frame.raycast.skipEmptySpace = configuration.skip;
@@ -98,7 +112,8 @@ int benchRaycast(const CommandLine& cl) {
             steps /= frames;
             balance /= frames;
             double ms = median(wall);
-            double fetchesPerSample = mode == ShadingMode::Phong ? 7.0 : 1.0;
+            const bool gradientVolume = mode == ShadingMode::Phong && !configuration.sixReads && renderer.gradientVolumeSupported();
+            double fetchesPerSample = mode != ShadingMode::Phong ? 1.0 : gradientVolume ? 2.0 : 7.0;
 
             // Accuracy next to speed: pixels of the first frame against the CPU double twin.
             renderer.render(frameAt(0));
@@ -122,7 +137,8 @@ int benchRaycast(const CommandLine& cl) {
                 }
             }
             double rms = sampled ? std::sqrt(sumSquares / (4.0 * sampled)) : 0.0;
-            table.add({shadingModeName(mode), phongShades, configuration.emptySpace, configuration.order, ms,
+            table.add({shadingModeName(mode), phongShades, mode != ShadingMode::Phong ? "-" : gradientVolume ? "volume" : "six reads",
+                       configuration.emptySpace, configuration.order, ms,
                        *std::min_element(wall.begin(), wall.end()), median(gpu), samples * 1e-6, steps * 1e-6, balance,
                        samples / ms * 1e-3, samples * fetchesPerSample / ms * 1e-3,
                        referencePixels ? nlohmann::json(maxError) : nlohmann::json(),
