@@ -1,12 +1,16 @@
 #include "render/gradient_volume.h"
 
-#include "base/error.h"
 #include "gl/bindings.h"
 #include "render/gpu_volume.h"
-
-#include <string>
+#include "render/volume_texture.h"
 
 namespace curette {
+
+namespace {
+const VolumeTextureFormat kFormat{GL_RGBA16_SNORM, GL_RGBA, GL_SHORT, 8};
+// The texture: the scan's voxels and one texel of padding on every side.
+VolumeLayout paddedLayout(glm::ivec3 dims) { return VolumeLayout::unfolded(dims + 2); }
+}  // namespace
 
 bool GradientVolume::supports(const GpuVolume& volume) {
     return volume.format() == StorageFormat::UNorm8 && !volume.layout().folded() && !volume.hasNoData();
@@ -15,21 +19,13 @@ bool GradientVolume::supports(const GpuVolume& volume) {
 void GradientVolume::build(const GpuVolume& volume) {
     dims_ = volume.geometry().dims;
     const glm::ivec3 size = dims_ + 2;
-    texture_ = gl::createTexture(GL_TEXTURE_3D);
-    glTextureStorage3D(texture_.name(), 1, GL_RGBA16_SNORM, size.x, size.y, size.z);
-    if (glGetError() == GL_OUT_OF_MEMORY) {
-        texture_ = {};
-        throw SystemError("not enough GPU memory for the gradient volume (" + std::to_string(gpuBytes(size)) + " bytes)");
-    }
-    glTextureParameteri(texture_.name(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_.name(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(texture_.name(), wrap, GL_CLAMP_TO_EDGE);
+    texture_ = createVolumeTexture(paddedLayout(dims_), kFormat, "gradient volume");
     if (!program_) program_ = gl::Program::compute("gradient_volume.comp");
     program_.use();
     program_.set("volumeSize", dims_);
     program_.set("storeScale", static_cast<float>(kGradientStoreScale));
     glBindTextureUnit(binding::volume, volume.texture());
-    glBindImageTexture(binding::imageGradientVolume, texture_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16_SNORM);
+    glBindImageTexture(binding::imageGradientVolume, texture_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kFormat.internal);
     program_.dispatchCovering(glm::uvec3(size));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -43,10 +39,8 @@ void GradientVolume::apply(gl::Program& p) const {
     glBindTextureUnit(binding::gradientVolume, texture_.name());
 }
 
-std::size_t GradientVolume::gpuBytes(glm::ivec3 size) {
-    return static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * static_cast<std::size_t>(size.z) * 8u;
+std::size_t GradientVolume::gpuBytes() const {
+    return texture_ ? paddedLayout(dims_).texelCount() * static_cast<std::size_t>(kFormat.bytesPerVoxel) : 0;
 }
-
-std::size_t GradientVolume::gpuBytes() const { return texture_ ? gpuBytes(dims_ + 2) : 0; }
 
 }  // namespace curette

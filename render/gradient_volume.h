@@ -34,7 +34,6 @@ public:
     std::size_t gpuBytes() const;
 
 private:
-    static std::size_t gpuBytes(glm::ivec3 textureSize);
     gl::Texture texture_;
     glm::ivec3 dims_{0};   // the volume's (the texture's are 2 more)
     gl::Program program_;  // shaders/gradient_volume.comp
