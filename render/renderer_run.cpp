@@ -405,6 +405,7 @@ int Renderer::runRayCast(const PassContext& context, bool ismosLayers, int first
     bool gradientVolume = context.plan.reads(ismosLayers ? Pass::IsmosRayCast : Pass::RayCast, Resource::GradientVolume);
     if (gradientVolume) defines.emplace_back("GRADIENT_VOLUME", "1");
     tf_->addDefines(defines);
+    tf_->addStepDefines(defines, resolveStepMm(frame.raycast));
     NoDataPiece{volume_}.addDefines(defines);
     VolumeLayoutPiece{volume_.layout()}.addDefines(defines);
     gl::Program& p = raycastPrograms_.get(defines);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <string>
 
 namespace curette {
 
@@ -93,6 +94,14 @@ void TransferFunctionTexture::addDefines(gl::Defines& defines) const {
     if (useGradientOpacity_) defines.emplace_back("GRADIENT_OPACITY", "1");
     if (labels_) labels_->addDefines(defines);
     if (removal_) removal_->addDefines(defines);
+}
+
+void TransferFunctionTexture::addStepDefines(gl::Defines& defines, double stepMm) const {
+    // The exponent as the shader forms it (float step over float unit length), so a root stands in only where
+    // pow's exponent is exactly 1, 1/2 or 1/4.
+    float exponent = static_cast<float>(stepMm) / unitLengthMm_;
+    for (int roots = 0; roots <= 2; ++roots)
+        if (exponent == std::ldexp(1.0f, -roots)) defines.emplace_back("STEP_OPACITY_ROOTS", std::to_string(roots));
 }
 
 void TransferFunctionTexture::apply(gl::Program& p) const {

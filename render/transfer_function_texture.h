@@ -50,6 +50,9 @@ public:
     // With label volumes attached, classification includes them (shaders/labels.glsl): the defines and
     // bindings of the LabelOverlay come along, so no pass that classifies can forget them.
     void addDefines(gl::Defines& defines) const;
+    // A ray caster's lattice step of `stepMm`: STEP_OPACITY_ROOTS n where step / unit length, as the shader's
+    // float, is 2^-n (n = 0, 1, 2), so correctStepOpacity takes n square roots instead of pow.
+    void addStepDefines(gl::Defines& defines, double stepMm) const;
     void apply(gl::Program& program) const;
     void attachLabels(const LabelOverlay* labels) { labels_ = labels; }
     // The drilled removal (shaders/drill_removal.glsl) comes along the same way.

@@ -222,13 +222,12 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
 #endif
         for (; k <= kLast; ++k) {
             float t = (float(k) + jitter) * stepMm;
-            float segment = stepMm;
 #ifdef CUT_FACES
             // The round's first sample, past a crossing, is taken at the face (its lattice sample is in no mesh).
             bool face = atFace;
             atFace = false;
             t = face ? faceT : t;
-            segment = face ? faceSegment : segment;
+            float segment = face ? faceSegment : stepMm;
 #endif
             vec3 tex = originTex + t * directionTex;
 #ifdef COUNT_SAMPLES
@@ -277,7 +276,12 @@ vec4 castRay(ivec2 pixel, vec3 direction, vec3 originTex, vec3 directionTex, flo
 #endif
             ++samples;
             VolumeSample point = classifyOpacity(tex);
-            float alpha = correctOpacity(point.alphaUnit, segment);
+#ifdef CUT_FACES
+            // (Both are computed, llvmpipe taking either branch; the root costs little beside pow.)
+            float alpha = face ? correctOpacity(point.alphaUnit, segment) : correctStepOpacity(point.alphaUnit, stepMm);
+#else
+            float alpha = correctStepOpacity(point.alphaUnit, stepMm);
+#endif
             if (alpha <= 0.0) {
                 // (A cut face's layer goes on through transparent samples: ending it at the first one lit the
                 // tissue beyond a face in faint tissue by its gradient in some pixels and by the face in their

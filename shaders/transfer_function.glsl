@@ -29,3 +29,19 @@ float gradientOpacityFactor(float gradientMagnitude) {
 float correctOpacity(float alphaUnit, float lengthMm) {
     return 1.0 - pow(max(1.0 - alphaUnit, 0.0), lengthMm / tfUnitLengthMm);
 }
+
+// The same for a ray caster's lattice step, `stepMm` long. Where the exponent stepMm / tfUnitLengthMm is 2^-n
+// (STEP_OPACITY_ROOTS n, TransferFunctionTexture::addStepDefines), n square roots: on llvmpipe pow is exp2 of
+// log2, and the head's solid ray cast took 12-15 % less time with one root (docs/measurements.md).
+float correctStepOpacity(float alphaUnit, float stepMm) {
+    float transmittance = max(1.0 - alphaUnit, 0.0);
+#if !defined(STEP_OPACITY_ROOTS)
+    transmittance = pow(transmittance, stepMm / tfUnitLengthMm);
+#elif STEP_OPACITY_ROOTS >= 1
+    transmittance = sqrt(transmittance);
+#if STEP_OPACITY_ROOTS >= 2
+    transmittance = sqrt(transmittance);
+#endif
+#endif
+    return 1.0 - transmittance;
+}

@@ -2,6 +2,7 @@
 #include "render/reference/raycast_reference.h"
 #include "mesh/primitives.h"
 #include "render/renderer.h"
+#include "render/transfer_function_texture.h"
 #include "tests/render/gl_test_support.h"
 
 #include "base/error.h"
@@ -84,6 +85,29 @@ TEST(Raycast, MatchesCpuReferenceFloatVolumeSolidAndPhong) {
         EXPECT_GT(c.nonEmpty, 100) << "the test must look at the object";
         EXPECT_LT(c.maxError, 5e-4) << shadingModeName(mode) << " rms " << c.rmsError;
         RecordProperty(std::string("max_error_") + shadingModeName(mode), std::to_string(c.maxError));
+    }
+}
+
+// A lattice step of 1, 1/2 or 1/4 of the TF's unit length takes that many square roots instead of pow
+// (transfer_function.glsl, correctStepOpacity), any other step pow: each matches the reference as pow did.
+TEST(Raycast, StepOpacityByRootsOrPowMatchesCpuReference) {
+    glContext();
+    glm::ivec3 dims(40);
+    VolumeData volume = test::makeVolume(dims, test::centredAffine(dims), ScalarType::Float32, blobs);
+    TransferFunction tf = blobTransferFunction();
+    tf.unitLengthMm = 2.0;
+    TransferFunctionTexture table(tf, 1.0, 0.0);
+    const std::vector<std::pair<double, const char*>> steps = {{2.0, "0"}, {1.0, "1"}, {0.5, "2"}, {0.6, nullptr}};
+    for (auto [stepMm, roots] : steps) {
+        gl::Defines defines;
+        table.addStepDefines(defines, stepMm);
+        if (roots) EXPECT_EQ(defines, (gl::Defines{{"STEP_OPACITY_ROOTS", roots}})) << stepMm << " mm";
+        else EXPECT_TRUE(defines.empty()) << stepMm << " mm: pow";
+        FrameDescription frame = frameLookingAt(glm::dvec3(0), 90, 30, 20, {96, 96}, ShadingMode::Solid);
+        frame.raycast.stepMm = stepMm;
+        Comparison c = compareWithReference(volume, tf, frame, 300, 7);
+        EXPECT_GT(c.nonEmpty, 100);
+        EXPECT_LT(c.maxError, 5e-4) << stepMm << " mm step, rms " << c.rmsError;
     }
 }
 
