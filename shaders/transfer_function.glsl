@@ -34,14 +34,16 @@ float correctOpacity(float alphaUnit, float lengthMm) {
 // (STEP_OPACITY_ROOTS n, TransferFunctionTexture::addStepDefines), n square roots: on llvmpipe pow is exp2 of
 // log2, and the head's solid ray cast took 12-15 % less time with one root (docs/measurements.md).
 float correctStepOpacity(float alphaUnit, float stepMm) {
+#ifndef STEP_OPACITY_ROOTS
+    return correctOpacity(alphaUnit, stepMm);
+#else
     float transmittance = max(1.0 - alphaUnit, 0.0);
-#if !defined(STEP_OPACITY_ROOTS)
-    transmittance = pow(transmittance, stepMm / tfUnitLengthMm);
-#elif STEP_OPACITY_ROOTS >= 1
+#if STEP_OPACITY_ROOTS >= 1
     transmittance = sqrt(transmittance);
+#endif
 #if STEP_OPACITY_ROOTS >= 2
     transmittance = sqrt(transmittance);
 #endif
-#endif
     return 1.0 - transmittance;
+#endif
 }

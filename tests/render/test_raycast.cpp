@@ -88,7 +88,7 @@ TEST(Raycast, MatchesCpuReferenceFloatVolumeSolidAndPhong) {
     }
 }
 
-// A lattice step of 1, 1/2 or 1/4 of the TF's unit length takes that many square roots instead of pow
+// A lattice step of 1, 1/2 or 1/4 of the TF's unit length takes 0, 1 or 2 square roots instead of pow
 // (transfer_function.glsl, correctStepOpacity), any other step pow: each matches the reference as pow did.
 TEST(Raycast, StepOpacityByRootsOrPowMatchesCpuReference) {
     glContext();
