@@ -121,6 +121,8 @@ public:
     const char* exactProgressLabel() const;
     // Whether the image shown is a preview of `frame` under the current scene (showing() is for exact ones).
     bool showingPreview(const FrameDescription& frame) const;
+    // The size of the preview shown (none when the image shown is exact, or there is none).
+    std::optional<glm::ivec2> shownPreviewSize() const;
     bool lastFrameExact() const { return shown_ && shown_->exact; }
     // Whether any image is shown yet (none before the first frame, exact or preview, is done).
     bool showsAnImage() const { return shown_.has_value(); }

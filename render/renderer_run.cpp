@@ -48,6 +48,11 @@ bool Renderer::showingPreview(const FrameDescription& frame) const {
     return shown_ && !shown_->exact && shown_->stamp == stampOf(frame) && shown_->ambient == previewAmbient();
 }
 
+std::optional<glm::ivec2> Renderer::shownPreviewSize() const {
+    if (!shown_ || shown_->exact) return std::nullopt;
+    return shown_->stamp.frame.size;
+}
+
 bool Renderer::exactJobCurrent(const FrameDescription& frame) const {
     return exactJob_ && exactJob_->stamp == stampOf(frame) && exactJob_->previews == previewsRendered_;
 }

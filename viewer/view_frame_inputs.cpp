@@ -16,6 +16,10 @@ FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& l
         FrameDescription f = decidedFrame(frame, kind, size, loop.settings().previewStepScale, stepMm);
         return kind == FrameKind::Exact ? renderer.showing(f) : renderer.showingPreview(f);
     };
+    in.previewShownAtAnySize = [&renderer, &loop, frame, stepMm] {
+        std::optional<glm::ivec2> size = renderer.shownPreviewSize();
+        return size && renderer.showingPreview(decidedFrame(frame, FrameKind::Preview, *size, loop.settings().previewStepScale, stepMm));
+    };
     return in;
 }
 

@@ -14,6 +14,9 @@
 //     starting at the lower),
 //     so a slow scene (or a loaded machine) drops resolution rather than frames; its ray step is
 //     `previewStepScale` times the exact frame's (VTK's interactive sample distance), halving its samples.
+//     A preview of the very frame already on screen is not drawn again at the size the steering has moved to
+//     since: after the last motion that would show the same picture a frame later, and the exact frame would
+//     wait for it.
 //   - exact quality: the exact frame whenever it is not on screen (a hardware GPU's default).
 //   - adaptive quality computes the exact frame in slices of `exactBudgetMs` per frame (steps IV, V, the slab
 //     pass and the ray cast are sliced: Renderer::advanceExact), showing the last preview meanwhile, so the window
@@ -90,6 +93,9 @@ struct FrameLoopInputs {
     glm::ivec2 exactSize{1};           // the image size of the exact frame (the window times the user's scale)
     // Whether the renderer already shows this frame as `kind` at `size` (Renderer::showing, showingPreview).
     std::function<bool(FrameKind kind, glm::ivec2 size)> shown;
+    // Whether the renderer shows this frame as a preview at any size (Renderer::shownPreviewSize): the steering
+    // may since have moved the size a new preview would have.
+    std::function<bool()> previewShownAtAnySize;
     // The image on screen is the renderer's exact image, or there is none yet (the first frame of a scene): an
     // exact frame in slices would be drawn over it slice by slice, so adaptive quality shows a preview first.
     bool exactImageOnScreen = false;

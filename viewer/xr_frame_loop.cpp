@@ -49,6 +49,7 @@ XrFrameDecision XrFrameLoop::decide(const XrFrameInputs& in) {
         if (heldGeneration_ != generation_) return false;
         return kind == FrameKind::Exact ? held_ == Held::Exact : held_ == Held::Preview && heldPreviewSize_ == size;
     };
+    f.previewShownAtAnySize = [this] { return heldGeneration_ == generation_ && held_ == Held::Preview; };
     // Nothing held: nothing to submit while the exact frame is sliced, so a preview comes first.
     f.exactImageOnScreen = held_ == Held::None;
     d.frame = loop_.decide(f);

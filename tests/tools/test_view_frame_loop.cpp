@@ -22,6 +22,9 @@ struct FakeScreen {
     std::function<bool(FrameKind, glm::ivec2)> query() const {
         return [this](FrameKind kind, glm::ivec2 size) { return shown && shown->first == kind && shown->second == size; };
     }
+    std::function<bool()> previewQuery() const {
+        return [this] { return shown && shown->first == FrameKind::Preview; };
+    }
 };
 
 constexpr glm::ivec2 kWindow{1000, 800};
@@ -42,6 +45,7 @@ struct LoopRun {
         in.precomputeInputs = precomputeInputs;
         in.exactSize = kWindow;
         in.shown = screen.query();
+        in.previewShownAtAnySize = screen.previewQuery();
         FrameDecision d = loop.decide(in);
         screen.show(d);
         double scale = d.size.x / (0.5 * kWindow.x);
@@ -90,6 +94,45 @@ TEST(ViewFrameLoop, PreviewsWhileMovingAndRendersTheExactFrameOnceTheMotionHasSe
     }
     EXPECT_EQ(exactAt, 3) << "0.0625, 0.125, 0.1875 s wait; at 0.25 s the exact frame";
     EXPECT_EQ(run.frame(false).render, FrameKind::None);
+}
+
+// The last motion's preview steers the resolution like every other, so the next preview would have another size.
+// Once the motion stops, the preview on screen already shows the frame: drawing it again at the new size would
+// show the same picture a frame later and hold the exact frame back by that frame.
+TEST(ViewFrameLoop, AfterTheMotionThePreviewOnScreenIsNotDrawnAgainAtTheSteeredSize) {
+    FrameLoopSettings s;
+    s.settleSeconds = 0.25;
+    s.previewTargetMs = 50;
+    s.minPreviewScale = 0.125;
+    s.maxPreviewScale = 0.5;
+    LoopRun run(s);
+    run.frame(false);   // the exact frame
+    glm::ivec2 lastPreview{0};
+    for (int i = 0; i < 5; ++i) {
+        FrameDecision d = run.frame(true, false, 400);   // 400 ms at half resolution: the steering shrinks it
+        ASSERT_EQ(d.render, FrameKind::Preview);
+        lastPreview = d.size;
+    }
+    ASSERT_NE(run.loop.previewSize(kWindow), lastPreview) << "the steering has moved the size since the last preview";
+    double lastMotion = run.loop.lastMotion();
+    int exactAt = -1;
+    for (int i = 0; i < 10 && exactAt < 0; ++i) {
+        double t = run.now;
+        FrameDecision d = run.frame(false, false, 400);
+        if (t - lastMotion < s.settleSeconds) {
+            EXPECT_EQ(d.render, FrameKind::None) << "the frame's preview is on screen at " << t - lastMotion << " s";
+            EXPECT_TRUE(d.inMotion);
+        } else {
+            EXPECT_EQ(d.render, FrameKind::Exact);
+            exactAt = i;
+        }
+    }
+    EXPECT_EQ(exactAt, 3);
+    // A motion draws a preview at the steered size again.
+    glm::ivec2 steered = run.loop.previewSize(kWindow);
+    FrameDecision moved = run.frame(true, false, 400);
+    EXPECT_EQ(moved.render, FrameKind::Preview);
+    EXPECT_EQ(moved.size, steered);
 }
 
 TEST(ViewFrameLoop, ExactQualityNeverPreviewsMotion) {
