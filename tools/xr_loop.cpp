@@ -229,7 +229,6 @@ XrLoopResult runXrLoop(gl::Context& context, gl::WindowContext* mirror, Renderer
                     break;
                 }
                 case XrStep::Preview: {   // both eyes at the preview size, without steps I, IV and V
-                    const glm::ivec2 previewSize = loop.previewSize(result.recommendedSize[0]);
                     std::array<TrackedEye, 2> previews = xrEyes(step.frame(), frame.views, hands.anchor(),
                                                                 {loop.previewSize(result.recommendedSize[0]), loop.previewSize(result.recommendedSize[1])});
                     std::array<Image, 2> images;
@@ -242,7 +241,7 @@ XrLoopResult runXrLoop(gl::Context& context, gl::WindowContext* mirror, Renderer
                         if (e == 0) timing.firstEye = renderer.collectTimings();
                     }
                     hold(previews, images, frame.views);
-                    loop.previewSubmitted(decision, previewSize, timing.eyeMs[0] + timing.eyeMs[1]);
+                    loop.previewSubmitted(decision, timing.eyeMs[0] + timing.eyeMs[1]);
                     submitted = submitHeld();
                     rendered = true;
                     break;

@@ -12,14 +12,10 @@ FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& l
     in.exactSize = frame.size;
     in.exactImageOnScreen = !renderer.showsAnImage() || renderer.lastFrameExact();
     double stepMm = renderer.resolveStepMm(frame.raycast);
-    in.shown = [&renderer, &loop, frame, stepMm](FrameKind kind, glm::ivec2 size) {
-        FrameDescription f = decidedFrame(frame, kind, size, loop.settings().previewStepScale, stepMm);
-        return kind == FrameKind::Exact ? renderer.showing(f) : renderer.showingPreview(f);
-    };
-    in.previewShownAtAnySize = [&renderer, &loop, frame, stepMm] {
-        std::optional<glm::ivec2> size = renderer.shownPreviewSize();
-        return size && renderer.showingPreview(decidedFrame(frame, FrameKind::Preview, *size, loop.settings().previewStepScale, stepMm));
-    };
+    in.exactShown = renderer.showing(frame);
+    std::optional<glm::ivec2> previewSize = renderer.shownPreviewSize();
+    in.previewShown = previewSize &&
+                      renderer.showingPreview(decidedFrame(frame, FrameKind::Preview, *previewSize, loop.settings().previewStepScale, stepMm));
     return in;
 }
 

@@ -50,23 +50,19 @@ FrameDecision ViewFrameLoop::decide(const FrameLoopInputs& in) {
     d.inMotion = in.now - lastMotion_ < settings_.settleSeconds;
     bool adaptive = settings_.quality == ViewQuality::Adaptive;
     auto want = [&](FrameKind kind, glm::ivec2 size) {
-        if (in.shown && in.shown(kind, size)) return;
+        if (kind == FrameKind::Exact ? in.exactShown : in.previewShown) return;
         d.render = kind;
         d.size = size;
         d.rayStepScale = kind == FrameKind::Preview ? settings_.previewStepScale : 1.0;
-    };
-    auto wantPreview = [&] {
-        if (in.previewShownAtAnySize && in.previewShownAtAnySize()) return;
-        want(FrameKind::Preview, previewSize(in.exactSize));
     };
     if (in.precomputePending) {
         // No exact frame before step I is done: a slice of it, and the frame without AO (the renderer's preview).
         // No slice while step I's inputs are being edited: the next edit would start it over.
         bool editing = in.now - lastPrecomputeEdit_ < settings_.settleSeconds;
         d.precomputeBudgetMs = editing ? 0.0 : settings_.precomputeBudgetMs;
-        wantPreview();
-    } else if (adaptive && (d.inMotion || (in.exactImageOnScreen && !(in.shown && in.shown(FrameKind::Exact, in.exactSize))))) {
-        wantPreview();
+        want(FrameKind::Preview, previewSize(in.exactSize));
+    } else if (adaptive && (d.inMotion || (in.exactImageOnScreen && !in.exactShown))) {
+        want(FrameKind::Preview, previewSize(in.exactSize));
     } else {
         want(FrameKind::Exact, in.exactSize);
         if (d.render == FrameKind::Exact && adaptive) d.exactBudgetMs = settings_.exactBudgetMs, d.exactSliceUnits = settings_.exactSliceUnits;

@@ -38,7 +38,6 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <string>
 
@@ -91,11 +90,10 @@ struct FrameLoopInputs {
     bool precomputePending = false;    // the frame's mode needs step I and it has not finished
     std::uint64_t precomputeInputs = 0; // changes whenever step I's inputs change (Renderer::precomputeInputsVersion)
     glm::ivec2 exactSize{1};           // the image size of the exact frame (the window times the user's scale)
-    // Whether the renderer already shows this frame as `kind` at `size` (Renderer::showing, showingPreview).
-    std::function<bool(FrameKind kind, glm::ivec2 size)> shown;
-    // Whether the renderer shows this frame as a preview at any size (Renderer::shownPreviewSize): the steering
-    // may since have moved the size a new preview would have.
-    std::function<bool()> previewShownAtAnySize;
+    // What the renderer already shows of this frame (Renderer::showing, showingPreview): the exact frame at
+    // exactSize, or a preview at any size (the steering may since have moved the size a new one would have).
+    bool exactShown = false;
+    bool previewShown = false;
     // The image on screen is the renderer's exact image, or there is none yet (the first frame of a scene): an
     // exact frame in slices would be drawn over it slice by slice, so adaptive quality shows a preview first.
     bool exactImageOnScreen = false;

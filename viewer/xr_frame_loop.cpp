@@ -45,11 +45,8 @@ XrFrameDecision XrFrameLoop::decide(const XrFrameInputs& in) {
     f.precomputePending = in.precomputePending;
     f.precomputeInputs = in.precomputeInputs;
     f.exactSize = in.recommendedSize;
-    f.shown = [this](FrameKind kind, glm::ivec2 size) {
-        if (heldGeneration_ != generation_) return false;
-        return kind == FrameKind::Exact ? held_ == Held::Exact : held_ == Held::Preview && heldPreviewSize_ == size;
-    };
-    f.previewShownAtAnySize = [this] { return heldGeneration_ == generation_ && held_ == Held::Preview; };
+    f.exactShown = heldGeneration_ == generation_ && held_ == Held::Exact;
+    f.previewShown = heldGeneration_ == generation_ && held_ == Held::Preview;
     // Nothing held: nothing to submit while the exact frame is sliced, so a preview comes first.
     f.exactImageOnScreen = held_ == Held::None;
     d.frame = loop_.decide(f);
@@ -66,10 +63,9 @@ XrFrameDecision XrFrameLoop::decide(const XrFrameInputs& in) {
     return d;
 }
 
-void XrFrameLoop::previewSubmitted(const XrFrameDecision& decision, glm::ivec2 size, double ms) {
+void XrFrameLoop::previewSubmitted(const XrFrameDecision& decision, double ms) {
     held_ = Held::Preview;
     heldGeneration_ = generation_;
-    heldPreviewSize_ = size;
     loop_.rendered(decision.frame, ms);
 }
 

@@ -78,10 +78,10 @@ public:
     explicit XrFrameLoop(FrameLoopSettings settings = {}, HeadStillness stillness = {});
 
     XrFrameDecision decide(const XrFrameInputs& in);
-    // What the executor submitted: a preview of this frame's state at `size` (the left eye's recommended size
-    // scaled) that took `ms` for both eyes (steers the preview scale), or the exact frame it was asked for
-    // (its last slice done).
-    void previewSubmitted(const XrFrameDecision& decision, glm::ivec2 size, double ms);
+    // What the executor submitted: a preview of this frame's state (at the left eye's recommended size scaled)
+    // that took `ms` for both eyes (steers the preview scale), or the exact frame it was asked for (its last
+    // slice done).
+    void previewSubmitted(const XrFrameDecision& decision, double ms);
     void exactSubmitted();
 
     // An eye's preview image size bound: `recommended` at the preview scale.
@@ -95,7 +95,6 @@ private:
     std::uint64_t generation_ = 0;        // counts motions: images of an older one show a past state
     enum class Held { None, Preview, Exact } held_ = Held::None;
     std::uint64_t heldGeneration_ = 0;
-    glm::ivec2 heldPreviewSize_{0};
     std::optional<std::uint64_t> exactGeneration_;   // the exact frame under way, of this generation
 };
 

@@ -19,11 +19,10 @@ struct FakeScreen {
     void show(const FrameDecision& d) {
         if (d.render != FrameKind::None) shown = std::make_pair(d.render, d.size);
     }
-    std::function<bool(FrameKind, glm::ivec2)> query() const {
-        return [this](FrameKind kind, glm::ivec2 size) { return shown && shown->first == kind && shown->second == size; };
-    }
-    std::function<bool()> previewQuery() const {
-        return [this] { return shown && shown->first == FrameKind::Preview; };
+    // The exact frame at the window's size, or a preview at any size.
+    void describe(FrameLoopInputs& in, glm::ivec2 exactSize) const {
+        in.exactShown = shown && shown->first == FrameKind::Exact && shown->second == exactSize;
+        in.previewShown = shown && shown->first == FrameKind::Preview;
     }
 };
 
@@ -44,8 +43,7 @@ struct LoopRun {
         in.precomputePending = precomputePending;
         in.precomputeInputs = precomputeInputs;
         in.exactSize = kWindow;
-        in.shown = screen.query();
-        in.previewShownAtAnySize = screen.previewQuery();
+        screen.describe(in, kWindow);
         FrameDecision d = loop.decide(in);
         screen.show(d);
         double scale = d.size.x / (0.5 * kWindow.x);
@@ -241,7 +239,6 @@ TEST(ViewFrameLoop, APreviewComesFirstWhenTheExactFrameWouldBeDrawnOverTheScreen
         FrameLoopInputs in;
         in.now = 10;
         in.exactSize = kWindow;
-        in.shown = [](FrameKind, glm::ivec2) { return false; };
         in.exactImageOnScreen = true;   // nothing on screen yet, or the last exact image
         FrameDecision d = loop.decide(in);
         EXPECT_EQ(d.render, quality == ViewQuality::Adaptive ? FrameKind::Preview : FrameKind::Exact);
@@ -254,7 +251,7 @@ TEST(ViewFrameLoop, APreviewComesFirstWhenTheExactFrameWouldBeDrawnOverTheScreen
         // The exact frame is what is on screen: nothing to draw.
         in.now = 12;
         in.exactImageOnScreen = true;
-        in.shown = [](FrameKind kind, glm::ivec2) { return kind == FrameKind::Exact; };
+        in.exactShown = true;
         EXPECT_EQ(loop.decide(in).render, FrameKind::None);
     }
 }

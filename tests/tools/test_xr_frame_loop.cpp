@@ -48,7 +48,7 @@ struct FakeHeadset {
         in.head = head;
         in.recommendedSize = {100, 90};
         XrFrameDecision d = loop.decide(in);
-        if (d.step == XrStep::Preview) loop.previewSubmitted(d, loop.previewSize(in.recommendedSize), 10.0);
+        if (d.step == XrStep::Preview) loop.previewSubmitted(d, 10.0);
         if (d.step == XrStep::ExactSlice) {
             if (d.startExact) slicesDone = 0;
             if (++slicesDone == slices) loop.exactSubmitted();
