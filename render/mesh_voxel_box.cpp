@@ -79,16 +79,15 @@ BrickSet bricksAroundMeshes(const VolumeGeometry& g, const clip::ClipMeshSet& cl
     return set;
 }
 
-BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip, int i) {
+namespace {
+
+// The bricks whose voxel centres' parallelepiped meets the oriented box [lo, hi] of a mesh's local frame (placed
+// by `toWorld`, rigid) and whose circumscribed ball meets the ball (world centre, radius).
+BrickSet bricksMeetingBoxAndBall(const VolumeGeometry& g, glm::dvec3 lo, glm::dvec3 hi, const glm::dmat4& toWorld, glm::dvec3 ballCentre,
+                                 double ballRadius) {
     BrickSet set = BrickSet::none(g.dims);
     const glm::dmat3 linear(g.indexToWorld);
     const glm::dmat4 worldToIndex = g.worldToIndex();
-    // The mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal) and its reach ball (reachBallLocal).
-    glm::dvec3 lo, hi;
-    clip.dilatedBoxLocal(i, lo, hi);
-    glm::dmat4 toWorld = clip.pose(i).matrix();
-    clip::ClipMeshSet::Ball ball = clip.reachBallLocal(i);
-    glm::dvec3 ballCentre(toWorld * glm::dvec4(ball.centre, 1.0));
     // A whole brick's voxel centres span kVisitBrickSize - 1 cells along each axis; a partial one's fewer.
     const double brickCircumradius = 0.5 * (kVisitBrickSize - 1) * g.cellDiagonalMm();
     Parallelepiped box;
@@ -121,8 +120,38 @@ BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip
                     brick.axis[a] = linear[a];
                     brick.half[a] = 0.5 * (size[a] - 1.0);
                 }
-                if (mayMeetBall(brick.centre, brickCircumradius, ballCentre, ball.radius) && mayIntersect(box, brick)) set.visited[b] = 1;
+                if (mayMeetBall(brick.centre, brickCircumradius, ballCentre, ballRadius) && mayIntersect(box, brick)) set.visited[b] = 1;
             }
+    return set;
+}
+
+}  // namespace
+
+BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip, int i) {
+    // The mesh's dilated box (clip::ClipMeshSet::dilatedBoxLocal) and its reach ball (reachBallLocal).
+    glm::dvec3 lo, hi;
+    clip.dilatedBoxLocal(i, lo, hi);
+    glm::dmat4 toWorld = clip.pose(i).matrix();
+    clip::ClipMeshSet::Ball ball = clip.reachBallLocal(i);
+    return bricksMeetingBoxAndBall(g, lo, hi, toWorld, glm::dvec3(toWorld * glm::dvec4(ball.centre, 1.0)), ball.radius);
+}
+
+BrickSet bricksWithinSampleReach(const VolumeGeometry& g, const clip::ClipMeshSet& clip) {
+    if (!clip.depthBoxTests()) return BrickSet::all(g.dims);   // step IV then tests the samples of every voxel near a mesh
+    // Step IV tests a voxel's samples against mesh i only where nearDepthBox holds: its centre within the sample
+    // reach of the depth box (clip::ClipMeshSet::depthBoxLocal) and of the depth ball. Both grown by the reach and
+    // a hundredth of a millimetre for the shader's float rounding of the centre; a brick that misses either
+    // holds no such voxel.
+    const double reach = clipSampleReachMm(g) + 0.01;
+    BrickSet set = BrickSet::none(g.dims);
+    for (int i = 0; i < clip.count(); ++i) {
+        glm::dvec3 lo, hi;
+        clip.depthBoxLocal(i, lo, hi);
+        glm::dmat4 toWorld = clip.pose(i).matrix();
+        clip::ClipMeshSet::Ball ball = clip.depthBallLocal(i);
+        set.unite(bricksMeetingBoxAndBall(g, lo - reach, hi + reach, toWorld, glm::dvec3(toWorld * glm::dvec4(ball.centre, 1.0)),
+                                          ball.radius + reach));
+    }
     return set;
 }
 

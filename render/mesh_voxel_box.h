@@ -34,4 +34,11 @@ BrickSet bricksAroundMeshes(const VolumeGeometry& geometry, const clip::ClipMesh
 // ... of mesh `index` alone.
 BrickSet bricksAroundMesh(const VolumeGeometry& geometry, const clip::ClipMeshSet& clip, int index);
 
+// The bricks holding a voxel one of whose clip samples step IV tests against the depth maps of some mesh
+// (shaders/clip_coverage.glsl meshesWithinSampleReach): those whose voxel centres come within the sample reach
+// (clipSampleReachMm) of a mesh's depth box and its depth ball (clip::ClipMeshSet::depthBoxLocal,
+// depthBallLocal). Elsewhere every voxel's count of samples inside is 0 without a test. Every brick when the
+// set's depth-box tests are off.
+BrickSet bricksWithinSampleReach(const VolumeGeometry& geometry, const clip::ClipMeshSet& clip);
+
 }  // namespace curette

@@ -64,11 +64,18 @@ void main() {
     } else if (clipMeshCount > 0 && nearAnyClipMesh(centreWorld, sampleReachMm)) {
         meshes = allClipMeshes();
     }
+    int samples = 9 + antiAliasingSamples;
+#ifdef BEYOND_SAMPLE_REACH
+    // This dispatch's bricks lie beyond every mesh's sample reach (render/mesh_voxel_box.h
+    // bricksWithinSampleReach), where the test below finds no mesh to test: the count is 0, compiled out, as
+    // llvmpipe runs a branch's code under a lane mask whether or not a lane takes it.
+    int visible = samples;
+#else
     // Of those, the meshes a clip sample can lie inside (a dilated shape reaches much farther than its mesh's
     // depth box: most of the voxels it holds lie in the dilation's shell, where no sample is inside).
     uint sampled = meshesWithinSampleReach(centreWorld, meshes, sampleReachMm);
-    int samples = 9 + antiAliasingSamples;
     int visible = samples - (sampled != 0u ? insideSampleCount(centre, sampled) : 0);
+#endif
     float unclipped = voxelOpacity(v);
     // The drilled removal keeps (1 - drilled fraction) of the voxel (plan/removal_volume.h); with the meshes'
     // visible fraction it multiplies: removed = 1 - (1 - meshes)(1 - drilled).

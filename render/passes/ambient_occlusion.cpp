@@ -11,6 +11,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <limits>
 
@@ -126,8 +127,13 @@ void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
     VolumeLayoutPiece{volume_.layout()}.apply(p);
 }
 
-std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, bool laoEverywhere) {
-    std::vector<std::uint32_t> list = dealtToWorkerThreads(bricks.visitedIndices(), llvmpipeWorkerThreads());
+std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, const BrickSet& withinReach, bool laoEverywhere) {
+    // Each part dealt on its own: step IV dispatches them separately.
+    std::vector<std::uint32_t> near, far;
+    for (std::uint32_t b : bricks.visitedIndices()) (withinReach.visited[b] ? near : far).push_back(b);
+    std::vector<std::uint32_t> list = dealtToWorkerThreads(near, llvmpipeWorkerThreads());
+    for (std::uint32_t b : dealtToWorkerThreads(far, llvmpipeWorkerThreads())) list.push_back(b);
+    sampleSlots_ = static_cast<std::uint32_t>(near.size());
     if (laoEverywhere)
         for (std::uint32_t& entry : list) entry |= kVisitLaoCanChange;
     laoFlagsPending_ = !laoEverywhere;
@@ -193,7 +199,15 @@ void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
 
 void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
                                         bool applyDrill, std::uint32_t firstSlot, std::uint32_t slots) {
+    const std::uint32_t end = firstSlot + slots, split = std::clamp(sampleSlots_, firstSlot, end);
+    if (split > firstSlot) dispatchVoxelClipping(tf, clip, testDilation, applyDrill, false, firstSlot, split - firstSlot);
+    if (end > split) dispatchVoxelClipping(tf, clip, testDilation, applyDrill, true, split, end - split);
+}
+
+void AmbientOcclusion::dispatchVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
+                                             bool applyDrill, bool beyondSampleReach, std::uint32_t firstSlot, std::uint32_t slots) {
     gl::Defines defines;
+    if (beyondSampleReach) defines.emplace_back("BEYOND_SAMPLE_REACH", "1");
     tf.addDefines(defines);
     NoDataPiece{volume_}.addDefines(defines);
     VolumeLayoutPiece{volume_.layout()}.addDefines(defines);
@@ -407,6 +421,7 @@ void AmbientOcclusion::uploadVisitRange(std::uint32_t first, std::uint32_t count
         dealtToWorkerThreads(std::vector<std::uint32_t>(allBricks_.begin() + first, allBricks_.begin() + first + count), llvmpipeWorkerThreads());
     glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * std::size_t(count)), slice.data());
     visitCount_ = count;
+    sampleSlots_ = 0;         // step I clips without meshes
     clipSlotsDone_ = count;   // no step IV under way over this list
     laoFlagsPending_ = false;
 }
@@ -490,7 +505,9 @@ std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, S
     stats_.dispatched = visit.visitedVoxels();
     stats_.recomputed = 0;
     // Full LAO recomputes every visible voxel; CAO only where a changed V_o is within reach (markLaoBricks).
-    stats_.bricks = uploadVisit(visit, !cao);
+    const BrickSet withinReach = bricksWithinSampleReach(volume_.geometry(), clip);
+    stats_.bricks = uploadVisit(visit, withinReach, !cao);
+    stats_.sampledBricks = sampleSlots_;
     stats_.laoBricks = cao ? 0 : stats_.bricks;
     clipDilation_ = cao;
     clipSlotsDone_ = 0;

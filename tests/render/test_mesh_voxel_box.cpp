@@ -158,6 +158,84 @@ TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
     EXPECT_LT(visitedVoxels, boxVoxels / 2) << "turned meshes: the oriented boxes' bricks must hold well under the axis-aligned box";
 }
 
+// Distance from world point p to mesh i's depth box (clip::ClipMeshSet::depthBoxLocal), and how far p lies
+// outside its depth ball, in double: step IV tests a voxel's samples against mesh i only where both are within
+// the sample reach of the centre (clip_test.glsl nearDepthBox).
+bool nearDepthBoxAndBall(const clip::ClipMeshSet& set, int i, glm::dvec3 p, double reach) {
+    glm::dvec3 lo, hi;
+    set.depthBoxLocal(i, lo, hi);
+    glm::dvec3 q(set.pose(i).inverseMatrix() * glm::dvec4(p, 1.0));
+    clip::ClipMeshSet::Ball ball = set.depthBallLocal(i);
+    return glm::length(glm::max(glm::max(lo - q, q - hi), glm::dvec3(0.0))) <= reach && glm::length(q - ball.centre) <= ball.radius + reach;
+}
+
+// Step IV compiles the clip-sample test out of the bricks beyond every mesh's sample reach
+// (bricksWithinSampleReach). Conservative: every voxel whose centre nearDepthBox admits for some mesh, and every
+// voxel one of whose nine clip samples the GPU's maps call inside, lies in a brick within reach. Tight: those
+// bricks are a small part of the visited ones. Off with the depth-box tests (every voxel near a mesh is tested).
+TEST(VisitBricks, SampleReachBricksHoldEveryVoxelWhoseSamplesAreTested) {
+    glContext();
+    glm::ivec3 dims(48, 44, 40);
+    glm::dmat4 turn = glm::mat4_cast(glm::angleAxis(glm::radians(25.0), glm::normalize(glm::dvec3(2.0, -1.0, 3.0))));
+    glm::dmat4 affine = turn * test::centredAffine(dims, glm::dvec3(0.8, 1.0, 1.3));
+    VolumeData volume = test::makeVolume(dims, affine, ScalarType::UInt8, [](glm::dvec3) { return 100.0; });
+    Renderer renderer(glContext(), volume, test::rampTransferFunction(0, 255, 0.5));
+    const VolumeGeometry& g = renderer.geometry();
+    clip::ClipMeshSet& set = renderer.clipMeshes();
+    auto rod = std::make_shared<const clip::TriangleMesh>(clip::makeCylinder(2.5, 30.0, 24));
+    auto ball = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 2));
+    const double reach = clipSampleReachMm(g);
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::uint64_t nearVoxels = 0, insideVoxels = 0, withinBricks = 0, aroundBricks = 0;
+    for (int round = 0; round < 8; ++round) {
+        set.clear();
+        for (int m = 0; m < 1 + round % 2; ++m) {
+            glm::dvec3 axis = glm::normalize(glm::dvec3(u(random), u(random), u(random)) + glm::dvec3(1e-9));
+            clip::RigidPose pose{16.0 * glm::dvec3(u(random), u(random), u(random)), glm::angleAxis(3.14159 * u(random), axis)};
+            set.add(m == 0 ? rod : ball, glm::dvec3(1.0), pose, m == 0 ? "rod" : "ball");
+        }
+        set.setDilationRadiusMm(4.0);
+        set.setDilatedMapsNeeded(true);
+        set.update();
+        BrickSet within = bricksWithinSampleReach(g, set);
+        withinBricks += within.visitedCount();
+        aroundBricks += bricksAroundMeshes(g, set).visitedCount();
+        std::vector<glm::vec4> points;
+        std::vector<glm::ivec3> voxels;
+        for (int k = 0; k < dims.z; ++k)
+            for (int j = 0; j < dims.y; ++j)
+                for (int i = 0; i < dims.x; ++i) {
+                    glm::dvec3 p(g.indexToWorld * glm::dvec4(i, j, k, 1.0));
+                    bool near = false;
+                    for (int m = 0; m < set.count(); ++m) near = near || nearDepthBoxAndBall(set, m, p, reach);
+                    nearVoxels += near;
+                    if (near) EXPECT_TRUE(within.visits({i, j, k})) << "voxel " << i << " " << j << " " << k << " round " << round;
+                    for (int c = 0; c < 9; ++c) {
+                        glm::dvec3 offset = c == 0 ? glm::dvec3(0.0)
+                                                   : clip::kCellSampleHalfWidth *
+                                                         glm::dvec3((c - 1) & 1 ? 1 : -1, (c - 1) & 2 ? 1 : -1, (c - 1) & 4 ? 1 : -1);
+                        points.emplace_back(glm::vec3(g.indexToWorld * glm::dvec4(glm::dvec3(i, j, k) + offset, 1.0)), 0.0f);
+                        voxels.push_back({i, j, k});
+                    }
+                }
+        std::vector<std::uint32_t> results = probe(set, points);
+        for (std::size_t p = 0; p < points.size(); ++p) {
+            if (!(results[p] & 1u)) continue;
+            ++insideVoxels;
+            EXPECT_TRUE(within.visits(voxels[p])) << "a clip sample inside, round " << round;
+        }
+        set.setDepthBoxTests(false);
+        EXPECT_EQ(bricksWithinSampleReach(g, set).visitedCount(), within.brickCount());
+        set.setDepthBoxTests(true);
+    }
+    std::printf("voxels near a depth box %llu, clip samples inside %llu; bricks within sample reach %llu of %llu visited\n",
+                static_cast<unsigned long long>(nearVoxels), static_cast<unsigned long long>(insideVoxels),
+                static_cast<unsigned long long>(withinBricks), static_cast<unsigned long long>(aroundBricks));
+    EXPECT_GT(insideVoxels, 1000u);
+    EXPECT_LT(withinBricks * 4, aroundBricks * 3);
+}
+
 TEST(VisitBricks, BrickSetCountsPartialBricksAndUnites) {
     BrickSet a = BrickSet::none({9, 4, 5}), b = BrickSet::none({9, 4, 5});
     EXPECT_EQ(a.grid, glm::ivec3(3, 1, 2));
