@@ -155,4 +155,59 @@ BrickSet bricksWithinSampleReach(const VolumeGeometry& g, const clip::ClipMeshSe
     return set;
 }
 
+BrickSet bricksDeepInsideMeshes(const VolumeGeometry& g, const clip::ClipMeshSet& clip) {
+    BrickSet deep = BrickSet::none(g.dims);
+    if (!clip.depthBoxTests()) return deep;   // the reference: every sample tested
+    // A voxel's clip samples lie in its own cell, within half a step of its centre along each index axis; a
+    // brick's, in its voxel centres' box grown by half a step. The shader maps a sample in float: its pixel may
+    // be a neighbour of the one computed here and its depth a little off, so the rectangle is grown by a pixel
+    // and the depths by a hundredth of a millimetre.
+    const double depthSlackMm = 0.01;
+    for (int i = 0; i < clip.count(); ++i) {
+        const clip::ClippingCamera& camera = clip.camera(i);
+        const DepthIntervalPyramid& intervals = clip.depthIntervals(i);
+        const glm::dmat4 indexToMap = camera.worldToMap(clip.pose(i)) * g.indexToWorld;
+        const glm::dvec2 offset = camera.depthOffset();
+        const double scale = camera.depthScale() * intervals.resolution();
+        // Only bricks in the depth box can be inside (outside it no depth map says inside).
+        glm::dvec3 lo, hi;
+        clip.depthBoxLocal(i, lo, hi);
+        const glm::dmat4 toWorld = clip.pose(i).matrix();
+        clip::ClipMeshSet::Ball ball = clip.depthBallLocal(i);
+        BrickSet candidates = bricksMeetingBoxAndBall(g, lo, hi, toWorld, glm::dvec3(toWorld * glm::dvec4(ball.centre, 1.0)), ball.radius);
+        for (std::uint32_t b : candidates.visitedIndices()) {
+            if (deep.visited[b]) continue;
+            glm::ivec3 brick(int(b % std::uint32_t(deep.grid.x)), int((b / std::uint32_t(deep.grid.x)) % std::uint32_t(deep.grid.y)),
+                             int(b / (std::uint32_t(deep.grid.x) * std::uint32_t(deep.grid.y))));
+            // Part by part (a turned cell's box in the map is wider than the cell): the brick is deep when each of
+            // its 2^3 blocks of voxels is.
+            const glm::ivec3 brickFirst = kVisitBrickSize * brick, brickEnd = glm::min(brickFirst + kVisitBrickSize, g.dims);
+            bool inside = true;
+            for (int part = 0; part < 8 && inside; ++part) {
+                glm::ivec3 half(kVisitBrickSize / 2);
+                glm::ivec3 from = brickFirst + glm::ivec3(part & 1, (part >> 1) & 1, (part >> 2) & 1) * half;
+                glm::ivec3 to = glm::min(from + half, brickEnd);
+                if (glm::any(glm::greaterThanEqual(from, to))) continue;   // past the grid's upper faces
+                glm::dvec3 first(from), last = glm::dvec3(to - 1);
+                glm::dvec2 pixelLo(std::numeric_limits<double>::infinity()), pixelHi(-std::numeric_limits<double>::infinity());
+                double zLo = std::numeric_limits<double>::infinity(), zHi = -zLo;
+                for (int corner = 0; corner < 8; ++corner) {
+                    glm::dvec3 index((corner & 1) ? last.x + 0.5 : first.x - 0.5, (corner & 2) ? last.y + 0.5 : first.y - 0.5,
+                                     (corner & 4) ? last.z + 0.5 : first.z - 0.5);
+                    glm::dvec3 m(indexToMap * glm::dvec4(index, 1.0));
+                    glm::dvec2 pixel = (glm::dvec2(m) - offset) * scale;
+                    pixelLo = glm::min(pixelLo, pixel);
+                    pixelHi = glm::max(pixelHi, pixel);
+                    zLo = std::min(zLo, m.z);
+                    zHi = std::max(zHi, m.z);
+                }
+                inside = intervals.intervalHolds(glm::ivec2(glm::floor(pixelLo)) - 1, glm::ivec2(glm::floor(pixelHi)) + 1, zLo - depthSlackMm,
+                                                 zHi + depthSlackMm);
+            }
+            if (inside) deep.visited[b] = 1;
+        }
+    }
+    return deep;
+}
+
 }  // namespace curette

@@ -41,4 +41,12 @@ BrickSet bricksAroundMesh(const VolumeGeometry& geometry, const clip::ClipMeshSe
 // set's depth-box tests are off.
 BrickSet bricksWithinSampleReach(const VolumeGeometry& geometry, const clip::ClipMeshSet& clip);
 
+// The bricks whose every voxel has every clip sample inside one mesh, by that mesh's depth maps (read back,
+// clip::ClipMeshSet::depthIntervals): one interval holds the depths of the voxels' cells, grown by the float
+// rounding of the shader's sample points, at every map pixel they cover. There step IV's count is 9 + N without
+// a test: such a mesh's dilated shape holds the centre and its depth box and ball the samples, so the shader
+// would test it and find all nine samples inside. None when the set's depth-box tests are off (the reference
+// that tests every sample).
+BrickSet bricksDeepInsideMeshes(const VolumeGeometry& geometry, const clip::ClipMeshSet& clip);
+
 }  // namespace curette

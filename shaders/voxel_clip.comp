@@ -65,7 +65,11 @@ void main() {
         meshes = allClipMeshes();
     }
     int samples = 9 + antiAliasingSamples;
-#ifdef BEYOND_SAMPLE_REACH
+#if defined(DEEP_INSIDE_MESH)
+    // This dispatch's bricks have every clip sample inside one mesh (render/mesh_voxel_box.h
+    // bricksDeepInsideMeshes), which the test below would find: the count is 9 + N, compiled in.
+    int visible = 0;
+#elif defined(BEYOND_SAMPLE_REACH)
     // This dispatch's bricks lie beyond every mesh's sample reach (render/mesh_voxel_box.h
     // bricksWithinSampleReach), where the test below finds no mesh to test: the count is 0, compiled out, as
     // llvmpipe runs a branch's code under a lane mask whether or not a lane takes it.

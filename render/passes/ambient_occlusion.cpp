@@ -127,13 +127,14 @@ void AmbientOcclusion::setLaoUniforms(gl::Program& p, float opacityExponent) {
     VolumeLayoutPiece{volume_.layout()}.apply(p);
 }
 
-std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, const BrickSet& withinReach, bool laoEverywhere) {
-    // Each part dealt on its own: step IV dispatches them separately.
-    std::vector<std::uint32_t> near, far;
-    for (std::uint32_t b : bricks.visitedIndices()) (withinReach.visited[b] ? near : far).push_back(b);
-    std::vector<std::uint32_t> list = dealtToWorkerThreads(near, llvmpipeWorkerThreads());
-    for (std::uint32_t b : dealtToWorkerThreads(far, llvmpipeWorkerThreads())) list.push_back(b);
-    sampleSlots_ = static_cast<std::uint32_t>(near.size());
+std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, const BrickSet& withinReach, const BrickSet& deep, bool laoEverywhere) {
+    std::vector<std::uint32_t> tested, inside, beyond;
+    for (std::uint32_t b : bricks.visitedIndices()) (deep.visited[b] ? inside : withinReach.visited[b] ? tested : beyond).push_back(b);
+    std::vector<std::uint32_t> list;
+    for (const std::vector<std::uint32_t>* part : {&tested, &inside, &beyond})
+        for (std::uint32_t b : dealtToWorkerThreads(*part, llvmpipeWorkerThreads())) list.push_back(b);
+    testedSlots_ = static_cast<std::uint32_t>(tested.size());
+    deepSlotsEnd_ = testedSlots_ + static_cast<std::uint32_t>(inside.size());
     if (laoEverywhere)
         for (std::uint32_t& entry : list) entry |= kVisitLaoCanChange;
     laoFlagsPending_ = !laoEverywhere;
@@ -199,15 +200,19 @@ void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
 
 void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
                                         bool applyDrill, std::uint32_t firstSlot, std::uint32_t slots) {
-    const std::uint32_t end = firstSlot + slots, split = std::clamp(sampleSlots_, firstSlot, end);
-    if (split > firstSlot) dispatchVoxelClipping(tf, clip, testDilation, applyDrill, false, firstSlot, split - firstSlot);
-    if (end > split) dispatchVoxelClipping(tf, clip, testDilation, applyDrill, true, split, end - split);
+    const std::uint32_t end = firstSlot + slots;
+    const std::uint32_t bounds[4] = {firstSlot, std::clamp(testedSlots_, firstSlot, end), std::clamp(deepSlotsEnd_, firstSlot, end), end};
+    const SampleCount counts[3] = {SampleCount::Tested, SampleCount::AllInside, SampleCount::NoneInside};
+    for (int part = 0; part < 3; ++part)
+        if (bounds[part + 1] > bounds[part])
+            dispatchVoxelClipping(tf, clip, testDilation, applyDrill, counts[part], bounds[part], bounds[part + 1] - bounds[part]);
 }
 
 void AmbientOcclusion::dispatchVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
-                                             bool applyDrill, bool beyondSampleReach, std::uint32_t firstSlot, std::uint32_t slots) {
+                                             bool applyDrill, SampleCount count, std::uint32_t firstSlot, std::uint32_t slots) {
     gl::Defines defines;
-    if (beyondSampleReach) defines.emplace_back("BEYOND_SAMPLE_REACH", "1");
+    if (count == SampleCount::AllInside) defines.emplace_back("DEEP_INSIDE_MESH", "1");
+    if (count == SampleCount::NoneInside) defines.emplace_back("BEYOND_SAMPLE_REACH", "1");
     tf.addDefines(defines);
     NoDataPiece{volume_}.addDefines(defines);
     VolumeLayoutPiece{volume_.layout()}.addDefines(defines);
@@ -421,7 +426,7 @@ void AmbientOcclusion::uploadVisitRange(std::uint32_t first, std::uint32_t count
         dealtToWorkerThreads(std::vector<std::uint32_t>(allBricks_.begin() + first, allBricks_.begin() + first + count), llvmpipeWorkerThreads());
     glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * std::size_t(count)), slice.data());
     visitCount_ = count;
-    sampleSlots_ = 0;         // step I clips without meshes
+    testedSlots_ = deepSlotsEnd_ = 0;   // step I clips without meshes
     clipSlotsDone_ = count;   // no step IV under way over this list
     laoFlagsPending_ = false;
 }
@@ -505,9 +510,9 @@ std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, S
     stats_.dispatched = visit.visitedVoxels();
     stats_.recomputed = 0;
     // Full LAO recomputes every visible voxel; CAO only where a changed V_o is within reach (markLaoBricks).
-    const BrickSet withinReach = bricksWithinSampleReach(volume_.geometry(), clip);
-    stats_.bricks = uploadVisit(visit, withinReach, !cao);
-    stats_.sampledBricks = sampleSlots_;
+    stats_.bricks = uploadVisit(visit, bricksWithinSampleReach(volume_.geometry(), clip), bricksDeepInsideMeshes(volume_.geometry(), clip), !cao);
+    stats_.sampledBricks = testedSlots_;
+    stats_.deepBricks = deepSlotsEnd_ - testedSlots_;
     stats_.laoBricks = cao ? 0 : stats_.bricks;
     clipDilation_ = cao;
     clipSlotsDone_ = 0;

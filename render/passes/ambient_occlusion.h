@@ -44,7 +44,8 @@ struct AmbientOcclusionStats {
     std::uint64_t dispatched = 0;      // voxels steps IV and V visited (the visited bricks, below)
     std::uint64_t bricks = 0;          // bricks steps IV and V visited
     std::uint64_t laoBricks = 0;       // of those, bricks where LAO can change (render/model/lao_reach.h)
-    std::uint64_t sampledBricks = 0;   // of those, bricks within a mesh's clip-sample reach, where step IV tests samples
+    std::uint64_t sampledBricks = 0;   // of those, bricks where step IV tests clip samples (within a mesh's reach)
+    std::uint64_t deepBricks = 0;      // and bricks deep inside a mesh, every sample inside without a test
     std::uint64_t recomputed = 0;      // voxels whose LAO ray ran in step V
     double recomputedFraction() const { return voxels ? double(recomputed) / double(voxels) : 0.0; }
 };
@@ -138,21 +139,23 @@ public:
 
 private:
     // Uploads the visited bricks' list (shaders/visit_bricks.glsl) for the next passes, flagged "LAO can
-    // change" everywhere or nowhere (then markLaoBricks sets it after step IV); returns their number. The bricks
-    // in `withinReach` (render/mesh_voxel_box.h bricksWithinSampleReach) come first: step IV tests clip samples
-    // only in those slots.
-    std::uint32_t uploadVisit(const BrickSet& bricks, const BrickSet& withinReach, bool laoEverywhere);
+    // change" everywhere or nowhere (then markLaoBricks sets it after step IV); returns their number. Step IV
+    // knows the clip-sample count of two kinds of brick without a test (render/mesh_voxel_box.h): those deep inside
+    // a mesh (`deep`) and those beyond every mesh's reach (outside `withinReach`). The list holds the others first,
+    // then the deep ones, then those beyond, each part dealt to the worker threads on its own.
+    std::uint32_t uploadVisit(const BrickSet& bricks, const BrickSet& withinReach, const BrickSet& deep, bool laoEverywhere);
     // Between steps IV and V of a CAO update: flags the visited bricks within LAO reach of a brick whose V_o
     // step IV changed (render/model/lao_reach.h).
     void markLaoBricks();
     void setVisitUniforms(gl::Program& program) const;
     void setDecisionUniforms(gl::Program& program) const;
-    // Step IV over the slots [firstSlot, firstSlot + slots) of the uploaded list: those before sampleSlots_ by
-    // the program that tests clip samples, the others by the one compiled without (BEYOND_SAMPLE_REACH).
+    // Step IV over the slots [firstSlot, firstSlot + slots) of the uploaded list, each part of it (uploadVisit)
+    // by its program: the one that tests clip samples, or one compiled with the count known.
+    enum class SampleCount { Tested, AllInside, NoneInside };
     void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation, bool applyDrill,
                           std::uint32_t firstSlot, std::uint32_t slots);
     void dispatchVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation, bool applyDrill,
-                               bool beyondSampleReach, std::uint32_t firstSlot, std::uint32_t slots);
+                               SampleCount count, std::uint32_t firstSlot, std::uint32_t slots);
     void runLao(GLuint target, bool compacted, float opacityExponent);
     // Binds lao.comp's resources and uniforms to the variant for `opacityExponent`, and returns it.
     gl::Program& bindLao(GLuint target, float opacityExponent);
@@ -190,7 +193,8 @@ private:
     float recomputeExponent_ = 1;
     std::uint32_t visitCount_ = 0;   // bricks in the uploaded list: what the last step IV visited, step V visits the same
     std::uint32_t clipSlotsDone_ = 0;   // of them, those step IV has clipped (in slices)
-    std::uint32_t sampleSlots_ = 0;     // of them, the first, whose bricks lie within a mesh's clip-sample reach
+    std::uint32_t testedSlots_ = 0;     // of them, the first, where step IV tests clip samples (uploadVisit)
+    std::uint32_t deepSlotsEnd_ = 0;    // then up to here the bricks deep inside a mesh; the rest lie beyond reach
     bool clipDilation_ = false;         // step IV tests the dilated maps (cao)
     bool laoFlagsPending_ = false;   // a CAO list without its "LAO can change" flags yet: markLaoBricks before step V
     LaoReachBricks laoReach_;

@@ -249,6 +249,7 @@ void ClipMeshSet::update(int meshes) {
             m.camera = fitClippingCamera(m.localMin, m.localMax, dilationRadiusMm_, mapResolution_, settings_.depthResolution);
             m.camera.hullRadiusMm = m.hullRadius;
             renderMaps(i);
+            m.intervalsRead.reset();
             m.mapsDirty = false;
             m.dilatedDirty = true;
             ++mapRenders_;
@@ -521,6 +522,19 @@ void ClipMeshSet::apply(gl::Program& program) const {
     glBindTextureUnit(binding::clipDepth, depthMaps_.name());
     glBindTextureUnit(binding::clipDilated, dilatedAllocated_ ? dilatedMaps_.name() : depthMaps_.name());
     glBindTextureUnit(binding::clipNormals, normalMaps_.name());
+}
+
+const DepthIntervalPyramid& ClipMeshSet::depthIntervals(int index) const {
+    const Mesh& m = meshes_[static_cast<std::size_t>(index)];
+    if (!m.intervalsRead) {
+        std::vector<std::vector<float>> fronts, backs;
+        for (int j = 0; j < m.intervals; ++j) {
+            fronts.push_back(readMap(index, 2 * j, false));
+            backs.push_back(readMap(index, 2 * j + 1, false));
+        }
+        m.intervalsRead = std::make_shared<const DepthIntervalPyramid>(settings_.depthResolution, fronts, backs);
+    }
+    return *m.intervalsRead;
 }
 
 std::vector<float> ClipMeshSet::readMap(int index, int layer, bool dilated) const {

@@ -8,6 +8,7 @@
 // maps are redrawn only when a mesh's geometry or scale, the dilation radius or the map resolution change.
 
 #include "render/model/clipping_camera.h"
+#include "render/model/depth_interval_pyramid.h"
 #include "mesh/limits.h"
 #include "mesh/rigid_pose.h"
 #include "mesh/triangle_mesh.h"
@@ -116,9 +117,9 @@ public:
     static constexpr double depthBoxMarginMm = 0.5;
     // Whether the passes use the depth boxes to skip the clip tests no depth map can answer "inside": the ray
     // caster tests only the stretch of each ray that meets one (clip_test.glsl rayClipSpan), step IV a voxel's
-    // samples only against the meshes whose depth box lies within their reach (nearDepthBox). On by default;
-    // off tests every sample against every mesh, with the same answers (the tests' and `bench cao`'s
-    // reference).
+    // samples only against the meshes whose depth box lies within their reach (nearDepthBox), and not at all in
+    // the bricks beyond every mesh's reach or deep inside one (render/mesh_voxel_box.h). On by default; off
+    // tests every sample against every mesh, with the same answers (the tests' and `bench cao`'s reference).
     void setDepthBoxTests(bool on) { depthBoxTests_ = on; }
     bool depthBoxTests() const { return depthBoxTests_; }
 
@@ -144,6 +145,10 @@ public:
     // pass): their clip tests are then compiled out, not skipped at run time (clip_test.glsl).
     void addDefines(gl::Defines& defines) const;
 
+    // Mesh `index`'s depth intervals summarised for region queries on the CPU (step IV's bricks deep inside a
+    // mesh, render/mesh_voxel_box.h): read back and built on first use after its maps were drawn. Valid after
+    // update().
+    const DepthIntervalPyramid& depthIntervals(int index) const;
     // Reads one map layer back (tests): layer 0..3 = front 1, back 1, front 2, back 2; depthResolution() or
     // resolution() pixels a side.
     std::vector<float> readMap(int index, int layer, bool dilated) const;
@@ -172,6 +177,7 @@ private:
         bool mapsDirty = true;
         bool dilatedDirty = true;
         gl::Buffer vertices;   // CornerVertex per triangle corner
+        mutable std::shared_ptr<const DepthIntervalPyramid> intervalsRead;   // depthIntervals, until the maps are drawn again
         GLsizei vertexCount = 0;
         glm::dvec3 localMin{0.0}, localMax{0.0};
         double hullRadius = 0.0;   // the farthest scaled vertex from the centre of localMin..localMax

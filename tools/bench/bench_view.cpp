@@ -368,7 +368,9 @@ int benchView(const CommandLine& cl) {
     double volumeVoxels = std::max<double>(double(aoStats.voxels), 1.0);
     table.add({"exact frame visited", 100.0 * double(aoStats.dispatched) / volumeVoxels, "%", "of the volume's voxels, steps IV and V of the last update"});
     table.add({"exact frame sample-tested", aoStats.bricks ? 100.0 * double(aoStats.sampledBricks) / double(aoStats.bricks) : 0.0, "%",
-               "of its visited bricks, those within a mesh's clip-sample reach (step IV tests samples there)"});
+               "of its visited bricks, those where step IV tests clip samples"});
+    table.add({"exact frame deep inside", aoStats.bricks ? 100.0 * double(aoStats.deepBricks) / double(aoStats.bricks) : 0.0, "%",
+               "of its visited bricks, those with every clip sample inside a mesh, known without a test"});
     table.add({"exact frame recomputed", 100.0 * double(aoStats.recomputed) / volumeVoxels, "%", "of the volume's voxels, LAO rays cast in its step V"});
     table.add({"exact frame recast", renderer.lastRecastShare(), "", "share of the pixels its ray cast covered (the rest kept: --recast changed)"});
     table.add({"exact frame slices", static_cast<double>(exactSlices), "", "iterations that ran it (--exact-budget 0: one)"});
@@ -412,7 +414,7 @@ int benchView(const CommandLine& cl) {
         {"exact_pass_ms", exactPassMs},
         {"exact_slices", exactSlices},
         {"exact_recast_share", renderer.lastRecastShare()},
-        {"exact_ao", {{"voxels", aoStats.voxels}, {"visited", aoStats.dispatched}, {"bricks", aoStats.bricks}, {"sample_tested_bricks", aoStats.sampledBricks},
+        {"exact_ao", {{"voxels", aoStats.voxels}, {"visited", aoStats.dispatched}, {"bricks", aoStats.bricks}, {"sample_tested_bricks", aoStats.sampledBricks}, {"deep_inside_bricks", aoStats.deepBricks},
                       {"recomputed", aoStats.recomputed}}},
         {"settle_frame_max_ms", settleFrameMaxMs},
         {"longest_without_a_frame_ms", {{"first_frame", firstGapMs}, {"playback", playbackGapMs}, {"max", std::max(firstGapMs, playbackGapMs)}}},
