@@ -24,6 +24,31 @@ ConvexCorners boxCorners(const clip::RigidPose& pose, glm::dvec3 lo, glm::dvec3 
     return corners;
 }
 
+// The region of the points within `growMm` of the box [lo, hi] (local, placed by `pose`) as pieces: the box
+// cut along its longest axis into slabs about as long as its shortest side (at most 8), each grown by `growMm`
+// and cut to the box [fullLo, fullHi] (which holds the whole region), with a ball around the slab grown as much
+// and the ball `whole` (the mesh's own, which holds the whole region too). A point within growMm of the box lies
+// within growMm of a point of one slab, so in that piece's box and balls.
+void pushPieces(std::vector<ChangedRegion>& regions, const clip::RigidPose& pose, glm::dvec3 lo, glm::dvec3 hi, double growMm, glm::dvec3 fullLo,
+                glm::dvec3 fullHi, const WorldBall& whole) {
+    glm::dvec3 extent = hi - lo;
+    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    double shortest = std::max(std::min({extent.x, extent.y, extent.z}), 1e-6);
+    int pieces = static_cast<int>(std::clamp(std::round(extent[axis] / shortest), 1.0, 8.0));
+    if (pieces == 1) {
+        regions.push_back({boxCorners(pose, fullLo, fullHi), whole});
+        return;
+    }
+    for (int j = 0; j < pieces; ++j) {
+        glm::dvec3 a = lo, b = hi;
+        a[axis] = lo[axis] + extent[axis] * j / pieces;
+        b[axis] = j + 1 == pieces ? hi[axis] : lo[axis] + extent[axis] * (j + 1) / pieces;
+        glm::dvec3 centre(pose.matrix() * glm::dvec4(0.5 * (a + b), 1.0));
+        regions.push_back({boxCorners(pose, glm::max(a - growMm, fullLo), glm::min(b + growMm, fullHi)),
+                           {centre, 0.5 * glm::length(b - a) + growMm + kMarginMm}, whole});
+    }
+}
+
 // Row by row, the pixels in both.
 PixelRegion intersection(const PixelRegion& a, const PixelRegion& b) {
     PixelRegion r = a;
@@ -82,6 +107,7 @@ ClipSnapshot ClipSnapshot::of(const clip::ClipMeshSet& set, double cellDiagonalM
         m.centre = depthBall.centre;
         m.clipRadius = depthBall.radius;
         m.ambientRadius = reachBall.radius + cellDiagonalMm;
+        m.ambientReachMm = set.dilationRadiusMm() + cellDiagonalMm;
         s.meshes.push_back(m);
     }
     return s;
@@ -99,9 +125,12 @@ std::optional<std::vector<ChangedRegion>> changedRegions(const ClipSnapshot& bef
         b.pose = a.pose;
         if (!(a == b)) return std::nullopt;   // more than the pose
         for (const clip::RigidPose& pose : {before.meshes[i].pose, now.meshes[i].pose}) {
+            // The points the maps call inside lie in the clip box (and ball); V_AO changes within the ambient reach
+            // of them (and in the ambient box and ball).
             glm::dvec3 centre(pose.matrix() * glm::dvec4(a.centre, 1.0));
-            regions.push_back({boxCorners(pose, a.clipLo, a.clipHi), {centre, a.clipRadius + kMarginMm}});
-            if (ambient) regions.push_back({boxCorners(pose, a.ambientLo, a.ambientHi), {centre, a.ambientRadius + kMarginMm}});
+            pushPieces(regions, pose, a.clipLo, a.clipHi, 0.0, a.clipLo, a.clipHi, {centre, a.clipRadius + kMarginMm});
+            if (ambient)
+                pushPieces(regions, pose, a.clipLo, a.clipHi, a.ambientReachMm, a.ambientLo, a.ambientHi, {centre, a.ambientRadius + kMarginMm});
         }
     }
     return regions;
@@ -180,10 +209,13 @@ std::optional<PixelRegion> pixelsMeeting(const WorldBall& ball, const FrameDescr
 std::optional<PixelRegion> pixelsMeeting(const std::vector<ChangedRegion>& regions, const FrameDescription& frame) {
     PixelRegion all = PixelRegion::none(frame.size);
     for (const ChangedRegion& r : regions) {
-        // A ray that meets the region meets both the box and the ball.
-        std::optional<PixelRegion> box = pixelsMeeting(r.box, frame), ball = pixelsMeeting(r.ball, frame);
-        if (!box && !ball) return std::nullopt;
-        all.unite(box && ball ? intersection(*box, *ball) : box ? *box : *ball);
+        // A ray that meets the region meets its box and each of its balls.
+        std::optional<PixelRegion> meeting;
+        for (std::optional<PixelRegion> part : {pixelsMeeting(r.box, frame), pixelsMeeting(r.ball, frame),
+                                                r.wholeBall ? pixelsMeeting(*r.wholeBall, frame) : std::nullopt})
+            if (part) meeting = meeting ? intersection(*meeting, *part) : *part;
+        if (!meeting) return std::nullopt;
+        all.unite(*meeting);
     }
     return all;
 }

@@ -50,6 +50,7 @@ struct ClipMeshReach {
     glm::dvec3 clipLo, clipHi, ambientLo, ambientHi;   // the boxes
     glm::dvec3 centre;                                 // the balls' centre
     double clipRadius = 0, ambientRadius = 0;
+    double ambientReachMm = 0;                         // V_AO changes within this of a point the maps call inside
     bool operator==(const ClipMeshReach&) const = default;
 };
 
@@ -67,11 +68,14 @@ struct WorldBall {
 };
 
 // Where an image of the meshes `now` can differ from one of the meshes `before` (with V_AO: `ambient`): per
-// region, a box (its corners) and a ball that both hold it. None when more than poses changed (then every pixel
-// may change); empty when nothing did.
+// region, a box (its corners) and a ball that both hold it. An elongated mesh's regions come in pieces along its
+// longest axis (a slab of its depth box, grown for V_AO, with a ball of its own), so a rod's region is not one
+// ball around its whole length. None when more than poses changed (then every pixel may change); empty when
+// nothing did.
 struct ChangedRegion {
     ConvexCorners box;
     WorldBall ball;
+    std::optional<WorldBall> wholeBall;   // a piece's: the ball holding the whole region it is a piece of
 };
 std::optional<std::vector<ChangedRegion>> changedRegions(const ClipSnapshot& before, const ClipSnapshot& now, bool ambient);
 // Where drilling since version `since` can change an image: the world box of the bricks it changed, grown by
@@ -84,7 +88,7 @@ std::optional<PixelRegion> pixelsMeeting(const ConvexCorners& corners, const Fra
 // ... whose centre ray can meet the ball (through a pyramid around the cone of rays that meet it); none when the
 // eye is in it.
 std::optional<PixelRegion> pixelsMeeting(const WorldBall& ball, const FrameDescription& frame);
-// ... that can meet one of the regions: per region, the pixels of its box and of its ball. None: every pixel.
+// ... that can meet one of the regions: per region, the pixels of its box and of its balls. None: every pixel.
 std::optional<PixelRegion> pixelsMeeting(const std::vector<ChangedRegion>& regions, const FrameDescription& frame);
 
 }  // namespace curette
