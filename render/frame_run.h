@@ -33,7 +33,7 @@ enum class PreviewAmbient {
     LastExact,     // V_AO of the last exact frame (its poses, not this frame's, near the cut)
 };
 
-// The size of the next slice of a pass that runs in slices (step I's and step IV's bricks, step V's list
+// The size of the next slice of a pass that runs in slices (step I's bricks, step IV's work units, step V's list
 // groups, the ray cast's bands): the measured rate times the budget left, within [1, left]; `probe` units
 // before any rate is known; `fixed` > 0 sets the size (tests). The slab pass's slices are its view-aligned
 // slices (one dispatch each).
@@ -91,7 +91,7 @@ struct FrameRun {
     // The sliced passes' progress.
     bool stepIVBegun = false, stepVBegun = false, stepVDone = false;
     InputVersions ambientVersions{};   // what step IV clipped: V_AO's freshness once step V is done
-    std::uint32_t stepIVBricks = 0, stepVGroups = 0;
+    std::uint32_t stepIVUnits = 0, stepVGroups = 0;
     int parts = -1, partsDone = 0;   // the ray cast's parts of bands (TileOrderPiece; -1: not begun)
     std::int64_t tubeUnitsDone = -1;  // the tube G-buffer's units drawn (-1: not cleared yet)
     int compositeRowsDone = 0;        // the composite's rows

@@ -111,8 +111,9 @@ public:
     // slices (SlabPass::advance), the composite in bands of rows, every other pass whole. A call for another frame, or after the scene
     // changed or a preview was drawn, starts over; a step IV or V under way is abandoned, and the next update visits
     // the bricks its step IV visited as well as its own (AmbientOcclusion::abandonUpdate), so it rewrites
-    // whatever the abandoned one left stale (render() does the same). sliceUnits > 0 fixes the slice size
-    // (step IV: bricks, step V: work groups of the list, the ray cast: parts, the slab pass: slices), for tests.
+    // whatever the abandoned one left stale (render() does the same). sliceUnits > 0 fixes the slice size (step
+    // IV: its work units, AmbientOcclusion::beginClipVoxels; step V: work groups of the list; the ray cast: parts;
+    // the slab pass: slices), for tests.
     bool advanceExact(const FrameDescription& frame, double budgetMs, std::uint32_t sliceUnits = 0);
     // How far the exact frame in slices is, in [0, 1] (passes done, the sliced ones by their share done; 0 when
     // none is under way), and what its pass under way computes, in a planner's words (PassInfo::activity: "shadows

@@ -133,8 +133,8 @@ double Renderer::exactProgress() const {
     double within = 0;
     if (job.next < job.plan.passes.size()) {
         Pass pass = job.plan.passes[job.next].pass;
-        if (pass == Pass::VoxelClipping && job.stepIVBegun && job.stepIVBricks > 0)
-            within = 1.0 - double(ao_->clipBricksLeft()) / job.stepIVBricks;
+        if (pass == Pass::VoxelClipping && job.stepIVBegun && job.stepIVUnits > 0)
+            within = 1.0 - double(ao_->clipUnitsLeft()) / job.stepIVUnits;
         if (pass == Pass::LaoRecompute && job.stepVBegun && job.stepVGroups > 0)
             within = 1.0 - double(ao_->recomputeGroupsLeft()) / job.stepVGroups;
         if (pass == Pass::RayCast && job.parts > 0) within = double(job.partsDone) / job.parts;
@@ -310,16 +310,16 @@ void Renderer::finishStepV(const FrameRun& run) {
 bool Renderer::stepIVSlice(FrameRun& run, double budgetMs, std::uint32_t sliceUnits) {
     if (!run.stepIVBegun) {
         // The bricks are decided and uploaded here; from now on an abandoned job leaves them to the next update.
-        run.stepIVBricks = ao_->beginClipVoxels(clip_, run.frame.shading);
+        run.stepIVUnits = ao_->beginClipVoxels(clip_, run.frame.shading);
         run.stepIVBegun = true;
         run.ambientVersions = currentVersions();
     }
-    if (std::uint32_t left = ao_->clipBricksLeft(); left > 0) {
-        // A probe of 1/64 of the bricks until a rate is known.
+    if (std::uint32_t left = ao_->clipUnitsLeft(); left > 0) {
+        // A probe of 1/64 of the work until a rate is known.
         std::uint32_t n = stepIVSizer_.next(budgetMs, left, std::max<std::uint32_t>(left / 64, 1), sliceUnits);
         timedSlice(stepIVSizer_, n, [&](std::uint32_t units) { ao_->advanceClipVoxels(*tf_, clip_, units); });
     }
-    return ao_->clipBricksLeft() == 0;
+    return ao_->clipUnitsLeft() == 0;
 }
 
 bool Renderer::stepVSlice(FrameRun& run, double budgetMs, std::uint32_t sliceUnits) {

@@ -3,10 +3,11 @@
 namespace curette {
 
 FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& loop, const FrameDescription& frame, double now,
-                                bool moved) {
+                                bool moved, double movedAt) {
     FrameLoopInputs in;
     in.now = now;
     in.moved = moved;
+    in.movedAt = movedAt;
     in.precomputePending = renderer.precomputePending(frame);
     in.precomputeInputs = renderer.precomputeInputsVersion();
     in.exactSize = frame.size;

@@ -7,11 +7,11 @@
 
 namespace curette {
 
-// The loop's inputs for `frame` (its size is the exact frame's) on `renderer` at `now`: whether step I is
-// pending, and whether the renderer already shows the frame the loop would decide on. `renderer` and `loop`
-// must outlive the inputs (their `shown` refers to both).
+// The loop's inputs for `frame` (its size is the exact frame's) on `renderer` at `now`, with the motion (at
+// `movedAt`, FrameLoopInputs::movedAt): whether step I is pending, and whether the renderer already shows the
+// frame the loop would decide on.
 FrameLoopInputs frameLoopInputs(const Renderer& renderer, const ViewFrameLoop& loop, const FrameDescription& frame, double now,
-                                bool moved);
+                                bool moved, double movedAt = std::numeric_limits<double>::quiet_NaN());
 
 // The image of `decision` on `renderer` (after step I's slices, which the caller runs and times apart): the
 // preview or the exact frame `decided` (decidedFrame of the decision), the exact one in slices when the

@@ -42,7 +42,7 @@ glm::ivec2 ViewFrameLoop::previewSize(glm::ivec2 exactSize) const {
 }
 
 FrameDecision ViewFrameLoop::decide(const FrameLoopInputs& in) {
-    if (in.moved) lastMotion_ = in.now;
+    if (in.moved) lastMotion_ = std::max(lastMotion_, std::isnan(in.movedAt) ? in.now : std::min(in.movedAt, in.now));
     // The first frame's inputs are where step I starts, not an edit.
     if (precomputeInputs_ && *precomputeInputs_ != in.precomputeInputs) lastPrecomputeEdit_ = in.now;
     precomputeInputs_ = in.precomputeInputs;

@@ -38,6 +38,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -87,6 +88,9 @@ struct FrameDecision {
 struct FrameLoopInputs {
     double now = 0;                    // seconds, any origin (the loop compares differences)
     bool moved = false;                // the camera, a mesh, a light or the shading changed this frame
+    // When that change happened, where its input says so (a played session's recorded time: the loop applies it
+    // late, after the frame it was rendering), so the settle time counts from the motion itself; NaN: `now`.
+    double movedAt = std::numeric_limits<double>::quiet_NaN();
     bool precomputePending = false;    // the frame's mode needs step I and it has not finished
     std::uint64_t precomputeInputs = 0; // changes whenever step I's inputs change (Renderer::precomputeInputsVersion)
     glm::ivec2 exactSize{1};           // the image size of the exact frame (the window times the user's scale)

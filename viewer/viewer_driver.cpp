@@ -26,11 +26,11 @@ FrameDescription viewerFrame(const ViewerState& viewer, const SessionStep& step,
 }
 
 ViewerIteration stepViewer(ViewerState& viewer, Renderer& renderer, SessionStep& step, const std::vector<Tractogram>& tracts,
-                           glm::ivec2 framebuffer, double now, bool moved, glm::vec4 background) {
+                           glm::ivec2 framebuffer, double now, bool moved, glm::vec4 background, double movedAt) {
     step.syncTo(renderer, tracts);   // meshes, and the setting edits of panels or a session
     FrameDescription frame = viewerFrame(viewer, step, framebuffer);
     const glm::ivec2 exactSize = frame.size;
-    FrameLoopInputs in = frameLoopInputs(renderer, viewer.loop, frame, now, moved);
+    FrameLoopInputs in = frameLoopInputs(renderer, viewer.loop, frame, now, moved, movedAt);
     ViewerIteration it;
     it.precomputing = in.precomputePending;
     it.decision = viewer.loop.decide(in);

@@ -51,9 +51,10 @@ glm::ivec2 exactFrameSize(const ViewerState& viewer, glm::ivec2 framebuffer);
 FrameDescription viewerFrame(const ViewerState& viewer, const SessionStep& step, glm::ivec2 framebuffer);
 
 // One iteration at `now` (seconds, any origin) into a framebuffer of `framebuffer` pixels; `moved`: the camera or
-// the step's state changed since the last one.
+// the step's state changed since the last one, at `movedAt` where known (FrameLoopInputs::movedAt).
 ViewerIteration stepViewer(ViewerState& viewer, Renderer& renderer, SessionStep& step, const std::vector<Tractogram>& tracts,
-                           glm::ivec2 framebuffer, double now, bool moved, glm::vec4 background);
+                           glm::ivec2 framebuffer, double now, bool moved, glm::vec4 background,
+                           double movedAt = std::numeric_limits<double>::quiet_NaN());
 
 // The plan overlay's removal report: recomputed once what it depends on (reportInputs: the meshes, the TF, the
 // bundles) has been still for kDelaySeconds (a report costs a GPU pass and a CPU pass over the grid; while a

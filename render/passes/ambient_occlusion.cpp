@@ -135,6 +135,7 @@ std::uint32_t AmbientOcclusion::uploadVisit(const BrickSet& bricks, const BrickS
         for (std::uint32_t b : dealtToWorkerThreads(*part, llvmpipeWorkerThreads())) list.push_back(b);
     testedSlots_ = static_cast<std::uint32_t>(tested.size());
     deepSlotsEnd_ = testedSlots_ + static_cast<std::uint32_t>(inside.size());
+    clipUnits_ = kTestedBrickCost * testedSlots_ + (static_cast<std::uint32_t>(list.size()) - testedSlots_);
     if (laoEverywhere)
         for (std::uint32_t& entry : list) entry |= kVisitLaoCanChange;
     laoFlagsPending_ = !laoEverywhere;
@@ -199,13 +200,19 @@ void AmbientOcclusion::setDecisionUniforms(gl::Program& p) const {
 }
 
 void AmbientOcclusion::runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
-                                        bool applyDrill, std::uint32_t firstSlot, std::uint32_t slots) {
-    const std::uint32_t end = firstSlot + slots;
-    const std::uint32_t bounds[4] = {firstSlot, std::clamp(testedSlots_, firstSlot, end), std::clamp(deepSlotsEnd_, firstSlot, end), end};
+                                        bool applyDrill, std::uint32_t from, std::uint32_t to) {
+    // Each slice takes its share of every part (uploadVisit): a tested brick costs several times another, so
+    // slices of the list in order would cost unlike each other, and one sized by the last one's rate
+    // (render/frame_run.h SliceSizer) would overrun its budget.
+    const std::uint32_t partBegin[3] = {0, testedSlots_, deepSlotsEnd_}, partEnd[3] = {testedSlots_, deepSlotsEnd_, visitCount_};
     const SampleCount counts[3] = {SampleCount::Tested, SampleCount::AllInside, SampleCount::NoneInside};
-    for (int part = 0; part < 3; ++part)
-        if (bounds[part + 1] > bounds[part])
-            dispatchVoxelClipping(tf, clip, testDilation, applyDrill, counts[part], bounds[part], bounds[part + 1] - bounds[part]);
+    auto doneAt = [&](int part, std::uint32_t progress) {
+        return partBegin[part] + static_cast<std::uint32_t>(std::uint64_t(partEnd[part] - partBegin[part]) * progress / std::max(clipUnits_, 1u));
+    };
+    for (int part = 0; part < 3; ++part) {
+        std::uint32_t first = doneAt(part, from), last = doneAt(part, to);
+        if (last > first) dispatchVoxelClipping(tf, clip, testDilation, applyDrill, counts[part], first, last - first);
+    }
 }
 
 void AmbientOcclusion::dispatchVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation,
@@ -427,7 +434,7 @@ void AmbientOcclusion::uploadVisitRange(std::uint32_t first, std::uint32_t count
     glNamedBufferSubData(visitBricks_.name(), 0, static_cast<GLsizeiptr>(4 * std::size_t(count)), slice.data());
     visitCount_ = count;
     testedSlots_ = deepSlotsEnd_ = 0;   // step I clips without meshes
-    clipSlotsDone_ = count;   // no step IV under way over this list
+    clipUnits_ = clipUnitsDone_ = count;   // no step IV under way over this list
     laoFlagsPending_ = false;
 }
 
@@ -440,22 +447,22 @@ std::uint32_t AmbientOcclusion::advancePrecompute(const TransferFunctionTexture&
     std::uint32_t first = slicedBricks_ - std::uint32_t(phase) * total;
     ran = std::min(bricks, total - first);
     uploadVisitRange(first, ran);
-    if (phase == 0) runVoxelClipping(tf, nullptr, false, false, 0, visitCount_);
+    if (phase == 0) runVoxelClipping(tf, nullptr, false, false, 0, clipUnits_);   // one part: no meshes
     else runLao(precomputed_.name(), false, static_cast<float>(settings_.stepMm / tf.unitLengthMm()));
     slicedBricks_ += ran;
     return ran;
 }
 
 void AmbientOcclusion::clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode) {
-    std::uint32_t bricks = beginClipVoxels(clip, mode);
-    advanceClipVoxels(tf, clip, bricks);
+    std::uint32_t units = beginClipVoxels(clip, mode);
+    advanceClipVoxels(tf, clip, units);
 }
 
-std::uint32_t AmbientOcclusion::advanceClipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, std::uint32_t bricks) {
-    std::uint32_t n = std::min(bricks, visitCount_ - clipSlotsDone_);
+std::uint32_t AmbientOcclusion::advanceClipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, std::uint32_t units) {
+    std::uint32_t n = std::min(units, clipUnits_ - clipUnitsDone_);
     if (n == 0) return 0;
-    runVoxelClipping(tf, &clip, clipDilation_, applyDrill_, clipSlotsDone_, n);
-    clipSlotsDone_ += n;
+    runVoxelClipping(tf, &clip, clipDilation_, applyDrill_, clipUnitsDone_, clipUnitsDone_ + n);
+    clipUnitsDone_ += n;
     return n;
 }
 
@@ -515,8 +522,8 @@ std::uint32_t AmbientOcclusion::beginClipVoxels(const clip::ClipMeshSet& clip, S
     stats_.deepBricks = deepSlotsEnd_ - testedSlots_;
     stats_.laoBricks = cao ? 0 : stats_.bricks;
     clipDilation_ = cao;
-    clipSlotsDone_ = 0;
-    return visitCount_;
+    clipUnitsDone_ = 0;
+    return clipUnits_;
 }
 
 void AmbientOcclusion::abandonUpdate() {
@@ -526,7 +533,7 @@ void AmbientOcclusion::abandonUpdate() {
     if (lastVisit_) carried_ = std::move(*lastVisit_);
     lastVisit_.reset();
     recomputeGroups_ = recomputeGroupsDone_ = 0;
-    clipSlotsDone_ = visitCount_;
+    clipUnitsDone_ = clipUnits_;
 }
 
 void AmbientOcclusion::recomputeLao(const TransferFunctionTexture& tf) {

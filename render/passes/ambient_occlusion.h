@@ -95,13 +95,15 @@ public:
     // voxel). Must follow step I.
     void clipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, ShadingMode mode);
     // Step IV in slices (Renderer::advanceExact): beginClipVoxels decides and uploads the bricks to visit and
-    // returns their number; each advanceClipVoxels(bricks) clips the voxels of the next `bricks` of them (the
-    // meshes must not change in between) and returns how many it ran. Each voxel is clipped by the same
-    // invocation code as in one dispatch, so V_o and V_m come out the same bit for bit. clipVoxels is begin and
-    // one slice of all.
+    // returns their work in units (a brick where clip samples are tested counts kTestedBrickCost, any other one);
+    // each advanceClipVoxels(units) clips the voxels of the next `units` of it, the same share of each kind of
+    // brick, so slices of equal units cost alike (the meshes must not change in between), and returns how many
+    // it ran. Each voxel is clipped by the same invocation code as in one dispatch, so V_o and V_m come out the
+    // same bit for bit. clipVoxels is begin and one slice of all.
+    static constexpr std::uint32_t kTestedBrickCost = 5;   // llvmpipe, the demo's step IV: 5-6 times a brick beyond reach
     std::uint32_t beginClipVoxels(const clip::ClipMeshSet& clip, ShadingMode mode);
-    std::uint32_t advanceClipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, std::uint32_t bricks);
-    std::uint32_t clipBricksLeft() const { return visitCount_ - clipSlotsDone_; }
+    std::uint32_t advanceClipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, std::uint32_t units);
+    std::uint32_t clipUnitsLeft() const { return clipUnits_ - clipUnitsDone_; }
     // Step V over the bricks step IV just visited.
     void recomputeLao(const TransferFunctionTexture& tf);
     // Step V in slices (Renderer::advanceExact): beginRecompute(tf) decides every visited voxel (copies and
@@ -149,11 +151,11 @@ private:
     void markLaoBricks();
     void setVisitUniforms(gl::Program& program) const;
     void setDecisionUniforms(gl::Program& program) const;
-    // Step IV over the slots [firstSlot, firstSlot + slots) of the uploaded list, each part of it (uploadVisit)
-    // by its program: the one that tests clip samples, or one compiled with the count known.
+    // Step IV from progress `from` to `to` (of clipUnits_): the same share of each part of the uploaded list
+    // (uploadVisit), each by its program: the one that tests clip samples, or one compiled with the count known.
     enum class SampleCount { Tested, AllInside, NoneInside };
     void runVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation, bool applyDrill,
-                          std::uint32_t firstSlot, std::uint32_t slots);
+                          std::uint32_t from, std::uint32_t to);
     void dispatchVoxelClipping(const TransferFunctionTexture& tf, const clip::ClipMeshSet* clip, bool testDilation, bool applyDrill,
                                SampleCount count, std::uint32_t firstSlot, std::uint32_t slots);
     void runLao(GLuint target, bool compacted, float opacityExponent);
@@ -192,7 +194,7 @@ private:
     std::uint32_t recomputeGroups_ = 0, recomputeGroupsDone_ = 0;   // sliced step V
     float recomputeExponent_ = 1;
     std::uint32_t visitCount_ = 0;   // bricks in the uploaded list: what the last step IV visited, step V visits the same
-    std::uint32_t clipSlotsDone_ = 0;   // of them, those step IV has clipped (in slices)
+    std::uint32_t clipUnits_ = 0, clipUnitsDone_ = 0;   // step IV's work over them and its progress (in slices)
     std::uint32_t testedSlots_ = 0;     // of them, the first, where step IV tests clip samples (uploadVisit)
     std::uint32_t deepSlotsEnd_ = 0;    // then up to here the bricks deep inside a mesh; the rest lie beyond reach
     bool clipDilation_ = false;         // step IV tests the dilated maps (cao)

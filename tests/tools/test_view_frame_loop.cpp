@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cmath>
 
 #include <optional>
@@ -35,11 +37,13 @@ struct LoopRun {
     explicit LoopRun(FrameLoopSettings s = {}) : loop(s) {}
     // msAtHalf: what a frame costs at half the window's resolution; a frame's cost grows with its pixels.
     std::uint64_t precomputeInputs = 7;   // step I's inputs (Renderer::precomputeInputsVersion)
-    FrameDecision frame(bool moved, bool precomputePending = false, double msAtHalf = 50) {
+    FrameDecision frame(bool moved, bool precomputePending = false, double msAtHalf = 50,
+                        double movedAt = std::numeric_limits<double>::quiet_NaN()) {
         if (moved) screen.moved();
         FrameLoopInputs in;
         in.now = now;
         in.moved = moved;
+        in.movedAt = movedAt;
         in.precomputePending = precomputePending;
         in.precomputeInputs = precomputeInputs;
         in.exactSize = kWindow;
@@ -131,6 +135,37 @@ TEST(ViewFrameLoop, AfterTheMotionThePreviewOnScreenIsNotDrawnAgainAtTheSteeredS
     FrameDecision moved = run.frame(true, false, 400);
     EXPECT_EQ(moved.render, FrameKind::Preview);
     EXPECT_EQ(moved.size, steered);
+}
+
+// A played session's motion reaches the loop after the frame it was rendering: the settle time counts from the
+// motion's own time (FrameLoopInputs::movedAt), so the exact frame waits no longer for the loop's lateness; a
+// motion given no time counts from the frame, as before; and a late time never moves the last motion back.
+TEST(ViewFrameLoop, TheSettleTimeCountsFromWhenTheMotionHappened) {
+    FrameLoopSettings s;
+    s.settleSeconds = 0.25;
+    s.minPreviewScale = s.maxPreviewScale = 0.5;
+    for (bool timed : {true, false}) {
+        SCOPED_TRACE(timed ? "with the motion's time" : "without");
+        LoopRun run(s);
+        run.frame(false);
+        // Each motion happened 0.125 s (two frames of 1/16 s) before the frame that applies it.
+        double happened = 0;
+        for (int i = 0; i < 5; ++i) {
+            happened = run.now - 0.125;
+            ASSERT_EQ(run.frame(true, false, 50, timed ? happened : std::numeric_limits<double>::quiet_NaN()).render, FrameKind::Preview);
+        }
+        EXPECT_EQ(run.loop.lastMotion(), timed ? happened : run.now - 0.0625);
+        int stillFrames = 0;
+        while (run.frame(false).render != FrameKind::Exact) ASSERT_LT(++stillFrames, 10);
+        // 0.25 s settle at 1/16 s a frame: from the motion's time two frames after the one that applied it, from that
+        // frame's own time four.
+        EXPECT_EQ(stillFrames, timed ? 1 : 3);
+    }
+    LoopRun run(s);
+    run.frame(true);
+    double first = run.loop.lastMotion();
+    run.frame(true, false, 50, first - 1.0);
+    EXPECT_EQ(run.loop.lastMotion(), first) << "an earlier motion applied later leaves the last motion where it was";
 }
 
 TEST(ViewFrameLoop, ExactQualityNeverPreviewsMotion) {

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <thread>
 
@@ -112,8 +113,8 @@ struct Viewer {
     glm::ivec2 size;
     glm::vec4 background;
 
-    LoopFrame iterate(double now, bool moved) {
-        ViewerIteration it = stepViewer(state, renderer, step, tracts, size, now, moved, background);
+    LoopFrame iterate(double now, bool moved, double movedAt = std::numeric_limits<double>::quiet_NaN()) {
+        ViewerIteration it = stepViewer(state, renderer, step, tracts, size, now, moved, background, movedAt);
         LoopFrame out;
         out.kind = it.decision.render;
         out.size = it.decision.size;
@@ -200,7 +201,9 @@ Playback playInRealTime(Viewer& viewer, const Session& session, const std::files
             }
             ++next, ++followed;
         }
-        LoopFrame f = viewer.iterate(t, moved);
+        // The motion happened at its recorded time (the playback's clock starts with the session), not when this
+        // iteration got to it.
+        LoopFrame f = viewer.iterate(t, moved, r.lastMotionRecorded);
         f.t = sinceStart();
         f.followed = followed;
         r.frames.push_back(f);
