@@ -100,7 +100,7 @@ public:
     // brick, so slices of equal units cost alike (the meshes must not change in between), and returns how many
     // it ran. Each voxel is clipped by the same invocation code as in one dispatch, so V_o and V_m come out the
     // same bit for bit. clipVoxels is begin and one slice of all.
-    static constexpr std::uint32_t kTestedBrickCost = 5;   // llvmpipe, the demo's step IV: 5-6 times a brick beyond reach
+    static constexpr std::uint32_t kTestedBrickCost = 5;   // about five bricks beyond reach on llvmpipe (docs/measurements.md)
     std::uint32_t beginClipVoxels(const clip::ClipMeshSet& clip, ShadingMode mode);
     std::uint32_t advanceClipVoxels(const TransferFunctionTexture& tf, const clip::ClipMeshSet& clip, std::uint32_t units);
     std::uint32_t clipUnitsLeft() const { return clipUnits_ - clipUnitsDone_; }

@@ -19,6 +19,35 @@ namespace {
 
 using test::glContext;
 
+// A uniform volume on an oblique, anisotropic grid: its cells lie turned against every map and box.
+VolumeData obliqueVolume(glm::ivec3 dims) {
+    glm::dmat4 turn = glm::mat4_cast(glm::angleAxis(glm::radians(25.0), glm::normalize(glm::dvec3(2.0, -1.0, 3.0))));
+    glm::dmat4 affine = turn * test::centredAffine(dims, glm::dvec3(0.8, 1.0, 1.3));
+    return test::makeVolume(dims, affine, ScalarType::UInt8, [](glm::dvec3) { return 100.0; });
+}
+
+// Within `spread` mm of the origin along every axis, turned about a random axis.
+clip::RigidPose randomTurnedPose(std::mt19937& random, double spread) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    glm::dvec3 axis = glm::normalize(glm::dvec3(u(random), u(random), u(random)) + glm::dvec3(1e-9));
+    glm::dvec3 position = spread * glm::dvec3(u(random), u(random), u(random));
+    return {position, glm::angleAxis(3.14159 * u(random), axis)};
+}
+
+void drawMaps(clip::ClipMeshSet& set, double dilationMm) {
+    set.setDilationRadiusMm(dilationMm);
+    set.setDilatedMapsNeeded(true);
+    set.update();
+}
+
+// The rod, and in odd rounds the ball too, at random poses, with the maps drawn.
+void placeRodAndBall(clip::ClipMeshSet& set, const std::shared_ptr<const clip::TriangleMesh>& rod,
+                     const std::shared_ptr<const clip::TriangleMesh>& ball, int round, std::mt19937& random, double dilationMm) {
+    set.clear();
+    for (int m = 0; m < 1 + round % 2; ++m) set.add(m == 0 ? rod : ball, glm::dvec3(1.0), randomTurnedPose(random, 16.0), m == 0 ? "rod" : "ball");
+    drawMaps(set, dilationMm);
+}
+
 // Distance from world point p to mesh i's dilated box (clip::ClipMeshSet::dilatedBoxLocal) in the mesh's
 // (rigid) frame, in double.
 double distanceToDilatedBox(const clip::ClipMeshSet& set, int i, glm::dvec3 p) {
@@ -60,9 +89,7 @@ double distanceToReachBall(const clip::ClipMeshSet& set, int i, glm::dvec3 p) {
 TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
     glContext();
     glm::ivec3 dims(48, 44, 40);
-    glm::dmat4 turn = glm::mat4_cast(glm::angleAxis(glm::radians(25.0), glm::normalize(glm::dvec3(2.0, -1.0, 3.0))));
-    glm::dmat4 affine = turn * test::centredAffine(dims, glm::dvec3(0.8, 1.0, 1.3));
-    VolumeData volume = test::makeVolume(dims, affine, ScalarType::UInt8, [](glm::dvec3) { return 100.0; });
+    VolumeData volume = obliqueVolume(dims);
     Renderer renderer(glContext(), volume, test::rampTransferFunction(0, 255, 0.5));
     const VolumeGeometry& g = renderer.geometry();
     clip::ClipMeshSet& set = renderer.clipMeshes();
@@ -72,19 +99,9 @@ TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
     // The brick's circumradius: half the diagonal of its voxel centres' parallelepiped.
     const double brickCircumradius = 0.5 * (kVisitBrickSize - 1) * g.cellDiagonalMm();
     std::mt19937 random(7);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
     std::uint64_t visitedVoxels = 0, boxVoxels = 0, dilatedBoxVoxels = 0, touched = 0, reached = 0;
     for (int round = 0; round < 10; ++round) {
-        set.clear();
-        int meshes = 1 + round % 2;
-        for (int m = 0; m < meshes; ++m) {
-            glm::dvec3 axis = glm::normalize(glm::dvec3(u(random), u(random), u(random)) + glm::dvec3(1e-9));
-            clip::RigidPose pose{16.0 * glm::dvec3(u(random), u(random), u(random)), glm::angleAxis(3.14159 * u(random), axis)};
-            set.add(m == 0 ? rod : ball, glm::dvec3(1.0), pose, m == 0 ? "rod" : "ball");
-        }
-        set.setDilationRadiusMm(reachMm);
-        set.setDilatedMapsNeeded(true);
-        set.update();
+        placeRodAndBall(set, rod, ball, round, random, reachMm);
         BrickSet bricks = bricksAroundMeshes(g, set);
         visitedVoxels += bricks.visitedVoxels();
         boxVoxels += voxelBoxAroundMeshes(g, set).voxelCount();
@@ -176,9 +193,7 @@ bool nearDepthBoxAndBall(const clip::ClipMeshSet& set, int i, glm::dvec3 p, doub
 TEST(VisitBricks, SampleReachBricksHoldEveryVoxelWhoseSamplesAreTested) {
     glContext();
     glm::ivec3 dims(48, 44, 40);
-    glm::dmat4 turn = glm::mat4_cast(glm::angleAxis(glm::radians(25.0), glm::normalize(glm::dvec3(2.0, -1.0, 3.0))));
-    glm::dmat4 affine = turn * test::centredAffine(dims, glm::dvec3(0.8, 1.0, 1.3));
-    VolumeData volume = test::makeVolume(dims, affine, ScalarType::UInt8, [](glm::dvec3) { return 100.0; });
+    VolumeData volume = obliqueVolume(dims);
     Renderer renderer(glContext(), volume, test::rampTransferFunction(0, 255, 0.5));
     const VolumeGeometry& g = renderer.geometry();
     clip::ClipMeshSet& set = renderer.clipMeshes();
@@ -186,18 +201,9 @@ TEST(VisitBricks, SampleReachBricksHoldEveryVoxelWhoseSamplesAreTested) {
     auto ball = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 2));
     const double reach = clipSampleReachMm(g);
     std::mt19937 random(11);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
     std::uint64_t nearVoxels = 0, insideVoxels = 0, withinBricks = 0, aroundBricks = 0;
     for (int round = 0; round < 8; ++round) {
-        set.clear();
-        for (int m = 0; m < 1 + round % 2; ++m) {
-            glm::dvec3 axis = glm::normalize(glm::dvec3(u(random), u(random), u(random)) + glm::dvec3(1e-9));
-            clip::RigidPose pose{16.0 * glm::dvec3(u(random), u(random), u(random)), glm::angleAxis(3.14159 * u(random), axis)};
-            set.add(m == 0 ? rod : ball, glm::dvec3(1.0), pose, m == 0 ? "rod" : "ball");
-        }
-        set.setDilationRadiusMm(4.0);
-        set.setDilatedMapsNeeded(true);
-        set.update();
+        placeRodAndBall(set, rod, ball, round, random, 4.0);
         BrickSet within = bricksWithinSampleReach(g, set);
         withinBricks += within.visitedCount();
         aroundBricks += bricksAroundMeshes(g, set).visitedCount();
@@ -243,9 +249,7 @@ TEST(VisitBricks, SampleReachBricksHoldEveryVoxelWhoseSamplesAreTested) {
 TEST(VisitBricks, DeepBricksHaveEveryClipSampleInside) {
     glContext();
     glm::ivec3 dims(56, 52, 48);
-    glm::dmat4 turn = glm::mat4_cast(glm::angleAxis(glm::radians(25.0), glm::normalize(glm::dvec3(2.0, -1.0, 3.0))));
-    glm::dmat4 affine = turn * test::centredAffine(dims, glm::dvec3(0.8, 1.0, 1.3));
-    VolumeData volume = test::makeVolume(dims, affine, ScalarType::UInt8, [](glm::dvec3) { return 100.0; });
+    VolumeData volume = obliqueVolume(dims);
     Renderer renderer(glContext(), volume, test::rampTransferFunction(0, 255, 0.5));
     const VolumeGeometry& g = renderer.geometry();
     clip::ClipMeshSet& set = renderer.clipMeshes();
@@ -254,16 +258,11 @@ TEST(VisitBricks, DeepBricksHaveEveryClipSampleInside) {
     auto ring = std::make_shared<const clip::TriangleMesh>(clip::makeTorus(14.0, 7.0, 48, 24));
     const std::vector<glm::dvec3> offsets = clip::antiAliasingOffsets(16);
     std::mt19937 random(5);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
     std::uint64_t deepBricks = 0, allInsideBricks = 0, deepSamples = 0;
     for (int round = 0; round < 6; ++round) {
         set.clear();
-        glm::dvec3 axis = glm::normalize(glm::dvec3(u(random), u(random), u(random)) + glm::dvec3(1e-9));
-        clip::RigidPose pose{8.0 * glm::dvec3(u(random), u(random), u(random)), glm::angleAxis(3.14159 * u(random), axis)};
-        set.add(round % 3 == 0 ? ball : round % 3 == 1 ? rod : ring, glm::dvec3(1.0), pose, "mesh");
-        set.setDilationRadiusMm(4.0);
-        set.setDilatedMapsNeeded(true);
-        set.update();
+        set.add(round % 3 == 0 ? ball : round % 3 == 1 ? rod : ring, glm::dvec3(1.0), randomTurnedPose(random, 8.0), "mesh");
+        drawMaps(set, 4.0);
         BrickSet deep = bricksDeepInsideMeshes(g, set);
         deepBricks += deep.visitedCount();
         // Every voxel's 9 + N samples, brick by brick.
