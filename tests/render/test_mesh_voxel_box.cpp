@@ -40,13 +40,23 @@ void drawMaps(clip::ClipMeshSet& set, double dilationMm) {
     set.update();
 }
 
-// The rod, and in odd rounds the ball too, at random poses, with the maps drawn.
-void placeRodAndBall(clip::ClipMeshSet& set, const std::shared_ptr<const clip::TriangleMesh>& rod,
-                     const std::shared_ptr<const clip::TriangleMesh>& ball, int round, std::mt19937& random, double dilationMm) {
-    set.clear();
-    for (int m = 0; m < 1 + round % 2; ++m) set.add(m == 0 ? rod : ball, glm::dvec3(1.0), randomTurnedPose(random, 16.0), m == 0 ? "rod" : "ball");
-    drawMaps(set, dilationMm);
-}
+// An oblique grid's renderer, a thin rod and a small ball: placed by rounds, the rod alone, then with the ball,
+// at random poses, with the maps drawn.
+struct RodAndBallGrid {
+    glm::ivec3 dims{48, 44, 40};
+    VolumeData volume = obliqueVolume(dims);
+    Renderer renderer{glContext(), volume, test::rampTransferFunction(0, 255, 0.5)};
+    std::shared_ptr<const clip::TriangleMesh> rod = std::make_shared<const clip::TriangleMesh>(clip::makeCylinder(2.5, 30.0, 24));
+    std::shared_ptr<const clip::TriangleMesh> ball = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 2));
+
+    void place(int round, std::mt19937& random, double dilationMm) {
+        clip::ClipMeshSet& set = renderer.clipMeshes();
+        set.clear();
+        for (int m = 0; m < 1 + round % 2; ++m)
+            set.add(m == 0 ? rod : ball, glm::dvec3(1.0), randomTurnedPose(random, 16.0), m == 0 ? "rod" : "ball");
+        drawMaps(set, dilationMm);
+    }
+};
 
 // Distance from world point p to mesh i's dilated box (clip::ClipMeshSet::dilatedBoxLocal) in the mesh's
 // (rigid) frame, in double.
@@ -87,21 +97,17 @@ double distanceToReachBall(const clip::ClipMeshSet& set, int i, glm::dvec3 p) {
 // diagonal of a dilated box, and near that mesh's reach ball. On an oblique, anisotropic grid with turned
 // meshes, the bricks hold far fewer voxels than the axis-aligned box, and fewer than the dilated boxes'.
 TEST(VisitBricks, HoldEveryVoxelTheMapsCanTouchAndLittleElse) {
-    glContext();
-    glm::ivec3 dims(48, 44, 40);
-    VolumeData volume = obliqueVolume(dims);
-    Renderer renderer(glContext(), volume, test::rampTransferFunction(0, 255, 0.5));
-    const VolumeGeometry& g = renderer.geometry();
-    clip::ClipMeshSet& set = renderer.clipMeshes();
-    auto rod = std::make_shared<const clip::TriangleMesh>(clip::makeCylinder(2.5, 30.0, 24));
-    auto ball = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 2));
+    RodAndBallGrid scene;
+    const glm::ivec3 dims = scene.dims;
+    const VolumeGeometry& g = scene.renderer.geometry();
+    clip::ClipMeshSet& set = scene.renderer.clipMeshes();
     const double reachMm = 4.0;
     // The brick's circumradius: half the diagonal of its voxel centres' parallelepiped.
     const double brickCircumradius = 0.5 * (kVisitBrickSize - 1) * g.cellDiagonalMm();
     std::mt19937 random(7);
     std::uint64_t visitedVoxels = 0, boxVoxels = 0, dilatedBoxVoxels = 0, touched = 0, reached = 0;
     for (int round = 0; round < 10; ++round) {
-        placeRodAndBall(set, rod, ball, round, random, reachMm);
+        scene.place(round, random, reachMm);
         BrickSet bricks = bricksAroundMeshes(g, set);
         visitedVoxels += bricks.visitedVoxels();
         boxVoxels += voxelBoxAroundMeshes(g, set).voxelCount();
@@ -191,19 +197,15 @@ bool nearDepthBoxAndBall(const clip::ClipMeshSet& set, int i, glm::dvec3 p, doub
 // voxel one of whose nine clip samples the GPU's maps call inside, lies in a brick within reach. Tight: those
 // bricks are a small part of the visited ones. Off with the depth-box tests (every voxel near a mesh is tested).
 TEST(VisitBricks, SampleReachBricksHoldEveryVoxelWhoseSamplesAreTested) {
-    glContext();
-    glm::ivec3 dims(48, 44, 40);
-    VolumeData volume = obliqueVolume(dims);
-    Renderer renderer(glContext(), volume, test::rampTransferFunction(0, 255, 0.5));
-    const VolumeGeometry& g = renderer.geometry();
-    clip::ClipMeshSet& set = renderer.clipMeshes();
-    auto rod = std::make_shared<const clip::TriangleMesh>(clip::makeCylinder(2.5, 30.0, 24));
-    auto ball = std::make_shared<const clip::TriangleMesh>(clip::makeSphere(5.0, 2));
+    RodAndBallGrid scene;
+    const glm::ivec3 dims = scene.dims;
+    const VolumeGeometry& g = scene.renderer.geometry();
+    clip::ClipMeshSet& set = scene.renderer.clipMeshes();
     const double reach = clipSampleReachMm(g);
     std::mt19937 random(11);
     std::uint64_t nearVoxels = 0, insideVoxels = 0, withinBricks = 0, aroundBricks = 0;
     for (int round = 0; round < 8; ++round) {
-        placeRodAndBall(set, rod, ball, round, random, 4.0);
+        scene.place(round, random, 4.0);
         BrickSet within = bricksWithinSampleReach(g, set);
         withinBricks += within.visitedCount();
         aroundBricks += bricksAroundMeshes(g, set).visitedCount();
