@@ -125,6 +125,16 @@ BrickSet bricksMeetingBoxAndBall(const VolumeGeometry& g, glm::dvec3 lo, glm::dv
     return set;
 }
 
+// The bricks that can hold a voxel centre within `growMm` of both mesh i's depth box and its depth ball
+// (clip::ClipMeshSet::depthBoxLocal, depthBallLocal: outside either no depth map says inside).
+BrickSet bricksNearDepthMaps(const VolumeGeometry& g, const clip::ClipMeshSet& clip, int i, double growMm) {
+    glm::dvec3 lo, hi;
+    clip.depthBoxLocal(i, lo, hi);
+    const glm::dmat4 toWorld = clip.pose(i).matrix();
+    clip::ClipMeshSet::Ball ball = clip.depthBallLocal(i);
+    return bricksMeetingBoxAndBall(g, lo - growMm, hi + growMm, toWorld, glm::dvec3(toWorld * glm::dvec4(ball.centre, 1.0)), ball.radius + growMm);
+}
+
 }  // namespace
 
 BrickSet bricksAroundMesh(const VolumeGeometry& g, const clip::ClipMeshSet& clip, int i) {
@@ -144,14 +154,7 @@ BrickSet bricksWithinSampleReach(const VolumeGeometry& g, const clip::ClipMeshSe
     // holds no such voxel.
     const double reach = clipSampleReachMm(g) + 0.01;
     BrickSet set = BrickSet::none(g.dims);
-    for (int i = 0; i < clip.count(); ++i) {
-        glm::dvec3 lo, hi;
-        clip.depthBoxLocal(i, lo, hi);
-        glm::dmat4 toWorld = clip.pose(i).matrix();
-        clip::ClipMeshSet::Ball ball = clip.depthBallLocal(i);
-        set.unite(bricksMeetingBoxAndBall(g, lo - reach, hi + reach, toWorld, glm::dvec3(toWorld * glm::dvec4(ball.centre, 1.0)),
-                                          ball.radius + reach));
-    }
+    for (int i = 0; i < clip.count(); ++i) set.unite(bricksNearDepthMaps(g, clip, i, reach));
     return set;
 }
 
@@ -169,22 +172,15 @@ BrickSet bricksDeepInsideMeshes(const VolumeGeometry& g, const clip::ClipMeshSet
         const glm::dmat4 indexToMap = camera.worldToMap(clip.pose(i)) * g.indexToWorld;
         const glm::dvec2 offset = camera.depthOffset();
         const double scale = camera.depthScale() * intervals.resolution();
-        // Only bricks in the depth box can be inside (outside it no depth map says inside).
-        glm::dvec3 lo, hi;
-        clip.depthBoxLocal(i, lo, hi);
-        const glm::dmat4 toWorld = clip.pose(i).matrix();
-        clip::ClipMeshSet::Ball ball = clip.depthBallLocal(i);
-        BrickSet candidates = bricksMeetingBoxAndBall(g, lo, hi, toWorld, glm::dvec3(toWorld * glm::dvec4(ball.centre, 1.0)), ball.radius);
-        for (std::uint32_t b : candidates.visitedIndices()) {
+        // Only bricks near the depth box and ball can be inside.
+        for (std::uint32_t b : bricksNearDepthMaps(g, clip, i, 0.0).visitedIndices()) {
             if (deep.visited[b]) continue;
-            glm::ivec3 brick(int(b % std::uint32_t(deep.grid.x)), int((b / std::uint32_t(deep.grid.x)) % std::uint32_t(deep.grid.y)),
-                             int(b / (std::uint32_t(deep.grid.x) * std::uint32_t(deep.grid.y))));
             // Part by part (a turned cell's box in the map is wider than the cell): the brick is deep when each of
             // its 2^3 blocks of voxels is.
-            const glm::ivec3 brickFirst = kVisitBrickSize * brick, brickEnd = glm::min(brickFirst + kVisitBrickSize, g.dims);
+            const glm::ivec3 brickFirst = kVisitBrickSize * visitBrickAt(b, deep.grid), brickEnd = glm::min(brickFirst + kVisitBrickSize, g.dims);
+            const glm::ivec3 half(kVisitBrickSize / 2);
             bool inside = true;
             for (int part = 0; part < 8 && inside; ++part) {
-                glm::ivec3 half(kVisitBrickSize / 2);
                 glm::ivec3 from = brickFirst + glm::ivec3(part & 1, (part >> 1) & 1, (part >> 2) & 1) * half;
                 glm::ivec3 to = glm::min(from + half, brickEnd);
                 if (glm::any(glm::greaterThanEqual(from, to))) continue;   // past the grid's upper faces

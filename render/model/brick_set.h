@@ -23,6 +23,11 @@ inline constexpr int kVisitBrickSize = 4;
 inline constexpr std::uint32_t kVisitBrickNumber = 0x3FFFFFFFu, kVisitOpacityChanged = 0x40000000u, kVisitLaoCanChange = 0x80000000u;
 // Bricks per axis: ceil(dims / kVisitBrickSize).
 inline glm::ivec3 visitBrickGrid(glm::ivec3 dims) { return (dims + kVisitBrickSize - 1) / kVisitBrickSize; }
+// The brick numbered bx + grid.x * (by + grid.y * bz) (a visited-brick list entry's number) on a grid of `grid`.
+inline glm::ivec3 visitBrickAt(std::uint32_t number, glm::ivec3 grid) {
+    const std::uint32_t gx = std::uint32_t(grid.x), gy = std::uint32_t(grid.y);
+    return {int(number % gx), int((number / gx) % gy), int(number / (gx * gy))};
+}
 
 struct BrickSet {
     glm::ivec3 dims{0};                    // the voxel grid

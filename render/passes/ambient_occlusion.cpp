@@ -174,9 +174,7 @@ void AmbientOcclusion::markLaoBricks() {
     std::uint64_t lao = 0;
     for (std::uint32_t& entry : list) {
         std::uint32_t b = entry & kVisitBrickNumber;
-        glm::ivec3 brick(int(b % std::uint32_t(grid.x)), int((b / std::uint32_t(grid.x)) % std::uint32_t(grid.y)),
-                         int(b / (std::uint32_t(grid.x) * std::uint32_t(grid.y))));
-        bool can = laoReach_.canChange(brick);
+        bool can = laoReach_.canChange(visitBrickAt(b, grid));
         entry = b | (can ? kVisitLaoCanChange : 0u);
         lao += can;
     }
